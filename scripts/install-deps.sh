@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Installs the Debian packages (and the npm packages of the web tests) that the
+# build and the test suite need. Idempotent: does nothing when all are present.
+# Used by `make run` and `make test`, so a fresh Debian 12 machine needs no
+# manual step.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config clang-format
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libasio-dev libcli11-dev nlohmann-json3-dev
+  libhamlib-utils socat netcat-openbsd
+  gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
+  liblwip-dev libgpiod-dev
+  clang libclang-rt-14-dev
+  chromium
+)
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "install-deps: installing ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# Browser tests drive Debian's chromium with playwright-core (no browser download).
+if [ "${1:-}" = "--with-web" ] && [ -f tests/web/package.json ]; then
+  if [ ! -d tests/web/node_modules/playwright-core ]; then
+    (cd tests/web && npm ci --no-audit --no-fund --loglevel=error)
+  fi
+fi
