@@ -1,0 +1,129 @@
+#pragma once
+#include <array>
+#include <optional>
+
+#include "axis/axis_config.hpp"
+#include "axis/axis_id.hpp"
+#include "axis/axis_io.hpp"
+#include "axis/axis_status.hpp"
+#include "axis/sequencer.hpp"
+#include "sensors/ma3_sensor.hpp"
+#include "sensors/pot_sensor.hpp"
+#include "util/error.hpp"
+#include "util/time.hpp"
+
+namespace rotord {
+
+/// One rotator axis: reads its sensor, runs the motion state machine
+/// (idle, starting, moving, stopping, reversing, fault) and writes its drive
+/// outputs. The safety rules live here, so they hold whatever the command
+/// source: never past a soft limit or an active limit switch, reversal only
+/// through stop and a dead time, stall / sensor faults latch and stop.
+///
+/// No heap, no exceptions: everything is fixed-size members.
+class Axis {
+ public:
+  /// A reading may be missing this long before the sensor is declared lost.
+  static constexpr Millis kSensorGraceMs = 250;
+  /// Consecutive implausible readings tolerated (rejected) before a fault.
+  static constexpr int kJumpRejectLimit = 5;
+  /// Extra moves allowed to correct a go-to that ended outside tolerance.
+  static constexpr int kMaxCorrections = 2;
+
+  Axis(AxisId id, const AxisIo& io);
+
+  void configure(const AxisConfig& cfg);
+  /// All outputs off, first sensor reading.
+  void begin(Millis now);
+  void tick(Millis now);
+  /// All outputs off at once (process exit, watchdog, brown-out).
+  void shutdown();
+
+  /// Go to an unwrapped position in the user frame (offset applied).
+  Error go_to(float target_deg);
+  /// Move in one direction until stop, a limit, or `until` (0 = no dead-man).
+  Error jog(Direction dir, Millis until);
+  void stop();
+  void clear_fault();
+  void set_speed_pct(int pct) { speed_pct_ = pct; }
+  int speed_pct() const { return speed_pct_; }
+
+  const AxisStatus& status() const { return status_; }
+  const AxisConfig& config() const { return cfg_; }
+  AxisId id() const { return id_; }
+
+ private:
+  enum class RequestKind : std::uint8_t { kNone, kGoto, kJog };
+  struct Request {
+    RequestKind kind = RequestKind::kNone;
+    float target_deg = 0.0f;
+    Direction dir = Direction::kNone;
+    Millis until = 0;
+  };
+  struct Sample {
+    Millis t = 0;
+    float deg = 0.0f;
+  };
+
+  void update_position(Millis now);
+  void read_switches();
+  float initial_unwrap(float sensor_deg) const;
+  float estimate_speed() const;
+  float stop_distance_deg() const;
+  bool blocked(Direction dir) const;
+  Direction desired_direction();
+  void begin_start(Direction dir, Millis now);
+  void begin_stop(bool hard, bool reversing, Millis now);
+  void drive_moving(Millis now);
+  void finish_stop(Millis now);
+  void latch_fault(AxisFault fault);
+  void publish();
+
+  AxisId id_;
+  AxisIo io_;
+  AxisConfig cfg_;
+  std::optional<PotSensor> pot_;
+  std::optional<Ma3Sensor> ma3_;
+  PositionSensor* sensor_ = nullptr;
+
+  AxisState state_ = AxisState::kIdle;
+  AxisFault fault_ = AxisFault::kNone;
+  Direction dir_ = Direction::kNone;       // direction driven, or stopping from
+  Direction last_dir_ = Direction::kNone;  // direction of the last completed move
+  Request request_;
+  Sequencer seq_;
+  DriveOutputs out_;
+  int speed_pct_ = 50;
+  float duty_ = 0.0f;
+
+  bool have_pos_ = false;
+  float pos_deg_ = 0.0f;         // user frame
+  float sensor_deg_ = 0.0f;      // unwrapped, sensor frame
+  float raw_ = 0.0f;
+  Millis bad_since_ = -1;
+  int jump_rejects_ = 0;
+  std::array<Sample, 32> history_{};
+  int history_head_ = 0;
+  int history_count_ = 0;
+
+  bool sw_cw_ = false, sw_ccw_ = false, t1_ = false, t2_ = false;
+
+  Millis now_ = 0;
+  Millis last_tick_ = 0;
+  Millis stop_done_at_ = -1000000;  // when the motor was last cut
+  Millis drive_off_at_ = 0;
+  Millis move_started_ = 0;
+  Millis stall_ref_t_ = 0;
+  float stall_ref_deg_ = 0.0f;
+  float cut_deg_ = 0.0f;
+  float cut_speed_deg_s_ = 0.0f;
+  float coast_s_ = 0.15f;
+  bool reversing_ = false;
+  bool arrived_ = false;
+  int starts_this_request_ = 0;
+  std::uint32_t moves_ = 0;
+
+  AxisStatus status_;
+};
+
+}  // namespace rotord

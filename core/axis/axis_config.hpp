@@ -1,0 +1,52 @@
+#pragma once
+#include <cstdint>
+
+#include "axis/axis_id.hpp"
+#include "settings/settings.hpp"
+
+namespace rotord {
+
+enum class DriveType : std::uint8_t { kRelay, kRelayTwoSpeed, kRelayVoltageSelect, kHBridge };
+enum class SensorType : std::uint8_t { kPot, kMa3 };
+
+/// Everything one axis needs, derived from the settings table whenever it
+/// changes. Plain data: the axis never looks settings up by key in the tick.
+struct AxisConfig {
+  float min_deg = 0.0f;
+  float max_deg = 360.0f;
+  bool continuous = false;
+  float offset_deg = 0.0f;
+  float tolerance_deg = 1.0f;
+  float slow_zone_deg = 10.0f;
+
+  DriveType drive = DriveType::kRelay;
+  bool has_brake = false;
+  int brake_release_ms = 0;
+  int brake_engage_ms = 0;
+  int dir_settle_ms = 0;
+  int soft_ms = 0;
+  int reverse_dead_ms = 1000;
+  int min_dwell_ms = 300;
+  float pwm_slow_duty = 0.45f;
+  float pwm_fast_duty = 1.0f;
+
+  SensorType sensor = SensorType::kPot;
+  float pot_counts_lo = 0.0f;
+  float pot_deg_lo = 0.0f;
+  float pot_counts_hi = 4095.0f;
+  float pot_deg_hi = 360.0f;
+  float ma3_zero_deg = 0.0f;
+  bool ma3_reverse = false;
+  int ma3_bits = 12;
+
+  float stall_deg = 2.0f;
+  int stall_ms = 3000;
+  float jump_deg = 15.0f;
+  int move_timeout_ms = 180000;
+  float coast_s = 0.15f;
+  bool coast_learn = true;
+};
+
+AxisConfig axis_config_from(const settings::Settings& s, AxisId axis);
+
+}  // namespace rotord

@@ -1,0 +1,51 @@
+#pragma once
+#include <cstdint>
+
+#include "axis/drive_outputs.hpp"
+#include "axis/sequencer.hpp"
+
+namespace rotord {
+
+enum class AxisState : std::uint8_t { kIdle, kStarting, kMoving, kStopping, kReversing, kFault };
+
+/// Latched faults: the axis stops and stays stopped until a reset.
+enum class AxisFault : std::uint8_t {
+  kNone,
+  kStall,        ///< driven but not moving
+  kSensorLost,   ///< no signal from the position sensor
+  kSensorRange,  ///< sensor reading outside its valid range
+  kSensorJump,   ///< implausible jumps between readings
+  kTimeout,      ///< a single move took too long
+  kNoSensor,     ///< the configured sensor is not fitted
+};
+
+const char* axis_state_name(AxisState state);
+const char* axis_fault_name(AxisFault fault);
+
+/// A snapshot of one axis for protocols, the web page and tests (the
+/// controller's working state doubles as telemetry).
+struct AxisStatus {
+  bool present = false;
+  bool position_valid = false;
+  float position_deg = 0.0f;  ///< unwrapped, offset applied
+  float speed_deg_s = 0.0f;   ///< estimated from the sensor
+  float raw = 0.0f;           ///< sensor raw value (ADC counts, encoder code)
+  bool has_target = false;
+  float target_deg = 0.0f;
+  bool jogging = false;
+  bool arrived = false;  ///< the last go-to ended within tolerance
+  AxisState state = AxisState::kIdle;
+  Direction drive_dir = Direction::kNone;  ///< direction being driven (or stopping from)
+  AxisFault fault = AxisFault::kNone;
+  bool limit_cw = false;   ///< CW/UP blocked (switch or soft limit)
+  bool limit_ccw = false;  ///< CCW/DOWN blocked
+  bool switch_cw = false;  ///< raw limit switch inputs
+  bool switch_ccw = false;
+  bool t1 = false;
+  bool t2 = false;
+  float coast_s = 0.0f;  ///< learned coast time constant
+  std::uint32_t moves = 0;  ///< motor starts since boot (relay wear, hunting checks)
+  DriveOutputs outputs;
+};
+
+}  // namespace rotord

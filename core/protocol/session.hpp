@@ -1,0 +1,37 @@
+#pragma once
+#include <string_view>
+
+#include "util/time.hpp"
+
+namespace rotord {
+
+class Controller;
+
+namespace protocol {
+
+/// Where a session writes its replies. A transport sends each write() as one
+/// unit (one TCP segment where it can): Gpredict reads a reply with a single
+/// recv and breaks when a reply is split.
+class ByteSink {
+ public:
+  virtual ~ByteSink() = default;
+  virtual void write(std::string_view bytes) = 0;
+};
+
+/// A protocol as a byte session: consumes bytes, appends replies, owns no
+/// socket. The same object is unit-tested, fuzzed and served on every port
+/// (asio socket, lwIP pcb, pty, USB CDC).
+class Session {
+ public:
+  virtual ~Session() = default;
+  /// Bytes arrived from the client; may hold partial or several commands.
+  virtual void receive(std::string_view bytes, ByteSink& out) = 0;
+  /// Called regularly by the transport for unsolicited output (WRC MONITOR).
+  virtual void poll(Millis /*now*/, ByteSink& /*out*/) {}
+  /// The client asked to end the session (rotctld `q`); the transport closes
+  /// after flushing.
+  virtual bool wants_close() const { return false; }
+};
+
+}  // namespace protocol
+}  // namespace rotord

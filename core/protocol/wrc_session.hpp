@@ -1,0 +1,36 @@
+#pragma once
+#include "protocol/line_assembler.hpp"
+#include "protocol/session.hpp"
+
+namespace rotord::protocol {
+
+/// The WRC text protocol of the Pico W rotator firmware we started from
+/// (webradiocontrol/wrc-rotator-controller): one command per line, replies
+/// `OK ...` or `ERROR <REASON>`, CR LF line ends (Arduino println). Extended
+/// with EL / EL? for az/el rotators and FAULT? for latched faults.
+class WrcSession final : public Session {
+ public:
+  static constexpr std::size_t kMaxLineLength = 128;
+  static constexpr Millis kMonitorPeriodMs = 100;
+  static constexpr std::string_view kTooManyConnections = "ERROR TOO MANY CONNECTIONS\r\n";
+
+  WrcSession(Controller& controller, const char* version)
+      : controller_(controller), version_(version) {}
+
+  void receive(std::string_view bytes, ByteSink& out) override;
+  void poll(Millis now, ByteSink& out) override;
+
+  /// Handles one command line (no line end); public for tests and fuzzing.
+  void handle_line(std::string_view line, ByteSink& out);
+
+ private:
+  void write_state(ByteSink& out);
+
+  Controller& controller_;
+  const char* version_;
+  LineAssembler<kMaxLineLength> lines_;
+  bool monitor_ = false;
+  Millis last_push_ = 0;
+};
+
+}  // namespace rotord::protocol

@@ -1,0 +1,167 @@
+#include "rotator/controller.hpp"
+
+#include "motion/angles.hpp"
+
+namespace rotord {
+
+using settings::Id;
+
+const char* mode_name(Mode mode) {
+  switch (mode) {
+    case Mode::kIdle: return "idle";
+    case Mode::kGoto: return "goto";
+    case Mode::kManual: return "manual";
+    case Mode::kPark: return "park";
+  }
+  return "?";
+}
+
+Controller::Controller(settings::Settings& settings, const AxisIo& az_io, const AxisIo& el_io)
+    : settings_(settings),
+      az_(AxisId::kAz, az_io),
+      el_(AxisId::kEl, el_io),
+      has_el_(settings.b(Id::kElEnabled)) {
+  apply_settings();
+  speed_pct_ = settings_.i(Id::kSpeedPct);
+  az_.set_speed_pct(speed_pct_);
+  el_.set_speed_pct(speed_pct_);
+}
+
+void Controller::apply_settings() {
+  az_.configure(axis_config_from(settings_, AxisId::kAz));
+  if (has_el_) el_.configure(axis_config_from(settings_, AxisId::kEl));
+  applied_revision_ = settings_.revision();
+}
+
+void Controller::begin(Millis now) {
+  now_ = now;
+  az_.begin(now);
+  if (has_el_) el_.begin(now);
+}
+
+void Controller::tick(Millis now) {
+  now_ = now;
+  if (settings_.revision() != applied_revision_) apply_settings();
+  az_.tick(now);
+  if (has_el_) el_.tick(now);
+  const RotatorStatus s = status();
+  if (mode_ != Mode::kIdle && !s.moving() && !s.az.has_target && !s.az.jogging &&
+      !(has_el_ && (s.el.has_target || s.el.jogging)))
+    mode_ = Mode::kIdle;
+}
+
+void Controller::shutdown() {
+  az_.shutdown();
+  if (has_el_) el_.shutdown();
+  mode_ = Mode::kIdle;
+}
+
+std::optional<float> Controller::resolve_az(float az_deg, AzTarget mode) const {
+  const AxisConfig& c = az_.config();
+  if (c.continuous) {
+    if (az_deg < 0.0f || az_deg > 360.0f) return std::nullopt;
+    return wrap_360(az_deg);
+  }
+  if (mode == AzTarget::kCompass && az_deg >= 0.0f && az_deg <= 360.0f)
+    return choose_unwrapped_az(az_deg, az_.status().position_deg, c.min_deg, c.max_deg, false);
+  if (az_deg < c.min_deg || az_deg > c.max_deg) return std::nullopt;
+  return az_deg;
+}
+
+Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg,
+                        AzTarget az_mode) {
+  if (el_deg && !has_el_) return Error::kNotSupported;
+  std::optional<float> az_target;
+  if (az_deg) {
+    az_target = resolve_az(*az_deg, az_mode);
+    if (!az_target) return Error::kOutOfRange;
+  }
+  if (el_deg) {
+    const AxisConfig& c = el_.config();
+    if (*el_deg < c.min_deg || *el_deg > c.max_deg) return Error::kOutOfRange;
+  }
+  if (az_.status().fault != AxisFault::kNone ||
+      (has_el_ && el_.status().fault != AxisFault::kNone))
+    return Error::kFaulted;
+  if (az_target) {
+    const Error e = az_.go_to(*az_target);
+    if (e != Error::kOk) return e;
+  }
+  if (el_deg) {
+    const Error e = el_.go_to(*el_deg);
+    if (e != Error::kOk) return e;
+  }
+  if (az_target || el_deg) mode_ = Mode::kGoto;
+  return Error::kOk;
+}
+
+Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman_ms) {
+  if (axis == AxisId::kEl && !has_el_) return Error::kNotSupported;
+  if (speed_pct != -1 && (speed_pct < 1 || speed_pct > 100)) return Error::kOutOfRange;
+  Axis& a = axis == AxisId::kAz ? az_ : el_;
+  if (speed_pct != -1) a.set_speed_pct(speed_pct);
+  const Error e = a.jog(dir, deadman_ms > 0 ? now_ + deadman_ms : 0);
+  if (e == Error::kOk && dir != Direction::kNone) mode_ = Mode::kManual;
+  return e;
+}
+
+void Controller::stop() {
+  az_.stop();
+  el_.stop();
+  mode_ = Mode::kIdle;
+}
+
+Error Controller::park() {
+  const float park_az = settings_.f(Id::kParkAzDeg);
+  std::optional<float> park_el;
+  if (has_el_) park_el = settings_.f(Id::kParkElDeg);
+  const Error e = go_to(park_az, park_el, AzTarget::kUnwrapped);
+  if (e == Error::kOk) mode_ = Mode::kPark;
+  return e;
+}
+
+void Controller::reset() {
+  stop();
+  az_.clear_fault();
+  el_.clear_fault();
+  speed_pct_ = settings_.i(Id::kSpeedPct);
+  az_.set_speed_pct(speed_pct_);
+  el_.set_speed_pct(speed_pct_);
+}
+
+Error Controller::set_speed_pct(int pct) {
+  if (pct < 1 || pct > 100) return Error::kOutOfRange;
+  speed_pct_ = pct;
+  az_.set_speed_pct(pct);
+  el_.set_speed_pct(pct);
+  return Error::kOk;
+}
+
+Limits Controller::limits() const {
+  Limits l;
+  const AxisConfig& a = az_.config();
+  l.az_min_deg = a.continuous ? 0.0f : a.min_deg;
+  l.az_max_deg = a.continuous ? 360.0f : a.max_deg;
+  l.az_continuous = a.continuous;
+  l.has_el = has_el_;
+  if (has_el_) {
+    l.el_min_deg = el_.config().min_deg;
+    l.el_max_deg = el_.config().max_deg;
+  } else {
+    l.el_min_deg = 0.0f;
+    l.el_max_deg = 0.0f;
+  }
+  return l;
+}
+
+RotatorStatus Controller::status() const {
+  RotatorStatus s;
+  s.az = az_.status();
+  if (has_el_) s.el = el_.status();
+  s.mode = mode_;
+  s.speed_pct = speed_pct_;
+  s.limits = limits();
+  return s;
+}
+
+}  // namespace rotord

@@ -1,0 +1,92 @@
+#pragma once
+#include <optional>
+
+#include "axis/axis.hpp"
+#include "settings/settings.hpp"
+
+namespace rotord {
+
+enum class Mode : std::uint8_t { kIdle, kGoto, kManual, kPark };
+
+const char* mode_name(Mode mode);
+
+/// The travel the rotator may use, as every protocol must report it.
+struct Limits {
+  float az_min_deg = 0.0f;
+  float az_max_deg = 360.0f;
+  bool az_continuous = false;
+  bool has_el = false;
+  float el_min_deg = 0.0f;
+  float el_max_deg = 90.0f;
+};
+
+struct RotatorStatus {
+  AxisStatus az;
+  AxisStatus el;  ///< present == false on azimuth-only rotators
+  Mode mode = Mode::kIdle;
+  int speed_pct = 50;
+  Limits limits;
+  bool any_fault() const { return az.fault != AxisFault::kNone || el.fault != AxisFault::kNone; }
+  bool moving() const {
+    return (az.state != AxisState::kIdle && az.state != AxisState::kFault) ||
+           (el.present && el.state != AxisState::kIdle && el.state != AxisState::kFault);
+  }
+};
+
+/// How a go-to azimuth is read.
+enum class AzTarget : std::uint8_t {
+  kCompass,    ///< 0..360 picks the turn within the travel that turns least;
+               ///< values outside 0..360 are taken as unwrapped positions
+  kUnwrapped,  ///< always an unwrapped position, e.g. 60 on a 450 deg rotator at 400
+};
+
+/// The rotator: one or two axes, the command API every protocol uses, and the
+/// control tick. Single-threaded by design: ports call commands and tick()
+/// from one loop (asio on Linux, the poll loop on the Pico).
+class Controller {
+ public:
+  Controller(settings::Settings& settings, const AxisIo& az_io, const AxisIo& el_io);
+
+  /// All outputs off, first readings. Call once before the first tick.
+  void begin(Millis now);
+  /// One control step: applies changed settings, reads sensors, steps the
+  /// axis state machines, writes outputs. 100 Hz nominal.
+  void tick(Millis now);
+  /// All outputs off (exit, signal, watchdog).
+  void shutdown();
+
+  // Commands. Each validates everything before it changes anything.
+  Error go_to(std::optional<float> az_deg, std::optional<float> el_deg,
+              AzTarget az_mode = AzTarget::kCompass);
+  /// Moves one axis until stop, a limit, or for `deadman_ms` (0 = no dead-man;
+  /// the web's hold-to-move buttons renew it).
+  Error move(AxisId axis, Direction dir, int speed_pct = -1, Millis deadman_ms = 0);
+  void stop();
+  Error park();
+  /// Stops, clears latched faults, restores the default speed.
+  void reset();
+  Error set_speed_pct(int pct);
+
+  RotatorStatus status() const;
+  Limits limits() const;
+  bool has_el() const { return has_el_; }
+  Millis now() const { return now_; }
+  settings::Settings& settings() { return settings_; }
+
+  /// Resolves a compass azimuth to the unwrapped target go_to would use.
+  std::optional<float> resolve_az(float az_deg, AzTarget mode) const;
+
+ private:
+  void apply_settings();
+
+  settings::Settings& settings_;
+  Axis az_;
+  Axis el_;
+  bool has_el_;
+  std::uint32_t applied_revision_ = 0;
+  Mode mode_ = Mode::kIdle;
+  int speed_pct_ = 50;
+  Millis now_ = 0;
+};
+
+}  // namespace rotord

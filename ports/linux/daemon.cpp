@@ -1,0 +1,127 @@
+#include "daemon.hpp"
+
+#include <csignal>
+#include <cstdio>
+
+#include "services.hpp"
+
+namespace rotord::linux_port {
+namespace {
+
+AxisIo to_core(const sim::AxisIo& io) {
+  AxisIo core;
+  core.pot = io.pot;
+  core.ma3 = io.ma3;
+  core.limit_cw = io.limit_cw;
+  core.limit_ccw = io.limit_ccw;
+  core.t1 = io.t1;
+  core.t2 = io.t2;
+  core.drive = io.drive;
+  return core;
+}
+
+}  // namespace
+
+Daemon::Daemon(const Options& options)
+    : options_(options), timer_(io_), signals_(io_, SIGINT, SIGTERM) {}
+
+Daemon::~Daemon() {
+  if (controller_) controller_->shutdown();
+}
+
+bool Daemon::setup() {
+  const sim::Profile* profile = sim::find_profile(options_.sim_profile);
+  if (profile == nullptr) {
+    std::fprintf(stderr, "rotord: unknown simulator profile '%s' (try g5500, ham4, spid)\n",
+                 options_.sim_profile.c_str());
+    return false;
+  }
+  for (const auto& o : profile->settings_overrides) {
+    const auto id = settings::find(o.key);
+    if (!id || settings_.set(*id, o.value).error != Error::kOk) {
+      std::fprintf(stderr, "rotord: profile %s sets an invalid %s\n", profile->name, o.key);
+      return false;
+    }
+  }
+  sim_ = std::make_unique<sim::SimRotator>(*profile, options_.seed);
+  controller_ = std::make_unique<Controller>(settings_, to_core(sim_->io(AxisId::kAz)),
+                                             to_core(sim_->io(AxisId::kEl)));
+  std::printf("rotord %s: simulated rotator '%s' (%s), speedup %g\n", ROTORD_VERSION, profile->name,
+              profile->description, options_.speedup);
+
+  std::error_code ec;
+  const auto bind = asio::ip::make_address(options_.bind, ec);
+  if (ec) {
+    std::fprintf(stderr, "rotord: invalid bind address '%s'\n", options_.bind.c_str());
+    return false;
+  }
+  const auto max_clients = static_cast<std::size_t>(settings_.i(settings::Id::kNetMaxClients));
+  for (auto& service : make_services(options_, *controller_, max_clients)) {
+    if (service.port == 0) continue;
+    try {
+      servers_.push_back(std::make_unique<TcpServer>(io_, bind, std::move(service)));
+    } catch (const std::system_error& e) {
+      std::fprintf(stderr, "rotord: cannot listen on %s:%u: %s\n", options_.bind.c_str(),
+                   static_cast<unsigned>(service.port), e.what());
+      return false;
+    }
+    std::printf("rotord: %s listening on %s:%u\n", servers_.back()->name().c_str(),
+                options_.bind.c_str(), static_cast<unsigned>(servers_.back()->port()));
+  }
+  std::fflush(stdout);
+  return true;
+}
+
+int Daemon::run() {
+  if (!setup()) return 2;
+  signals_.async_wait([this](std::error_code ec, int signal) {
+    if (ec) return;
+    std::printf("rotord: signal %d, stopping the motors\n", signal);
+    std::fflush(stdout);
+    stop();
+  });
+  controller_->begin(now_ms_);
+  sim_->advance_to(now_ms_);
+  wall_start_ = std::chrono::steady_clock::now();
+  schedule_tick();
+  io_.run();
+  controller_->shutdown();
+  std::printf("rotord: stopped\n");
+  return 0;
+}
+
+void Daemon::stop() {
+  controller_->shutdown();
+  timer_.cancel();
+  servers_.clear();
+  io_.stop();
+}
+
+void Daemon::schedule_tick() {
+  timer_.expires_after(std::chrono::milliseconds(kTickMs));
+  timer_.async_wait([this](std::error_code ec) {
+    if (ec) return;
+    on_tick();
+    schedule_tick();
+  });
+}
+
+void Daemon::on_tick() {
+  // Simulated time runs `speedup` times faster than the wall clock; the
+  // control tick stays at 100 Hz of simulated time whatever the speedup.
+  const auto wall_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                           std::chrono::steady_clock::now() - wall_start_)
+                           .count();
+  const auto target_ms = static_cast<Millis>(static_cast<double>(wall_ms) * options_.speedup);
+  // Catch up at most 2 s of simulated time per wake-up, so an overloaded host
+  // slows the simulation down instead of stalling the sockets.
+  int budget = 200;
+  while (now_ms_ + kTickMs <= target_ms && budget-- > 0) {
+    now_ms_ += kTickMs;
+    sim_->advance_to(now_ms_);
+    controller_->tick(now_ms_);
+  }
+  for (auto& server : servers_) server->poll(now_ms_);
+}
+
+}  // namespace rotord::linux_port

@@ -1,0 +1,45 @@
+#pragma once
+#include <asio.hpp>
+#include <memory>
+#include <vector>
+
+#include "options.hpp"
+#include "rotator/controller.hpp"
+#include "settings/settings.hpp"
+#include "sim/sim_rotator.hpp"
+#include "tcp_server.hpp"
+
+namespace rotord::linux_port {
+
+/// The composition root of the Linux daemon: settings, the simulated (or
+/// real) hardware, the controller, the protocol servers and the one asio loop
+/// that runs the 100 Hz control tick and every socket.
+class Daemon {
+ public:
+  static constexpr Millis kTickMs = 10;
+
+  explicit Daemon(const Options& options);
+  ~Daemon();
+  /// Returns the process exit code.
+  int run();
+
+ private:
+  bool setup();
+  void add_service(ServiceConfig config);
+  void schedule_tick();
+  void on_tick();
+  void stop();
+
+  Options options_;
+  asio::io_context io_;
+  asio::steady_timer timer_;
+  asio::signal_set signals_;
+  settings::Settings settings_;
+  std::unique_ptr<sim::SimRotator> sim_;
+  std::unique_ptr<Controller> controller_;
+  std::vector<std::unique_ptr<TcpServer>> servers_;
+  std::chrono::steady_clock::time_point wall_start_;
+  Millis now_ms_ = 0;
+};
+
+}  // namespace rotord::linux_port

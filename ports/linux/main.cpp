@@ -1,0 +1,35 @@
+#include <CLI/CLI.hpp>
+
+#include "daemon.hpp"
+
+int main(int argc, char** argv) {
+  rotord::linux_port::Options o;
+  CLI::App app{"rotord: antenna rotator controller (simulated rotator by default)"};
+  app.add_option("--config", o.config_path, "Settings file (JSON)");
+  app.add_option("--sim", o.sim_profile, "Simulated rotator: g5500, ham4 or spid")
+      ->capture_default_str();
+  app.add_option("--speedup", o.speedup, "Run simulated time N times faster than the wall clock")
+      ->check(CLI::Range(0.01, 1000.0))
+      ->capture_default_str();
+  app.add_option("--seed", o.seed, "Seed of the simulator's noise")->capture_default_str();
+  app.add_option("--bind", o.bind, "Address to listen on")->capture_default_str();
+  const auto port = CLI::Range(0, 65535);
+  app.add_option("--web-port", o.web_port, "Web UI and REST API port (0 disables)")
+      ->check(port)
+      ->capture_default_str();
+  app.add_option("--rotctld-port", o.rotctld_port, "Hamlib rotctld port (0 disables)")
+      ->check(port)
+      ->capture_default_str();
+  app.add_option("--wrc-port", o.wrc_port, "WRC text protocol port (0 disables)")
+      ->check(port)
+      ->capture_default_str();
+  app.add_option("--gs232-port", o.gs232_port, "Yaesu GS-232 port (0 disables)")
+      ->check(port)
+      ->capture_default_str();
+  app.add_option("--easycomm-port", o.easycomm_port, "Easycomm II/III port (0 disables)")
+      ->check(port)
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  rotord::linux_port::Daemon daemon(o);
+  return daemon.run();
+}

@@ -1,0 +1,56 @@
+#pragma once
+#include <asio.hpp>
+#include <cstdint>
+#include <functional>
+#include <list>
+#include <memory>
+#include <string>
+
+#include "protocol/session.hpp"
+
+namespace rotord::linux_port {
+
+using SessionFactory = std::function<std::unique_ptr<protocol::Session>()>;
+
+struct ServiceConfig {
+  std::string name;                 ///< for logs, e.g. "WRC text protocol"
+  std::uint16_t port = 0;           ///< 0 = disabled
+  std::size_t max_clients = 8;      ///< one more is refused
+  std::string reject_message;       ///< sent to a refused client before the close
+  SessionFactory make_session;
+};
+
+/// Serves one protocol on one TCP port: a byte session per connection, all in
+/// the single asio thread that also runs the control tick, so sessions call
+/// the controller without locks. Replies go out in the order and units the
+/// session wrote them; a client that stops reading is dropped once its
+/// backlog passes kMaxBacklogBytes, so it can never block the others.
+class TcpServer {
+ public:
+  static constexpr std::size_t kMaxBacklogBytes = 256 * 1024;
+  static constexpr std::size_t kReadChunkBytes = 4096;
+
+  TcpServer(asio::io_context& io, const asio::ip::address& bind, ServiceConfig config);
+  ~TcpServer();
+  TcpServer(const TcpServer&) = delete;
+  TcpServer& operator=(const TcpServer&) = delete;
+
+  std::uint16_t port() const { return port_; }
+  const std::string& name() const { return config_.name; }
+  /// Gives every session its chance to send unsolicited output.
+  void poll(Millis now);
+  std::size_t client_count() const { return connections_.size(); }
+
+ private:
+  class Connection;
+  void accept();
+  void remove(Connection* connection);
+
+  asio::io_context& io_;
+  asio::ip::tcp::acceptor acceptor_;
+  ServiceConfig config_;
+  std::uint16_t port_ = 0;
+  std::list<std::shared_ptr<Connection>> connections_;
+};
+
+}  // namespace rotord::linux_port
