@@ -68,6 +68,7 @@ bool Daemon::setup() {
     std::printf("rotord: %s listening on %s:%u\n", servers_.back()->name().c_str(),
                 options_.bind.c_str(), static_cast<unsigned>(servers_.back()->port()));
   }
+  std::printf("rotord: ready\n");
   std::fflush(stdout);
   return true;
 }

@@ -1,0 +1,75 @@
+#pragma once
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace rotord::testing {
+
+/// Finds a TCP port on 127.0.0.1 that is free right now.
+int free_port();
+
+/// Runs build/rotord as a child process on free loopback ports and waits until
+/// it says it listens. Stops it with SIGTERM on destruction.
+class DaemonProcess {
+ public:
+  struct Ports {
+    int wrc = 0;
+    int rotctld = 0;
+    int web = 0;
+    int gs232 = 0;
+    int easycomm = 0;
+  };
+
+  /// `extra_args` go after the port options, e.g. {"--sim", "spid", "--speedup", "20"}.
+  explicit DaemonProcess(std::vector<std::string> extra_args = {});
+  ~DaemonProcess();
+  DaemonProcess(const DaemonProcess&) = delete;
+  DaemonProcess& operator=(const DaemonProcess&) = delete;
+
+  bool ready() const { return ready_; }
+  const Ports& ports() const { return ports_; }
+  /// Everything the daemon printed so far.
+  const std::string& output() const { return output_; }
+  /// Sends SIGTERM and waits; returns the exit status (or -1).
+  int terminate();
+  pid_t pid() const { return pid_; }
+
+ private:
+  void read_output(int timeout_ms);
+
+  Ports ports_;
+  pid_t pid_ = -1;
+  int out_fd_ = -1;
+  bool ready_ = false;
+  std::string output_;
+};
+
+/// A blocking loopback TCP client with timeouts, for protocol tests.
+class TcpClient {
+ public:
+  explicit TcpClient(int port);
+  ~TcpClient();
+  TcpClient(const TcpClient&) = delete;
+  TcpClient& operator=(const TcpClient&) = delete;
+
+  bool connected() const { return fd_ >= 0; }
+  bool send(const std::string& bytes);
+  /// Reads one line ending in LF (the LF and a CR before it are removed).
+  /// Returns false on timeout or close.
+  bool read_line(std::string& line, int timeout_ms = 3000);
+  /// Reads whatever arrives within timeout_ms (one recv after poll), for
+  /// atomicity checks.
+  std::string recv_once(int timeout_ms = 3000);
+  /// Reads until the peer closes or timeout_ms passes; true if it closed.
+  bool wait_closed(int timeout_ms = 3000);
+  /// Sends `command` and returns the next line.
+  std::string ask(const std::string& command, int timeout_ms = 3000);
+  int fd() const { return fd_; }
+
+ private:
+  int fd_ = -1;
+  std::string buffer_;
+};
+
+}  // namespace rotord::testing
