@@ -8,11 +8,17 @@
 namespace rotord {
 namespace {
 
-float sign_of(Direction dir) { return static_cast<float>(static_cast<int>(dir)); }
+float sign_of(Direction dir) {
+  return static_cast<float>(static_cast<int>(dir));
+}
 
-Direction direction_of(float delta) { return delta >= 0.0f ? Direction::kCw : Direction::kCcw; }
+Direction direction_of(float delta) {
+  return delta >= 0.0f ? Direction::kCw : Direction::kCcw;
+}
 
-bool active(hal::DigitalIn* in) { return in != nullptr && in->active(); }
+bool active(hal::DigitalIn* in) {
+  return in != nullptr && in->active();
+}
 
 }  // namespace
 
@@ -74,6 +80,7 @@ Error Axis::go_to(float target_deg) {
   }
   request_ = {RequestKind::kGoto, target_deg, Direction::kNone, 0};
   arrived_ = false;
+  publish();
   return Error::kOk;
 }
 
@@ -87,10 +94,14 @@ Error Axis::jog(Direction dir, Millis until) {
   if (request_.kind != RequestKind::kJog || request_.dir != dir) move_started_ = now_;
   request_ = {RequestKind::kJog, 0.0f, dir, until};
   arrived_ = false;
+  publish();
   return Error::kOk;
 }
 
-void Axis::stop() { request_ = {}; }
+void Axis::stop() {
+  request_ = {};
+  publish();
+}
 
 void Axis::clear_fault() {
   if (state_ != AxisState::kFault) return;
@@ -237,6 +248,7 @@ Direction Axis::desired_direction() {
   const bool driving = state_ == AxisState::kStarting || state_ == AxisState::kMoving;
   if (driving) {
     const float remaining = err * sign_of(dir_);
+    if (remaining < -cfg_.tolerance_deg) return direction_of(err);  // target behind: reverse
     if (remaining <= stop_distance_deg()) return Direction::kNone;  // cut now, coast in
     if (blocked(dir_)) return Direction::kNone;
     return dir_;
@@ -327,6 +339,7 @@ void Axis::finish_stop(Millis now) {
   dir_ = Direction::kNone;
   stop_done_at_ = now;
   state_ = AxisState::kIdle;
+  if (request_.kind == RequestKind::kNone) reversing_ = false;
 }
 
 void Axis::tick(Millis now) {
@@ -349,7 +362,8 @@ void Axis::tick(Millis now) {
       }
       case AxisState::kStarting:
       case AxisState::kMoving: {
-        const bool hard = (dir_ == Direction::kCw && sw_cw_) || (dir_ == Direction::kCcw && sw_ccw_);
+        const bool hard =
+            (dir_ == Direction::kCw && sw_cw_) || (dir_ == Direction::kCcw && sw_ccw_);
         if (want != dir_) {
           begin_stop(hard, want != Direction::kNone, now);
           break;
@@ -401,13 +415,16 @@ void Axis::publish() {
   if (cfg_.continuous && status_.has_target) status_.target_deg = wrap_360(request_.target_deg);
   status_.jogging = request_.kind == RequestKind::kJog;
   status_.arrived = arrived_;
-  status_.state = state_;
+  // After the stop of a reversal the axis waits out the dead time in idle;
+  // report that wait as part of the reversal.
+  status_.state = (state_ == AxisState::kIdle && reversing_) ? AxisState::kReversing : state_;
   status_.drive_dir = dir_;
   status_.fault = fault_;
   status_.switch_cw = sw_cw_;
   status_.switch_ccw = sw_ccw_;
   status_.limit_cw = sw_cw_ || (!cfg_.continuous && pos_deg_ >= cfg_.max_deg - cfg_.tolerance_deg);
-  status_.limit_ccw = sw_ccw_ || (!cfg_.continuous && pos_deg_ <= cfg_.min_deg + cfg_.tolerance_deg);
+  status_.limit_ccw =
+      sw_ccw_ || (!cfg_.continuous && pos_deg_ <= cfg_.min_deg + cfg_.tolerance_deg);
   status_.t1 = t1_;
   status_.t2 = t2_;
   status_.coast_s = coast_s_;

@@ -97,8 +97,8 @@ class Axis {
   float duty_ = 0.0f;
 
   bool have_pos_ = false;
-  float pos_deg_ = 0.0f;         // user frame
-  float sensor_deg_ = 0.0f;      // unwrapped, sensor frame
+  float pos_deg_ = 0.0f;     // user frame
+  float sensor_deg_ = 0.0f;  // unwrapped, sensor frame
   float raw_ = 0.0f;
   Millis bad_since_ = -1;
   int jump_rejects_ = 0;

@@ -43,7 +43,7 @@ struct AxisStatus {
   bool switch_ccw = false;
   bool t1 = false;
   bool t2 = false;
-  float coast_s = 0.0f;  ///< learned coast time constant
+  float coast_s = 0.0f;     ///< learned coast time constant
   std::uint32_t moves = 0;  ///< motor starts since boot (relay wear, hunting checks)
   DriveOutputs outputs;
 };

@@ -19,8 +19,8 @@ Sequence make_start_sequence(const AxisConfig& cfg) {
       // the fast supply comes later (moving state) so the contacts never make
       // or break the high-voltage current.
       seq.add(StepTarget::kVoltageFast, 0.0f, 0);
-      seq.add(StepTarget::kDirRelay, 1.0f, cfg.dir_settle_ms > cfg.soft_ms ? cfg.dir_settle_ms
-                                                                          : cfg.soft_ms);
+      seq.add(StepTarget::kDirRelay, 1.0f,
+              cfg.dir_settle_ms > cfg.soft_ms ? cfg.dir_settle_ms : cfg.soft_ms);
       break;
     case DriveType::kHBridge:
       seq.add(StepTarget::kDirPwm, cfg.pwm_slow_duty, 0);

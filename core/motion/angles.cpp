@@ -11,9 +11,13 @@ float wrap_360(float deg) {
   return w;
 }
 
-float wrap_180(float deg) { return wrap_360(deg + 180.0f) - 180.0f; }
+float wrap_180(float deg) {
+  return wrap_360(deg + 180.0f) - 180.0f;
+}
 
-float unwrap_near(float deg, float near_deg) { return near_deg + wrap_180(deg - near_deg); }
+float unwrap_near(float deg, float near_deg) {
+  return near_deg + wrap_180(deg - near_deg);
+}
 
 std::optional<float> choose_unwrapped_az(float az_deg, float current_deg, float min_deg,
                                          float max_deg, bool continuous) {

@@ -18,7 +18,7 @@ class Reply {
     int n = std::snprintf(buf_, sizeof(buf_) - 2, fmt, args...);
     if (n < 0) return;
     std::size_t len = static_cast<std::size_t>(n) < sizeof(buf_) - 2 ? static_cast<std::size_t>(n)
-                                                                      : sizeof(buf_) - 3;
+                                                                     : sizeof(buf_) - 3;
     buf_[len++] = '\r';
     buf_[len++] = '\n';
     out.write(std::string_view(buf_, len));
@@ -30,10 +30,14 @@ class Reply {
 
 const char* error_reason(Error e) {
   switch (e) {
-    case Error::kFaulted: return "FAULT";
-    case Error::kLimit: return "LIMIT";
-    case Error::kNotSupported: return "NOT SUPPORTED";
-    default: return "INVALID ARGUMENT";
+    case Error::kFaulted:
+      return "FAULT";
+    case Error::kLimit:
+      return "LIMIT";
+    case Error::kNotSupported:
+      return "NOT SUPPORTED";
+    default:
+      return "INVALID ARGUMENT";
   }
 }
 
@@ -159,7 +163,8 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
     // The WRC firmware prints the speed as an Arduino double: two decimals.
     return reply.send(out, "OK SPEED %.2f", static_cast<double>(speed));
   }
-  if (is("SPEED?") && !has_arg) return reply.send(out, "OK SPEED %d", controller_.status().speed_pct);
+  if (is("SPEED?") && !has_arg)
+    return reply.send(out, "OK SPEED %d", controller_.status().speed_pct);
   if (is("STOP") && !has_arg) {
     controller_.stop();
     return reply.send(out, "OK STOP");

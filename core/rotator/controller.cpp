@@ -8,10 +8,14 @@ using settings::Id;
 
 const char* mode_name(Mode mode) {
   switch (mode) {
-    case Mode::kIdle: return "idle";
-    case Mode::kGoto: return "goto";
-    case Mode::kManual: return "manual";
-    case Mode::kPark: return "park";
+    case Mode::kIdle:
+      return "idle";
+    case Mode::kGoto:
+      return "goto";
+    case Mode::kManual:
+      return "manual";
+    case Mode::kPark:
+      return "park";
   }
   return "?";
 }
@@ -80,8 +84,7 @@ Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg
     const AxisConfig& c = el_.config();
     if (*el_deg < c.min_deg || *el_deg > c.max_deg) return Error::kOutOfRange;
   }
-  if (az_.status().fault != AxisFault::kNone ||
-      (has_el_ && el_.status().fault != AxisFault::kNone))
+  if (az_.status().fault != AxisFault::kNone || (has_el_ && el_.status().fault != AxisFault::kNone))
     return Error::kFaulted;
   if (az_target) {
     const Error e = az_.go_to(*az_target);

@@ -10,10 +10,10 @@ std::optional<int> ma3_decode_code(const hal::PwmPeriod& period, int bits) {
   if (total == 0) return std::nullopt;
   const std::int64_t counts = std::int64_t{1} << bits;
   // Rounded integer arithmetic: the same result on the Pico as on the host.
-  std::int64_t code =
-      (static_cast<std::int64_t>(period.high_us) * (counts + 2) + static_cast<std::int64_t>(total / 2)) /
-          static_cast<std::int64_t>(total) -
-      1;
+  std::int64_t code = (static_cast<std::int64_t>(period.high_us) * (counts + 2) +
+                       static_cast<std::int64_t>(total / 2)) /
+                          static_cast<std::int64_t>(total) -
+                      1;
   if (code < 0) code = 0;
   if (code > counts - 1) code = counts - 1;
   return static_cast<int>(code);

@@ -20,7 +20,9 @@ static_assert(sizeof(kDefs) / sizeof(kDefs[0]) == kCount);
 
 }  // namespace
 
-const Def& def(Id id) { return kDefs[static_cast<std::size_t>(id)]; }
+const Def& def(Id id) {
+  return kDefs[static_cast<std::size_t>(id)];
+}
 
 std::optional<Id> find(std::string_view key) {
   for (std::size_t n = 0; n < kCount; ++n) {
@@ -57,7 +59,9 @@ Rejection validate(Id id, double value) {
   return {};
 }
 
-Settings::Settings() { reset_to_defaults(); }
+Settings::Settings() {
+  reset_to_defaults();
+}
 
 void Settings::reset_to_defaults() {
   for (std::size_t n = 0; n < kCount; ++n) values_[n] = kDefs[n].default_value;

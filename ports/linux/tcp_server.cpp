@@ -43,19 +43,19 @@ class TcpServer::Connection final : public protocol::ByteSink,
 
  private:
   void read() {
-    socket_.async_read_some(asio::buffer(buffer_), [this, self = shared_from_this()](
-                                                       std::error_code ec, std::size_t n) {
-      if (ec) {
-        if (ec != asio::error::operation_aborted) close_after_flush();
-        return;
-      }
-      session_->receive(std::string_view(buffer_.data(), n), *this);
-      if (session_->wants_close()) {
-        close_after_flush();
-        return;
-      }
-      if (!closing_) read();
-    });
+    socket_.async_read_some(asio::buffer(buffer_),
+                            [this, self = shared_from_this()](std::error_code ec, std::size_t n) {
+                              if (ec) {
+                                if (ec != asio::error::operation_aborted) close_after_flush();
+                                return;
+                              }
+                              session_->receive(std::string_view(buffer_.data(), n), *this);
+                              if (session_->wants_close()) {
+                                close_after_flush();
+                                return;
+                              }
+                              if (!closing_) read();
+                            });
   }
 
   void close_after_flush() {
@@ -70,18 +70,18 @@ class TcpServer::Connection final : public protocol::ByteSink,
     pending_.clear();
     asio::async_write(socket_, asio::buffer(in_flight_),
                       [this, self = shared_from_this()](std::error_code ec, std::size_t) {
-      writing_ = false;
-      in_flight_.clear();
-      if (ec) {
-        close();
-        return;
-      }
-      if (close_requested_ && pending_.empty()) {
-        close();
-        return;
-      }
-      flush();
-    });
+                        writing_ = false;
+                        in_flight_.clear();
+                        if (ec) {
+                          close();
+                          return;
+                        }
+                        if (close_requested_ && pending_.empty()) {
+                          close();
+                          return;
+                        }
+                        flush();
+                      });
   }
 
   TcpServer& server_;

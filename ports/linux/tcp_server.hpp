@@ -13,10 +13,10 @@ namespace rotord::linux_port {
 using SessionFactory = std::function<std::unique_ptr<protocol::Session>()>;
 
 struct ServiceConfig {
-  std::string name;                 ///< for logs, e.g. "WRC text protocol"
-  std::uint16_t port = 0;           ///< 0 = disabled
-  std::size_t max_clients = 8;      ///< one more is refused
-  std::string reject_message;       ///< sent to a refused client before the close
+  std::string name;             ///< for logs, e.g. "WRC text protocol"
+  std::uint16_t port = 0;       ///< 0 = disabled
+  std::size_t max_clients = 8;  ///< one more is refused
+  std::string reject_message;   ///< sent to a refused client before the close
   SessionFactory make_session;
 };
 

@@ -11,11 +11,12 @@
 
 namespace rotord::testing {
 
+/// A 13-bit converter, so 0.1 deg per count spans the whole 0..450 deg travel.
 class FakeAdc final : public hal::AnalogIn {
  public:
   std::uint16_t counts = 2048;
   std::uint16_t read_counts() override { return counts; }
-  std::uint16_t full_scale_counts() const override { return 4095; }
+  std::uint16_t full_scale_counts() const override { return 8191; }
   float reference_v() const override { return 3.3f; }
 };
 
@@ -43,8 +44,9 @@ class RecordingDrive final : public DriveSink {
   bool ccw() const { return last.on(OutputChannel::kRelayCcw) || last.on(OutputChannel::kPwmCcw); }
 };
 
-/// The hardware of one axis: a pot calibrated 0 counts = 0 deg, 4000 counts =
-/// 400 deg (0.1 deg per count), so tests can set angles directly.
+/// The hardware of one axis: a pot at 0.1 deg per count (0 counts = 0 deg),
+/// so tests can set angles directly. Below 0.8 deg the ADC is at its rail,
+/// which the sensor rightly reports as a fault.
 struct FakeAxisHardware {
   FakeAdc adc;
   FakePwmIn ma3;

@@ -1,0 +1,293 @@
+// The axis state machine and the controller's command rules on fake
+// hardware. The test is the plant: each tick it moves the pot by the drive's
+// direction at a fixed rate (no coast), so every decision can be checked
+// tick by tick.
+#include <gtest/gtest.h>
+
+#include "fake_rotator.hpp"
+
+namespace rotord {
+namespace {
+
+using settings::Id;
+using testing::FakeAxisHardware;
+using testing::FakeRotator;
+
+class ControllerTest : public ::testing::Test {
+ protected:
+  FakeRotator r;
+  float az_deg = 100.0f;
+  float el_deg = 20.0f;
+  float rate_deg_per_tick = 0.06f;  // 6 deg/s at 100 Hz
+  int both_on_ticks = 0;
+
+  void SetUp() override { r.settings.set(Id::kAzReverseDeadMs, 500); }
+
+  /// Runs ticks with the fake plant following the relays.
+  void run_ms(Millis ms) {
+    for (Millis t = 0; t < ms; t += 10) {
+      follow(r.az, az_deg);
+      follow(r.el, el_deg);
+      r.now += 10;
+      r.controller->tick(r.now);
+    }
+  }
+  void follow(FakeAxisHardware& hw, float& deg) {
+    if (hw.drive.cw() && hw.drive.ccw()) ++both_on_ticks;
+    if (hw.drive.cw()) deg += rate_deg_per_tick;
+    if (hw.drive.ccw()) deg -= rate_deg_per_tick;
+    hw.set_deg(deg);
+  }
+  RotatorStatus status() { return r.controller->status(); }
+  /// Power-cycles the controller with the antenna at `deg` (a jump of the
+  /// pot while running would rightly be taken for a sensor fault).
+  void restart_at(float deg) {
+    az_deg = deg;
+    r.az.set_deg(deg);
+    r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
+    r.controller->begin(r.now);
+  }
+};
+
+TEST_F(ControllerTest, OutputsAreOffAtStart) {
+  EXPECT_GE(r.az.drive.applies, 1);
+  EXPECT_FALSE(r.az.drive.last.any_on());
+  EXPECT_FALSE(r.el.drive.last.any_on());
+  EXPECT_FLOAT_EQ(status().az.position_deg, 100.0f);
+}
+
+TEST_F(ControllerTest, GotoArrivesWithinToleranceWithoutHunting) {
+  ASSERT_EQ(r.controller->go_to(200.0f, 45.0f), Error::kOk);
+  run_ms(40000);
+  const RotatorStatus s = status();
+  EXPECT_NEAR(s.az.position_deg, 200.0f, 1.0f);
+  EXPECT_NEAR(s.el.position_deg, 45.0f, 1.0f);
+  EXPECT_EQ(s.az.state, AxisState::kIdle);
+  EXPECT_TRUE(s.az.arrived);
+  EXPECT_EQ(s.az.moves, 1u);  // one start, no correction on an exact plant
+  EXPECT_EQ(s.mode, Mode::kIdle);
+  EXPECT_FALSE(r.az.drive.last.any_on());
+}
+
+TEST_F(ControllerTest, CompassTargetUsesTheOverlap) {
+  restart_at(400.0f);
+  run_ms(100);
+  ASSERT_EQ(r.controller->go_to(60.0f, std::nullopt), Error::kOk);
+  EXPECT_FLOAT_EQ(status().az.target_deg, 420.0f);
+  run_ms(1000);
+  EXPECT_TRUE(r.az.drive.cw());  // 400 -> 420 turns CW, not 340 deg back
+  run_ms(10000);
+  EXPECT_NEAR(status().az.position_deg, 420.0f, 1.0f);
+}
+
+TEST_F(ControllerTest, UnwrappedTargetIsHonouredAsGiven) {
+  restart_at(400.0f);
+  run_ms(100);
+  ASSERT_EQ(r.controller->go_to(60.0f, std::nullopt, AzTarget::kUnwrapped), Error::kOk);
+  EXPECT_FLOAT_EQ(status().az.target_deg, 60.0f);
+  ASSERT_EQ(r.controller->go_to(430.0f, std::nullopt), Error::kOk);  // > 360: unwrapped
+  EXPECT_FLOAT_EQ(status().az.target_deg, 430.0f);
+}
+
+TEST_F(ControllerTest, OutOfRangeTargetsChangeNothing) {
+  EXPECT_EQ(r.controller->go_to(451.0f, std::nullopt), Error::kOutOfRange);
+  EXPECT_EQ(r.controller->go_to(-5.0f, std::nullopt), Error::kOutOfRange);
+  // Both axes are validated before either moves.
+  EXPECT_EQ(r.controller->go_to(200.0f, 181.0f), Error::kOutOfRange);
+  run_ms(2000);
+  EXPECT_FALSE(status().az.has_target);
+  EXPECT_EQ(status().az.moves, 0u);
+  EXPECT_FALSE(r.az.drive.last.any_on());
+}
+
+TEST_F(ControllerTest, ElevationOnAzimuthOnlyRotatorIsNotSupported) {
+  FakeRotator az_only(false);
+  EXPECT_EQ(az_only.controller->go_to(10.0f, 10.0f), Error::kNotSupported);
+  EXPECT_EQ(az_only.controller->move(AxisId::kEl, Direction::kCw), Error::kNotSupported);
+  EXPECT_FALSE(az_only.controller->status().el.present);
+}
+
+TEST_F(ControllerTest, ReversalPassesThroughStopAndDeadTime) {
+  ASSERT_EQ(r.controller->go_to(300.0f, std::nullopt), Error::kOk);
+  run_ms(2000);
+  ASSERT_TRUE(r.az.drive.cw());
+  ASSERT_EQ(r.controller->go_to(50.0f, std::nullopt), Error::kOk);
+  // Count the ticks with no drive between the CW and the CCW phase.
+  Millis off_ms = 0;
+  bool saw_ccw = false;
+  for (int t = 0; t < 500 && !saw_ccw; ++t) {
+    run_ms(10);
+    if (r.az.drive.ccw())
+      saw_ccw = true;
+    else if (!r.az.drive.cw())
+      off_ms += 10;
+    if (!saw_ccw && !r.az.drive.cw()) {
+      const auto state = status().az.state;
+      EXPECT_TRUE(state == AxisState::kReversing || state == AxisState::kIdle ||
+                  state == AxisState::kStarting)
+          << axis_state_name(state);
+    }
+  }
+  EXPECT_TRUE(saw_ccw);
+  EXPECT_GE(off_ms, 500);
+  EXPECT_EQ(both_on_ticks, 0);
+  run_ms(60000);
+  EXPECT_NEAR(status().az.position_deg, 50.0f, 1.0f);
+}
+
+TEST_F(ControllerTest, LimitSwitchStopsThatDirectionOnly) {
+  ASSERT_EQ(r.controller->move(AxisId::kAz, Direction::kCw), Error::kOk);
+  run_ms(500);
+  ASSERT_TRUE(r.az.drive.cw());
+  r.az.limit_cw.on = true;
+  run_ms(10);
+  EXPECT_FALSE(r.az.drive.cw());  // cut on the first tick
+  EXPECT_EQ(r.controller->move(AxisId::kAz, Direction::kCw), Error::kLimit);
+  run_ms(2000);
+  EXPECT_FALSE(r.az.drive.cw());
+  EXPECT_TRUE(status().az.limit_cw);
+  EXPECT_EQ(r.controller->move(AxisId::kAz, Direction::kCcw), Error::kOk);
+  run_ms(2000);
+  EXPECT_TRUE(r.az.drive.ccw());
+}
+
+TEST_F(ControllerTest, JogStopsAtTheSoftLimit) {
+  restart_at(440.0f);
+  run_ms(100);
+  ASSERT_EQ(r.controller->move(AxisId::kAz, Direction::kCw), Error::kOk);
+  run_ms(5000);
+  EXPECT_FALSE(r.az.drive.cw());
+  EXPECT_LE(az_deg, 450.0f);
+  EXPECT_GT(az_deg, 448.0f);
+}
+
+TEST_F(ControllerTest, StallLatchesAFaultThatStopsEverything) {
+  rate_deg_per_tick = 0.0f;  // jammed
+  ASSERT_EQ(r.controller->go_to(200.0f, std::nullopt), Error::kOk);
+  run_ms(2000);
+  EXPECT_TRUE(r.az.drive.cw());
+  run_ms(3000);
+  const RotatorStatus s = status();
+  EXPECT_EQ(s.az.fault, AxisFault::kStall);
+  EXPECT_EQ(s.az.state, AxisState::kFault);
+  EXPECT_FALSE(r.az.drive.last.any_on());
+  EXPECT_EQ(r.controller->go_to(150.0f, std::nullopt), Error::kFaulted);
+  EXPECT_EQ(r.controller->move(AxisId::kAz, Direction::kCcw), Error::kFaulted);
+  run_ms(1000);
+  EXPECT_FALSE(r.az.drive.last.any_on());
+  r.controller->reset();
+  EXPECT_EQ(status().az.fault, AxisFault::kNone);
+  rate_deg_per_tick = 0.06f;
+  EXPECT_EQ(r.controller->go_to(110.0f, std::nullopt), Error::kOk);
+  run_ms(5000);
+  EXPECT_NEAR(status().az.position_deg, 110.0f, 1.0f);
+}
+
+TEST_F(ControllerTest, OpenPotIsASensorFault) {
+  ASSERT_EQ(r.controller->go_to(200.0f, std::nullopt), Error::kOk);
+  run_ms(1000);
+  r.az.adc.counts = 0;  // wiper open: the ADC reads the rail
+  for (int t = 0; t < 50; ++t) {
+    r.now += 10;
+    r.controller->tick(r.now);
+  }
+  EXPECT_EQ(status().az.fault, AxisFault::kSensorRange);
+  EXPECT_FALSE(r.az.drive.last.any_on());
+}
+
+TEST_F(ControllerTest, ImplausibleJumpsAreRejectedThenLatched) {
+  run_ms(100);
+  // One spike is ignored.
+  r.az.set_deg(300.0f);
+  r.now += 10;
+  r.controller->tick(r.now);
+  r.az.set_deg(100.0f);
+  run_ms(100);
+  EXPECT_EQ(status().az.fault, AxisFault::kNone);
+  EXPECT_NEAR(status().az.position_deg, 100.0f, 0.2f);
+  // A reading that stays implausible latches a fault.
+  r.az.set_deg(300.0f);
+  for (int t = 0; t < 10; ++t) {
+    r.now += 10;
+    r.controller->tick(r.now);
+  }
+  EXPECT_EQ(status().az.fault, AxisFault::kSensorJump);
+}
+
+TEST_F(ControllerTest, StopDuringBrakeReleaseNeverDrivesTheMotor) {
+  r.settings.set(Id::kAzHasBrake, 1);  // needs-restart setting: rebuild
+  r.settings.set(Id::kAzBrakeReleaseMs, 1000);
+  r.settings.set(Id::kAzBrakeEngageMs, 500);
+  r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
+  r.controller->begin(r.now);
+  ASSERT_EQ(r.controller->move(AxisId::kAz, Direction::kCw), Error::kOk);
+  run_ms(300);
+  EXPECT_TRUE(r.az.drive.last.on(OutputChannel::kBrake));
+  EXPECT_FALSE(r.az.drive.cw());
+  r.controller->stop();
+  run_ms(3000);
+  EXPECT_FALSE(r.az.drive.last.any_on());
+  EXPECT_FLOAT_EQ(az_deg, 100.0f);
+  EXPECT_EQ(status().az.state, AxisState::kIdle);
+}
+
+TEST_F(ControllerTest, DeadManStopsAHeldMoveWhenRenewalsStop) {
+  ASSERT_EQ(r.controller->move(AxisId::kAz, Direction::kCw, -1, 500), Error::kOk);
+  run_ms(300);
+  EXPECT_TRUE(r.az.drive.cw());
+  // Renewed once...
+  ASSERT_EQ(r.controller->move(AxisId::kAz, Direction::kCw, -1, 500), Error::kOk);
+  run_ms(400);
+  EXPECT_TRUE(r.az.drive.cw());
+  // ...then the client vanishes.
+  run_ms(200);
+  EXPECT_FALSE(r.az.drive.cw());
+}
+
+TEST_F(ControllerTest, ShutdownTurnsEverythingOff) {
+  ASSERT_EQ(r.controller->move(AxisId::kAz, Direction::kCcw), Error::kOk);
+  ASSERT_EQ(r.controller->move(AxisId::kEl, Direction::kCw), Error::kOk);
+  run_ms(500);
+  ASSERT_TRUE(r.az.drive.ccw());
+  r.controller->shutdown();
+  EXPECT_FALSE(r.az.drive.last.any_on());
+  EXPECT_FALSE(r.el.drive.last.any_on());
+}
+
+TEST_F(ControllerTest, ParkGoesToTheConfiguredPosition) {
+  r.settings.set(Id::kParkAzDeg, 180);
+  r.settings.set(Id::kParkElDeg, 90);
+  ASSERT_EQ(r.controller->park(), Error::kOk);
+  EXPECT_EQ(status().mode, Mode::kPark);
+  run_ms(40000);
+  EXPECT_NEAR(status().az.position_deg, 180.0f, 1.0f);
+  EXPECT_NEAR(status().el.position_deg, 90.0f, 1.0f);
+}
+
+TEST_F(ControllerTest, SpeedIsValidated) {
+  EXPECT_EQ(r.controller->set_speed_pct(0), Error::kOutOfRange);
+  EXPECT_EQ(r.controller->set_speed_pct(101), Error::kOutOfRange);
+  EXPECT_EQ(r.controller->set_speed_pct(80), Error::kOk);
+  EXPECT_EQ(status().speed_pct, 80);
+}
+
+TEST(Ma3Axis, ThresholdInputPicksTheOverlapTurnAtStartUp) {
+  // An MA3 reads 30 deg; on a 0..450 rotator that is 30 or 390. T1 says "beyond 360".
+  testing::FakeRotator r(false);
+  r.settings.set(Id::kAzSensor, 1);
+  r.az.t1.on = true;
+  r.az.ma3.period = {30 * 4098 / 360 + 1, 4097 - (30 * 4098 / 360 + 1), true};
+  r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
+  r.controller->begin(0);
+  r.controller->tick(10);
+  EXPECT_NEAR(r.controller->status().az.position_deg, 390.0f, 0.2f);
+
+  r.az.t1.on = false;
+  r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
+  r.controller->begin(0);
+  r.controller->tick(10);
+  EXPECT_NEAR(r.controller->status().az.position_deg, 30.0f, 0.2f);
+}
+
+}  // namespace
+}  // namespace rotord

@@ -1,0 +1,117 @@
+#include "protocol/wrc_session.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "fake_rotator.hpp"
+
+namespace rotord::protocol {
+namespace {
+
+struct StringSink final : ByteSink {
+  std::string data;
+  int writes = 0;
+  void write(std::string_view bytes) override {
+    data.append(bytes);
+    ++writes;
+  }
+};
+
+class WrcTest : public ::testing::Test {
+ protected:
+  testing::FakeRotator r;
+  WrcSession session{*r.controller, "9.9.9"};
+  std::string ask(const std::string& bytes) {
+    StringSink sink;
+    session.receive(bytes, sink);
+    return sink.data;
+  }
+};
+
+TEST_F(WrcTest, QueriesAndReplies) {
+  r.run_ms(50);
+  EXPECT_EQ(ask("AZ?\n"), "OK AZ 100.0\r\n");
+  EXPECT_EQ(ask("EL?\n"), "OK EL 20.0\r\n");
+  EXPECT_EQ(ask("STATE\n"), "OK STATE AZ=100.0 EL=20.0 SPEED=50 FLAGS=\r\n");
+  EXPECT_EQ(ask("SPEED?\n"), "OK SPEED 50\r\n");
+  EXPECT_EQ(ask("INFO\n"), "OK INFO rotord 9.9.9\r\n");
+  EXPECT_EQ(ask("AZLIMITS?\n"), "OK AZLIMITS MIN=0 MAX=450\r\n");
+  EXPECT_EQ(ask("AZOFFSET?\n"), "OK AZOFFSET 0.00\r\n");
+  EXPECT_EQ(ask("FAULT?\n"), "OK FAULT AZ=NONE EL=NONE\r\n");
+}
+
+TEST_F(WrcTest, CommandsActOnTheController) {
+  EXPECT_EQ(ask("AZ 200\n"), "OK AZ 200.00\r\n");
+  EXPECT_TRUE(r.controller->status().az.has_target);
+  EXPECT_FLOAT_EQ(r.controller->status().az.target_deg, 200.0f);
+  EXPECT_EQ(ask("EL 45.5\r\n"), "OK EL 45.50\r\n");
+  EXPECT_FLOAT_EQ(r.controller->status().el.target_deg, 45.5f);
+  EXPECT_EQ(ask("STOP\n"), "OK STOP\r\n");
+  EXPECT_FALSE(r.controller->status().az.has_target);
+  EXPECT_EQ(ask("SPEED 80\n"), "OK SPEED 80.00\r\n");
+  EXPECT_EQ(r.controller->status().speed_pct, 80);
+  EXPECT_EQ(ask("MOVE cw\n"), "OK MOVE CW\r\n");
+  EXPECT_TRUE(r.controller->status().az.jogging);
+  r.run_ms(100);
+  EXPECT_EQ(ask("STATE\n"), "OK STATE AZ=100.0 EL=20.0 SPEED=80 FLAGS=CW\r\n");
+  EXPECT_EQ(ask("AZOFFSET -5.5\n"), "OK AZOFFSET -5.50\r\n");
+  EXPECT_FLOAT_EQ(r.settings.f(settings::Id::kAzOffsetDeg), -5.5f);
+  EXPECT_EQ(ask("PARK\n"), "OK PARK\r\n");
+  EXPECT_EQ(r.controller->status().mode, Mode::kPark);
+  EXPECT_EQ(ask("RESET\n"), "OK RESET\r\n");
+  EXPECT_EQ(r.controller->status().speed_pct, 50);
+}
+
+TEST_F(WrcTest, ErrorsChangeNothing) {
+  EXPECT_EQ(ask("AZ abc\n"), "ERROR INVALID AZIMUTH\r\n");
+  EXPECT_EQ(ask("AZ 451\n"), "ERROR INVALID AZIMUTH\r\n");
+  EXPECT_EQ(ask("AZ -1\n"), "ERROR INVALID AZIMUTH\r\n");
+  EXPECT_EQ(ask("EL 200\n"), "ERROR INVALID ELEVATION\r\n");
+  EXPECT_EQ(ask("MOVE UPWARDS\n"), "ERROR INVALID DIRECTION\r\n");
+  EXPECT_EQ(ask("SPEED 0\n"), "ERROR INVALID SPEED\r\n");
+  EXPECT_EQ(ask("SPEED 5.5\n"), "ERROR INVALID SPEED\r\n");
+  EXPECT_EQ(ask("MONITOR 2\n"), "ERROR INVALID ARGUMENT\r\n");
+  EXPECT_EQ(ask("AZOFFSET 400\n"), "ERROR INVALID AZIMUTH OFFSET\r\n");
+  EXPECT_EQ(ask("FROB\n"), "ERROR INVALID COMMAND\r\n");
+  EXPECT_EQ(ask("AZ\n"), "ERROR INVALID COMMAND\r\n");
+  const RotatorStatus s = r.controller->status();
+  EXPECT_FALSE(s.az.has_target);
+  EXPECT_FALSE(s.el.has_target);
+  EXPECT_EQ(s.speed_pct, 50);
+  EXPECT_FLOAT_EQ(r.settings.f(settings::Id::kAzOffsetDeg), 0.0f);
+}
+
+TEST_F(WrcTest, LongLinesGetOneErrorAndTheSessionStaysUsable) {
+  const std::string huge(1 << 20, 'A');
+  EXPECT_EQ(ask(huge + "\n"), "ERROR COMMAND TOO LONG\r\n");
+  EXPECT_EQ(ask("AZ?\n"), "OK AZ 100.0\r\n");
+  // Binary garbage with NUL bytes is just an unknown command.
+  EXPECT_EQ(ask(std::string("\x01\x00\xff\x8f", 4) + "\n"), "ERROR INVALID COMMAND\r\n");
+  EXPECT_FALSE(r.controller->status().az.has_target);
+}
+
+TEST_F(WrcTest, SplitAndPipelinedCommands) {
+  EXPECT_EQ(ask("AZ"), "");
+  EXPECT_EQ(ask("?"), "");
+  EXPECT_EQ(ask("\r\nSPEED?\nAZ?\n\n"), "OK AZ 100.0\r\nOK SPEED 50\r\nOK AZ 100.0\r\n");
+}
+
+TEST_F(WrcTest, MonitorPushesStateTenTimesASecond) {
+  EXPECT_EQ(ask("MONITOR 1\n"), "OK MONITOR 1\r\n");
+  StringSink sink;
+  for (Millis t = 10; t <= 1000; t += 10) {
+    r.now = t;
+    r.controller->tick(t);
+    session.poll(t, sink);
+  }
+  EXPECT_EQ(sink.writes, 10);
+  EXPECT_EQ(sink.data.rfind("OK STATE AZ=", 0), 0u);
+  EXPECT_EQ(ask("MONITOR 0\n"), "OK MONITOR 0\r\n");
+  StringSink quiet;
+  session.poll(5000, quiet);
+  EXPECT_EQ(quiet.writes, 0);
+}
+
+}  // namespace
+}  // namespace rotord::protocol
