@@ -6,21 +6,6 @@
 #include "services.hpp"
 
 namespace rotord::linux_port {
-namespace {
-
-AxisIo to_core(const sim::AxisIo& io) {
-  AxisIo core;
-  core.pot = io.pot;
-  core.ma3 = io.ma3;
-  core.limit_cw = io.limit_cw;
-  core.limit_ccw = io.limit_ccw;
-  core.t1 = io.t1;
-  core.t2 = io.t2;
-  core.drive = io.drive;
-  return core;
-}
-
-}  // namespace
 
 Daemon::Daemon(const Options& options)
     : options_(options), timer_(io_), signals_(io_, SIGINT, SIGTERM) {}
@@ -36,7 +21,7 @@ bool Daemon::setup() {
                  options_.sim_profile.c_str());
     return false;
   }
-  for (const auto& o : profile->settings_overrides) {
+  for (const auto& o : profile->overrides) {
     const auto id = settings::find(o.key);
     if (!id || settings_.set(*id, o.value).error != Error::kOk) {
       std::fprintf(stderr, "rotord: profile %s sets an invalid %s\n", profile->name, o.key);
@@ -44,8 +29,8 @@ bool Daemon::setup() {
     }
   }
   sim_ = std::make_unique<sim::SimRotator>(*profile, options_.seed);
-  controller_ = std::make_unique<Controller>(settings_, to_core(sim_->io(AxisId::kAz)),
-                                             to_core(sim_->io(AxisId::kEl)));
+  controller_ =
+      std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
   std::printf("rotord %s: simulated rotator '%s' (%s), speedup %g\n", ROTORD_VERSION, profile->name,
               profile->description, options_.speedup);
 
