@@ -296,10 +296,11 @@ void Axis::begin_stop(bool hard, bool reversing, Millis now) {
 }
 
 void Axis::drive_moving(Millis now) {
-  bool slow = speed_pct_ <= 50;
-  if (request_.kind == RequestKind::kGoto &&
-      std::fabs(request_.target_deg - pos_deg_) <= cfg_.slow_zone_deg)
-    slow = true;
+  // Near the target every drive slows down; elsewhere relay drives follow the
+  // WRC convention (speed 1-50 slow, 51-100 fast) and PWM scales the duty.
+  const bool near_target = request_.kind == RequestKind::kGoto &&
+                           std::fabs(request_.target_deg - pos_deg_) <= cfg_.slow_zone_deg;
+  const bool slow = near_target || speed_pct_ <= 50;
   switch (cfg_.drive) {
     case DriveType::kRelay:
       break;
@@ -312,8 +313,8 @@ void Axis::drive_moving(Millis now) {
     case DriveType::kHBridge: {
       const float pct = static_cast<float>(speed_pct_ - 1) / 99.0f;
       const float target =
-          slow ? cfg_.pwm_slow_duty
-               : cfg_.pwm_slow_duty + (cfg_.pwm_fast_duty - cfg_.pwm_slow_duty) * pct;
+          near_target ? cfg_.pwm_slow_duty
+                      : cfg_.pwm_slow_duty + (cfg_.pwm_fast_duty - cfg_.pwm_slow_duty) * pct;
       // Soft start: the duty slews at most full scale per soft_ms.
       float step = 1.0f;
       if (cfg_.soft_ms > 0)

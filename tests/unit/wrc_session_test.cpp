@@ -33,8 +33,8 @@ TEST_F(WrcTest, QueriesAndReplies) {
   r.run_ms(50);
   EXPECT_EQ(ask("AZ?\n"), "OK AZ 100.0\r\n");
   EXPECT_EQ(ask("EL?\n"), "OK EL 20.0\r\n");
-  EXPECT_EQ(ask("STATE\n"), "OK STATE AZ=100.0 EL=20.0 SPEED=50 FLAGS=\r\n");
-  EXPECT_EQ(ask("SPEED?\n"), "OK SPEED 50\r\n");
+  EXPECT_EQ(ask("STATE\n"), "OK STATE AZ=100.0 EL=20.0 SPEED=100 FLAGS=\r\n");
+  EXPECT_EQ(ask("SPEED?\n"), "OK SPEED 100\r\n");
   EXPECT_EQ(ask("INFO\n"), "OK INFO rotord 9.9.9\r\n");
   EXPECT_EQ(ask("AZLIMITS?\n"), "OK AZLIMITS MIN=0 MAX=450\r\n");
   EXPECT_EQ(ask("AZOFFSET?\n"), "OK AZOFFSET 0.00\r\n");
@@ -60,7 +60,7 @@ TEST_F(WrcTest, CommandsActOnTheController) {
   EXPECT_EQ(ask("PARK\n"), "OK PARK\r\n");
   EXPECT_EQ(r.controller->status().mode, Mode::kPark);
   EXPECT_EQ(ask("RESET\n"), "OK RESET\r\n");
-  EXPECT_EQ(r.controller->status().speed_pct, 50);
+  EXPECT_EQ(r.controller->status().speed_pct, 100);
 }
 
 TEST_F(WrcTest, ErrorsChangeNothing) {
@@ -78,7 +78,7 @@ TEST_F(WrcTest, ErrorsChangeNothing) {
   const RotatorStatus s = r.controller->status();
   EXPECT_FALSE(s.az.has_target);
   EXPECT_FALSE(s.el.has_target);
-  EXPECT_EQ(s.speed_pct, 50);
+  EXPECT_EQ(s.speed_pct, 100);
   EXPECT_FLOAT_EQ(r.settings.f(settings::Id::kAzOffsetDeg), 0.0f);
 }
 
@@ -94,7 +94,7 @@ TEST_F(WrcTest, LongLinesGetOneErrorAndTheSessionStaysUsable) {
 TEST_F(WrcTest, SplitAndPipelinedCommands) {
   EXPECT_EQ(ask("AZ"), "");
   EXPECT_EQ(ask("?"), "");
-  EXPECT_EQ(ask("\r\nSPEED?\nAZ?\n\n"), "OK AZ 100.0\r\nOK SPEED 50\r\nOK AZ 100.0\r\n");
+  EXPECT_EQ(ask("\r\nSPEED?\nAZ?\n\n"), "OK AZ 100.0\r\nOK SPEED 100\r\nOK AZ 100.0\r\n");
 }
 
 TEST_F(WrcTest, MonitorPushesStateTenTimesASecond) {

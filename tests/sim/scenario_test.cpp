@@ -1,0 +1,264 @@
+// Whole-controller scenarios on the physics simulator, in virtual time: the
+// controller core exactly as the daemon runs it, against the three rotator
+// profiles (coast, backlash, relay delay, sensor noise, end stops).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "rotator/controller.hpp"
+#include "sim/fault_window.hpp"
+#include "sim/profiles.hpp"
+#include "sim/sim_rotator.hpp"
+
+namespace rotord {
+namespace {
+
+class Scenario {
+ public:
+  Scenario(const char* profile_name, double az0_deg, double el0_deg = 0.0)
+      : profile_(*sim::find_profile(profile_name)) {
+    for (const auto& o : profile_.overrides) settings_.set(*settings::find(o.key), o.value);
+    sim_ = std::make_unique<sim::SimRotator>(profile_, 11);
+    sim_->set_theta_deg(AxisId::kAz, az0_deg);
+    if (sim_->has_el()) sim_->set_theta_deg(AxisId::kEl, el0_deg);
+    power_on();
+  }
+
+  /// A power cut and restart: a new controller on the same (unmoved) rotator.
+  void power_on() {
+    controller_ =
+        std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
+    controller_->begin(now_);
+  }
+
+  void run_ms(Millis ms) {
+    for (Millis t = 0; t < ms; t += 10) {
+      now_ += 10;
+      sim_->advance_to(now_);
+      controller_->tick(now_);
+      const DriveOutputs& az = sim_->outputs(AxisId::kAz);
+      if (az.on(OutputChannel::kRelayCw) && az.on(OutputChannel::kRelayCcw)) ++both_relays_ticks_;
+      if (sim_->plant(AxisId::kAz).stalled()) ++stalled_ticks_;
+      max_az_ = std::max(max_az_, theta(AxisId::kAz));
+      min_az_ = std::min(min_az_, theta(AxisId::kAz));
+    }
+  }
+
+  /// Runs until both axes are idle with no target (or the time runs out).
+  bool run_until_settled(Millis limit_ms) {
+    for (Millis t = 0; t < limit_ms; t += 100) {
+      run_ms(100);
+      const RotatorStatus s = status();
+      const bool az_done = !s.az.has_target && s.az.state == AxisState::kIdle;
+      const bool el_done = !s.el.present || (!s.el.has_target && s.el.state == AxisState::kIdle);
+      if (az_done && el_done) return true;
+    }
+    return false;
+  }
+
+  double theta(AxisId axis) const { return sim_->plant(axis).theta_deg(); }
+  RotatorStatus status() const { return controller_->status(); }
+  Controller& controller() { return *controller_; }
+  sim::SimRotator& sim() { return *sim_; }
+  settings::Settings& settings() { return settings_; }
+  int both_relays_ticks() const { return both_relays_ticks_; }
+  int stalled_ticks() const { return stalled_ticks_; }
+  double max_az() const { return max_az_; }
+  double min_az() const { return min_az_; }
+
+ private:
+  const sim::Profile& profile_;
+  settings::Settings settings_;
+  std::unique_ptr<sim::SimRotator> sim_;
+  std::unique_ptr<Controller> controller_;
+  Millis now_ = 0;
+  int both_relays_ticks_ = 0;
+  int stalled_ticks_ = 0;
+  double max_az_ = -1e9;
+  double min_az_ = 1e9;
+};
+
+TEST(Scenario, G5500GotoArrivesWithinToleranceOnBothAxes) {
+  Scenario s("g5500", 100.0, 10.0);
+  ASSERT_EQ(s.controller().go_to(200.0f, 45.0f), Error::kOk);
+  ASSERT_TRUE(s.run_until_settled(120000));
+  EXPECT_NEAR(s.theta(AxisId::kAz), 200.0, 1.0);
+  EXPECT_NEAR(s.theta(AxisId::kEl), 45.0, 1.0);
+  EXPECT_LE(s.status().az.moves, 2u);  // at most one correction
+  EXPECT_LE(s.status().el.moves, 2u);
+  EXPECT_EQ(s.both_relays_ticks(), 0);
+}
+
+TEST(Scenario, GotoClockwiseIntoTheOverlap) {
+  // At 350, compass 60 is 70 deg away at 420 through 360, 290 deg away at 60.
+  Scenario s("g5500", 350.0);
+  ASSERT_EQ(s.controller().go_to(60.0f, std::nullopt), Error::kOk);
+  EXPECT_FLOAT_EQ(s.status().az.target_deg, 420.0f);
+  ASSERT_TRUE(s.run_until_settled(60000));
+  EXPECT_NEAR(s.theta(AxisId::kAz), 420.0, 1.0);
+  EXPECT_GE(s.min_az(), 349.0);                           // never went the long way
+  EXPECT_NEAR(s.status().az.position_deg, 420.0f, 1.5f);  // reported unwrapped, not 60
+}
+
+TEST(Scenario, GotoCounterClockwiseOutOfTheOverlap) {
+  Scenario s("g5500", 420.0);
+  ASSERT_EQ(s.controller().go_to(300.0f, std::nullopt), Error::kOk);
+  ASSERT_TRUE(s.run_until_settled(60000));
+  EXPECT_NEAR(s.theta(AxisId::kAz), 300.0, 1.0);
+  EXPECT_LE(s.max_az(), 421.0);
+}
+
+TEST(Scenario, ReversalDuringAMoveStopsWaitsAndTurnsBack) {
+  Scenario s("g5500", 100.0);
+  s.settings().set(settings::Id::kAzReverseDeadMs, 1500);
+  ASSERT_EQ(s.controller().go_to(300.0f, std::nullopt), Error::kOk);
+  s.run_ms(5000);
+  ASSERT_GT(s.theta(AxisId::kAz), 110.0);
+  ASSERT_EQ(s.controller().go_to(80.0f, std::nullopt), Error::kOk);
+  // The motor must be unpowered and at rest before it is driven the other way.
+  Millis unpowered_ms = 0;
+  bool reversed = false;
+  for (int n = 0; n < 1000 && !reversed; ++n) {
+    s.run_ms(10);
+    const DriveOutputs& out = s.sim().outputs(AxisId::kAz);
+    if (out.on(OutputChannel::kRelayCcw)) {
+      reversed = true;
+      EXPECT_NEAR(s.sim().plant(AxisId::kAz).w_deg_s(), 0.0, 0.05);
+    } else if (!out.on(OutputChannel::kRelayCw)) {
+      unpowered_ms += 10;
+    }
+  }
+  ASSERT_TRUE(reversed);
+  EXPECT_GE(unpowered_ms, 1500);
+  ASSERT_TRUE(s.run_until_settled(120000));
+  EXPECT_NEAR(s.theta(AxisId::kAz), 80.0, 1.0);
+  EXPECT_EQ(s.both_relays_ticks(), 0);
+}
+
+TEST(Scenario, JogStopsBeforeTheEndStopAndTheLimitSwitch) {
+  Scenario s("ham4", 300.0);
+  ASSERT_EQ(s.controller().move(AxisId::kAz, Direction::kCw), Error::kOk);
+  s.run_ms(30000);
+  EXPECT_FALSE(s.sim().plant(AxisId::kAz).powered());
+  EXPECT_LE(s.max_az(), 360.5);
+  EXPECT_GT(s.theta(AxisId::kAz), 355.0);
+  EXPECT_EQ(s.stalled_ticks(), 0);  // never drove against the mechanical stop
+  EXPECT_EQ(s.controller().move(AxisId::kAz, Direction::kCw), Error::kLimit);
+}
+
+TEST(Scenario, LimitSwitchStopsTheMotorEvenBeyondTheSoftLimit) {
+  // A mis-set soft limit (beyond the switch) must not matter: the switch wins.
+  Scenario s("ham4", 340.0);
+  s.settings().set(settings::Id::kAzMaxDeg, 400);
+  ASSERT_EQ(s.controller().move(AxisId::kAz, Direction::kCw), Error::kOk);
+  s.run_ms(30000);
+  EXPECT_FALSE(s.sim().plant(AxisId::kAz).powered());
+  EXPECT_TRUE(s.status().az.switch_cw);
+  EXPECT_EQ(s.stalled_ticks(), 0);
+}
+
+TEST(Scenario, JamLatchesAStallFault) {
+  Scenario s("g5500", 100.0);
+  ASSERT_EQ(s.controller().go_to(250.0f, std::nullopt), Error::kOk);
+  s.run_ms(3000);
+  s.sim().jam(AxisId::kAz, sim::kForever_s);
+  s.run_ms(6000);
+  EXPECT_EQ(s.status().az.fault, AxisFault::kStall);
+  EXPECT_FALSE(s.sim().outputs(AxisId::kAz).any_on());
+  EXPECT_EQ(s.controller().go_to(10.0f, std::nullopt), Error::kFaulted);
+}
+
+TEST(Scenario, SensorLossLatchesAFaultAndStops) {
+  Scenario s("g5500", 100.0);
+  ASSERT_EQ(s.controller().go_to(250.0f, std::nullopt), Error::kOk);
+  s.run_ms(3000);
+  s.sim().sensor_loss(AxisId::kAz, sim::kForever_s);
+  s.run_ms(1000);
+  EXPECT_NE(s.status().az.fault, AxisFault::kNone);
+  EXPECT_FALSE(s.sim().plant(AxisId::kAz).powered());
+  const double at_fault = s.theta(AxisId::kAz);
+  s.run_ms(5000);
+  EXPECT_NEAR(s.theta(AxisId::kAz), at_fault, 2.0);  // coasted to rest, not driven
+}
+
+TEST(Scenario, Ma3SensorLossOnSpid) {
+  Scenario s("spid", 0.0, 10.0);
+  ASSERT_EQ(s.controller().go_to(200.0f, std::nullopt), Error::kOk);
+  s.run_ms(2000);
+  s.sim().sensor_loss(AxisId::kAz, sim::kForever_s);
+  s.run_ms(1000);
+  EXPECT_EQ(s.status().az.fault, AxisFault::kSensorLost);
+  EXPECT_FALSE(s.sim().plant(AxisId::kAz).powered());
+}
+
+TEST(Scenario, StopDuringTheBrakeReleaseNeverPowersTheMotor) {
+  Scenario s("ham4", 100.0);
+  ASSERT_TRUE(s.settings().b(settings::Id::kAzHasBrake));
+  ASSERT_EQ(s.controller().go_to(200.0f, std::nullopt), Error::kOk);
+  s.run_ms(100);
+  EXPECT_TRUE(s.sim().outputs(AxisId::kAz).on(OutputChannel::kBrake));
+  EXPECT_FALSE(s.sim().plant(AxisId::kAz).powered());
+  s.controller().stop();
+  s.run_ms(10000);
+  EXPECT_FALSE(s.sim().outputs(AxisId::kAz).any_on());  // brake engaged again
+  EXPECT_NEAR(s.theta(AxisId::kAz), 100.0, 0.01);
+}
+
+TEST(Scenario, BrakeIsReleasedBeforeDriveAndEngagedAfterTheCoast) {
+  Scenario s("ham4", 100.0);
+  ASSERT_EQ(s.controller().go_to(150.0f, std::nullopt), Error::kOk);
+  bool drove_with_brake_on = false;
+  bool brake_dropped_while_turning = false;
+  for (int n = 0; n < 6000; ++n) {
+    s.run_ms(10);
+    const DriveOutputs& out = s.sim().outputs(AxisId::kAz);
+    const bool driving = out.on(OutputChannel::kRelayCw) || out.on(OutputChannel::kRelayCcw);
+    if (driving && !out.on(OutputChannel::kBrake)) drove_with_brake_on = true;
+    if (!out.on(OutputChannel::kBrake) && std::fabs(s.sim().plant(AxisId::kAz).w_deg_s()) > 0.5)
+      brake_dropped_while_turning = true;
+  }
+  EXPECT_FALSE(drove_with_brake_on);
+  EXPECT_FALSE(brake_dropped_while_turning);
+  EXPECT_NEAR(s.theta(AxisId::kAz), 150.0, 1.0);
+}
+
+TEST(Scenario, SpidReachesUnwrappedTargetsAcrossItsWholeTravel) {
+  Scenario s("spid", 0.0, 10.0);
+  ASSERT_EQ(s.controller().go_to(-100.0f, 170.0f), Error::kOk);
+  ASSERT_TRUE(s.run_until_settled(120000));
+  EXPECT_NEAR(s.theta(AxisId::kAz), -100.0, 1.0);
+  EXPECT_NEAR(s.theta(AxisId::kEl), 170.0, 1.0);
+  ASSERT_EQ(s.controller().go_to(500.0f, std::nullopt), Error::kOk);
+  ASSERT_TRUE(s.run_until_settled(240000));
+  EXPECT_NEAR(s.theta(AxisId::kAz), 500.0, 1.0);
+  EXPECT_NEAR(s.status().az.position_deg, 500.0f, 1.0f);
+}
+
+TEST(Scenario, PowerCutInTheOverlapKeepsTheUnwrappedPosition) {
+  // MA3 is single-turn: after a restart at 400 deg it reads 40; the T1
+  // threshold input tells the controller it is in the CW overlap.
+  Scenario s("spid", 400.0, 10.0);
+  s.run_ms(100);
+  EXPECT_NEAR(s.status().az.position_deg, 400.0f, 1.0f);
+  s.power_on();
+  s.run_ms(100);
+  EXPECT_NEAR(s.status().az.position_deg, 400.0f, 1.0f);
+  EXPECT_FALSE(s.sim().outputs(AxisId::kAz).any_on());
+}
+
+TEST(Scenario, SmallMovesDoNotHunt) {
+  Scenario s("g5500", 100.0);
+  float target = 100.0f;
+  for (int n = 0; n < 10; ++n) {
+    target += 3.0f;
+    ASSERT_EQ(s.controller().go_to(target, std::nullopt), Error::kOk);
+    ASSERT_TRUE(s.run_until_settled(30000));
+    EXPECT_NEAR(s.theta(AxisId::kAz), target, 1.5) << "step " << n;
+  }
+  // Ten 3 deg steps: at most one correction each.
+  EXPECT_LE(s.status().az.moves, 20u);
+}
+
+}  // namespace
+}  // namespace rotord
