@@ -97,13 +97,15 @@ int DaemonProcess::terminate() {
   if (pid_ <= 0) return -1;
   ::kill(pid_, SIGTERM);
   int status = 0;
-  for (int i = 0; i < 100; ++i) {
-    read_output(50);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (std::chrono::steady_clock::now() < deadline) {
+    read_output(20);
     if (::waitpid(pid_, &status, WNOHANG) == pid_) {
       pid_ = -1;
       read_output(0);
       return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     }
+    ::usleep(10000);  // the pipe may be at EOF already, so poll returns at once
   }
   ::kill(pid_, SIGKILL);
   ::waitpid(pid_, &status, 0);

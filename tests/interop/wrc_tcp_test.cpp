@@ -1,0 +1,112 @@
+// The WRC text protocol over real TCP sockets to a running rotord on the
+// simulated G-5500 (speedup 20: a simulated minute takes three seconds).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "daemon_process.hpp"
+
+namespace rotord::testing {
+namespace {
+
+double field(const std::string& line, const std::string& key) {
+  const auto pos = line.find(key + "=");
+  if (pos == std::string::npos) return -1e9;
+  return std::stod(line.substr(pos + key.size() + 1));
+}
+
+class WrcOverTcp : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    daemon = std::make_unique<DaemonProcess>(
+        std::vector<std::string>{"--sim", "g5500", "--speedup", "20"});
+    ASSERT_TRUE(daemon->ready()) << daemon->output();
+  }
+  std::unique_ptr<DaemonProcess> daemon;
+};
+
+TEST_F(WrcOverTcp, AzCommandMovesTheRotatorAndStateShowsItArriving) {
+  TcpClient c(daemon->ports().wrc);
+  ASSERT_TRUE(c.connected());
+  EXPECT_EQ(c.ask("AZ 200\n"), "OK AZ 200.00");
+  double az = -1;
+  for (int n = 0; n < 200; ++n) {  // up to 20 s wall = 400 s simulated
+    const std::string state = c.ask("STATE\n");
+    ASSERT_EQ(state.rfind("OK STATE AZ=", 0), 0u) << state;
+    az = field(state, "AZ");
+    if (std::abs(az - 200.0) <= 1.0 && state.find("FLAGS=CW") == std::string::npos &&
+        state.find("FLAGS=CCW") == std::string::npos)
+      break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_NEAR(az, 200.0, 1.0);
+  EXPECT_EQ(c.ask("AZ?\n").substr(0, 6), "OK AZ ");
+}
+
+TEST_F(WrcOverTcp, BadInputGetsErrorsAndTheConnectionStaysUsable) {
+  TcpClient c(daemon->ports().wrc);
+  const std::string before = c.ask("AZ?\n");
+  EXPECT_EQ(c.ask("AZ 9999\n"), "ERROR INVALID AZIMUTH");
+  EXPECT_EQ(c.ask("AZ north\n"), "ERROR INVALID AZIMUTH");
+  EXPECT_EQ(c.ask("SPEED -3\n"), "ERROR INVALID SPEED");
+  EXPECT_EQ(c.ask(std::string("\0\xff\x01garbage\n", 11)), "ERROR INVALID COMMAND");
+  EXPECT_EQ(c.ask(std::string(300000, 'x') + "\n"), "ERROR COMMAND TOO LONG");
+  EXPECT_EQ(c.ask("SPEED?\n"), "OK SPEED 100");
+  const std::string state = c.ask("STATE\n");
+  EXPECT_EQ(state.find("CW"), std::string::npos) << state;  // nothing moved
+  EXPECT_EQ(c.ask("AZ?\n"), before);
+}
+
+TEST_F(WrcOverTcp, EightClientsAtOnceAndTheNinthIsRefused) {
+  std::vector<std::unique_ptr<TcpClient>> clients;
+  for (int n = 0; n < 8; ++n) {
+    clients.push_back(std::make_unique<TcpClient>(daemon->ports().wrc));
+    ASSERT_EQ(clients.back()->ask("INFO\n").rfind("OK INFO rotord", 0), 0u);
+  }
+  TcpClient ninth(daemon->ports().wrc);
+  std::string line;
+  ASSERT_TRUE(ninth.read_line(line));
+  EXPECT_EQ(line, "ERROR TOO MANY CONNECTIONS");
+  EXPECT_TRUE(ninth.wait_closed());
+  // The others are unaffected, and a freed slot can be used again.
+  for (auto& c : clients) EXPECT_EQ(c->ask("SPEED?\n"), "OK SPEED 100");
+  clients.pop_back();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  TcpClient again(daemon->ports().wrc);
+  EXPECT_EQ(again.ask("SPEED?\n"), "OK SPEED 100");
+}
+
+TEST_F(WrcOverTcp, ReplyGoesOnlyToItsRequesterAndMonitorPushes) {
+  TcpClient a(daemon->ports().wrc);
+  TcpClient b(daemon->ports().wrc);
+  EXPECT_EQ(a.ask("MONITOR 1\n"), "OK MONITOR 1");
+  std::string line;
+  ASSERT_TRUE(a.read_line(line));
+  EXPECT_EQ(line.rfind("OK STATE AZ=", 0), 0u);
+  EXPECT_EQ(b.recv_once(300), "");  // b asked nothing and gets nothing
+  EXPECT_EQ(b.ask("SPEED?\n"), "OK SPEED 100");
+}
+
+TEST_F(WrcOverTcp, AVanishingClientDoesNotDisturbTheOthers) {
+  {
+    TcpClient gone(daemon->ports().wrc);
+    gone.send("AZ 1");  // half a command, then the client disappears
+  }
+  TcpClient c(daemon->ports().wrc);
+  EXPECT_EQ(c.ask("AZ?\n").rfind("OK AZ ", 0), 0u);
+  EXPECT_EQ(c.ask("STOP\n"), "OK STOP");
+}
+
+TEST_F(WrcOverTcp, SigtermStopsTheMotorsAndExitsCleanly) {
+  TcpClient c(daemon->ports().wrc);
+  EXPECT_EQ(c.ask("MOVE CW\n"), "OK MOVE CW");
+  EXPECT_EQ(daemon->terminate(), 0);
+  EXPECT_NE(daemon->output().find("stopping the motors"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rotord::testing
