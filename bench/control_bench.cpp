@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <memory>
 #include <string_view>
 
 #include "rotator/controller.hpp"
@@ -15,7 +16,7 @@ namespace {
 struct Rig {
   settings::Settings settings;
   sim::SimRotator sim;
-  Controller controller;
+  std::unique_ptr<Controller> controller;
   Millis now = 0;
 
   static settings::Settings with_profile(const sim::Profile& p) {
@@ -24,25 +25,27 @@ struct Rig {
     return s;
   }
   explicit Rig(std::string_view profile)
-      : settings(with_profile(*sim::find_profile(profile))),
-        sim(*sim::find_profile(profile), 7),
-        controller(settings, sim.io(AxisId::kAz), sim.io(AxisId::kEl)) {
-    controller.begin(0);
+      : settings(with_profile(*sim::find_profile(profile))), sim(*sim::find_profile(profile), 7) {
+    power_on();
+  }
+  void power_on() {
+    controller = std::make_unique<Controller>(settings, sim.io(AxisId::kAz), sim.io(AxisId::kEl));
+    controller->begin(now);
   }
   void tick() {
     now += 10;
     sim.advance_to(now);
-    controller.tick(now);
+    controller->tick(now);
   }
 };
 
 // Cost of one 100 Hz control tick alone (sensor reads, both axis FSMs).
 void BM_ControlTick(benchmark::State& state) {
   Rig rig("g5500");
-  rig.controller.go_to(300.0f, 60.0f);
+  rig.controller->go_to(300.0f, 60.0f);
   for (auto _ : state) {
     rig.now += 10;
-    rig.controller.tick(rig.now);
+    rig.controller->tick(rig.now);
   }
 }
 BENCHMARK(BM_ControlTick);
@@ -54,13 +57,12 @@ void BM_GotoQuality(benchmark::State& state, const char* profile, float from_deg
   for (auto _ : state) {
     Rig rig(profile);
     rig.sim.set_theta_deg(AxisId::kAz, from_deg);
-    rig.controller = Controller(rig.settings, rig.sim.io(AxisId::kAz), rig.sim.io(AxisId::kEl));
-    rig.controller.begin(rig.now);
-    rig.controller.go_to(to_deg, std::nullopt, AzTarget::kUnwrapped);
+    rig.power_on();
+    rig.controller->go_to(to_deg, std::nullopt, AzTarget::kUnwrapped);
     Millis settled_at = 0;
     for (int n = 0; n < 30000; ++n) {
       rig.tick();
-      const auto s = rig.controller.status();
+      const auto s = rig.controller->status();
       if (!s.az.has_target && s.az.state == AxisState::kIdle) {
         settled_at = rig.now;
         break;
@@ -68,7 +70,7 @@ void BM_GotoQuality(benchmark::State& state, const char* profile, float from_deg
     }
     settle_s = static_cast<double>(settled_at) / 1000.0;
     error_deg = std::fabs(rig.sim.plant(AxisId::kAz).theta_deg() - to_deg);
-    starts = rig.controller.status().az.moves;
+    starts = rig.controller->status().az.moves;
   }
   state.counters["settle_s"] = settle_s;
   state.counters["final_error_deg"] = error_deg;
