@@ -271,6 +271,44 @@ TEST_F(ControllerTest, SpeedIsValidated) {
   EXPECT_EQ(status().speed_pct, 80);
 }
 
+TEST_F(ControllerTest, MoveTimeoutLatchesAFault) {
+  r.settings.set(Id::kAzMoveTimeoutS, 5);
+  rate_deg_per_tick = 0.01f;  // 1 deg/s: slow but not stalled
+  ASSERT_EQ(r.controller->go_to(300.0f, std::nullopt), Error::kOk);
+  run_ms(4000);
+  EXPECT_EQ(status().az.fault, AxisFault::kNone);
+  run_ms(2000);
+  EXPECT_EQ(status().az.fault, AxisFault::kTimeout);
+  EXPECT_FALSE(r.az.drive.last.any_on());
+}
+
+TEST_F(ControllerTest, ContinuousRotatorTakesTheShortWayThroughNorth) {
+  // A slip-ring rotator with a single-turn encoder: 350 -> 10 turns CW 20 deg.
+  r.settings.set(Id::kAzContinuous, 1);
+  r.settings.set(Id::kAzSensor, 1);
+  const auto ma3_at = [this](float deg) {
+    const auto high = static_cast<std::uint32_t>(deg / 360.0f * 4098.0f + 1.0f);
+    r.az.ma3.period = {high, 4098 - high, true};
+  };
+  ma3_at(350.0f);
+  r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
+  r.controller->begin(r.now);
+  run_ms(50);
+  EXPECT_NEAR(status().az.position_deg, 350.0f, 0.2f);
+  ASSERT_EQ(r.controller->go_to(10.0f, std::nullopt), Error::kOk);
+  EXPECT_FLOAT_EQ(status().az.target_deg, 10.0f);
+  float deg = 350.0f;
+  for (int t = 0; t < 1000 && (status().az.has_target || deg < 351.0f); ++t) {
+    if (r.az.drive.cw()) deg += 0.06f;
+    if (r.az.drive.ccw()) deg -= 0.06f;
+    ma3_at(deg >= 360.0f ? deg - 360.0f : deg);
+    r.now += 10;
+    r.controller->tick(r.now);
+  }
+  EXPECT_NEAR(deg, 370.0f, 1.0f);                      // went CW through north
+  EXPECT_NEAR(status().az.position_deg, 10.0f, 1.0f);  // reported as a compass angle
+}
+
 TEST(Ma3Axis, ThresholdInputPicksTheOverlapTurnAtStartUp) {
   // An MA3 reads 30 deg; on a 0..450 rotator that is 30 or 390. T1 says "beyond 360".
   testing::FakeRotator r(false);
