@@ -72,7 +72,12 @@ void BM_GotoQuality(benchmark::State& state, const char* profile, float from_deg
     error_deg = std::fabs(rig.sim.plant(AxisId::kAz).theta_deg() - to_deg);
     starts = rig.controller->status().az.moves;
   }
+  // Lower bound on the move time: the whole distance at the plant's top speed.
+  const double v_max_deg_s = sim::find_profile(profile)->az.plant.v_max_deg_s;
+  const double bound_s = std::fabs(to_deg - from_deg) / v_max_deg_s;
   state.counters["settle_s"] = settle_s;
+  state.counters["speed_bound_s"] = bound_s;
+  state.counters["efficiency"] = settle_s > 0 ? bound_s / settle_s : 0.0;
   state.counters["final_error_deg"] = error_deg;
   state.counters["motor_starts"] = starts;
 }
