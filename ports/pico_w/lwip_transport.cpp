@@ -1,0 +1,268 @@
+#include "lwip_transport.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <type_traits>
+
+#include "lwip/err.h"
+#include "lwip/ip_addr.h"
+#include "lwip/pbuf.h"
+#include "lwip/tcp.h"
+
+namespace rotord::lwip_port {
+
+// The header spells err_t as std::int8_t so it needs no lwIP include.
+static_assert(std::is_same_v<err_t, std::int8_t>, "lwIP's err_t is expected to be s8_t");
+
+namespace {
+
+/// Unregisters every callback of a connection pcb, so lwIP never calls into a
+/// slot that was released (the pico-examples close path does the same).
+void detach(tcp_pcb* pcb) {
+  tcp_arg(pcb, nullptr);
+  tcp_recv(pcb, nullptr);
+  tcp_sent(pcb, nullptr);
+  tcp_err(pcb, nullptr);
+  tcp_poll(pcb, nullptr, 0);
+}
+
+}  // namespace
+
+struct TcpServer::Glue {
+  static err_t on_accept(void* arg, tcp_pcb* pcb, err_t err) {
+    auto* server = static_cast<TcpServer*>(arg);
+    if (err != ERR_OK || pcb == nullptr || server == nullptr) return ERR_VAL;
+    Connection* c = server->free_slot();
+    protocol::Session* session = c != nullptr ? server->sessions_.open(c->index_) : nullptr;
+    if (session == nullptr) return reject(*server, pcb);
+
+    ++server->stats_.accepted;
+    c->server_ = server;
+    c->pcb_ = pcb;
+    c->session_ = session;
+    c->out_len_ = 0;
+    c->overflow_ = false;
+    c->close_requested_ = false;
+    // Replies are small and clients (Gpredict) wait for each one: no Nagle
+    // delay, like TCP_NODELAY on Linux.
+    tcp_nagle_disable(pcb);
+    tcp_arg(pcb, c);
+    tcp_recv(pcb, &Glue::on_recv);
+    tcp_sent(pcb, &Glue::on_sent);
+    tcp_err(pcb, &Glue::on_err);
+    tcp_poll(pcb, &Glue::on_poll, kLwipPollInterval);
+    return ERR_OK;
+  }
+
+  /// Refuses a client over the limit with the protocol's message, as the
+  /// Linux port does, so the user sees why instead of a bare reset.
+  static err_t reject(TcpServer& server, tcp_pcb* pcb) {
+    ++server.stats_.rejected;
+    detach(pcb);
+    const std::string_view msg = server.config_.reject_message;
+    if (!msg.empty() && msg.size() <= tcp_sndbuf(pcb)) {
+      if (tcp_write(pcb, msg.data(), static_cast<u16_t>(msg.size()), TCP_WRITE_FLAG_COPY) == ERR_OK)
+        tcp_output(pcb);
+    }
+    // Data queued by tcp_write is still sent before the FIN.
+    if (tcp_close(pcb) != ERR_OK) {
+      tcp_abort(pcb);
+      return ERR_ABRT;
+    }
+    return ERR_OK;
+  }
+
+  static err_t on_recv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
+    auto* c = static_cast<Connection*>(arg);
+    if (p == nullptr) {  // the peer closed its side
+      if (c == nullptr) return ERR_OK;
+      return c->server_->close(*c);
+    }
+    if (c == nullptr || err != ERR_OK) {
+      // Not ours any more (or lwIP reports an error with data): consume it so
+      // the window reopens and the pbuf is not leaked.
+      tcp_recved(pcb, p->tot_len);
+      pbuf_free(p);
+      return ERR_OK;
+    }
+    for (const pbuf* q = p; q != nullptr && !c->overflow_; q = q->next) {
+      c->session_->receive(std::string_view(static_cast<const char*>(q->payload), q->len), *c);
+    }
+    tcp_recved(pcb, p->tot_len);
+    pbuf_free(p);
+    if (c->session_->wants_close()) c->close_requested_ = true;
+    return c->server_->settle(*c);
+  }
+
+  static err_t on_sent(void* arg, tcp_pcb* /*pcb*/, u16_t /*len*/) {
+    auto* c = static_cast<Connection*>(arg);
+    if (c == nullptr) return ERR_OK;
+    c->flush();
+    return c->server_->settle(*c);
+  }
+
+  static err_t on_poll(void* arg, tcp_pcb* /*pcb*/) {
+    auto* c = static_cast<Connection*>(arg);
+    if (c == nullptr) return ERR_OK;
+    c->flush();
+    return c->server_->settle(*c);
+  }
+
+  /// lwIP has already freed the pcb (reset, out of memory, timeout): only the
+  /// slot is left to release; the pcb must not be touched.
+  static void on_err(void* arg, err_t /*err*/) {
+    auto* c = static_cast<Connection*>(arg);
+    if (c == nullptr || c->server_ == nullptr) return;
+    ++c->server_->stats_.closed;
+    c->pcb_ = nullptr;
+    c->server_->release(*c);
+  }
+};
+
+void TcpServer::Connection::write(std::string_view bytes) {
+  if (pcb_ == nullptr || overflow_) return;
+  if (bytes.size() > out_.size() - out_len_) {
+    // The client stopped reading: drop it rather than block or buffer more.
+    // The drop itself happens after the session call returns (settle()),
+    // because lwIP forbids freeing the pcb under a callback that continues.
+    overflow_ = true;
+    return;
+  }
+  std::memcpy(out_.data() + out_len_, bytes.data(), bytes.size());
+  out_len_ += bytes.size();
+  flush();
+}
+
+void TcpServer::Connection::flush() {
+  if (pcb_ == nullptr || overflow_) return;
+  bool queued = false;
+  while (out_len_ > 0) {
+    const std::size_t room = tcp_sndbuf(pcb_);
+    if (room == 0) break;  // tcp_sent will call again when the peer acknowledges
+    const std::size_t n = std::min({out_len_, room, std::size_t{0xFFFF}});
+    const err_t err = tcp_write(pcb_, out_.data(), static_cast<u16_t>(n), TCP_WRITE_FLAG_COPY);
+    if (err == ERR_MEM) break;  // segment queue or pbufs exhausted: retry on sent/poll
+    if (err != ERR_OK) {
+      overflow_ = true;  // the connection is unusable (e.g. not connected any more)
+      return;
+    }
+    queued = true;
+    out_len_ -= n;
+    std::memmove(out_.data(), out_.data() + n, out_len_);
+  }
+  if (queued) tcp_output(pcb_);
+}
+
+TcpServer::TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots)
+    : config_(config), sessions_(sessions), slots_(slots) {
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    slots_[i].server_ = this;
+    slots_[i].index_ = i;
+  }
+}
+
+TcpServer::~TcpServer() {
+  stop();
+}
+
+bool TcpServer::start() {
+  if (listener_ != nullptr) return true;
+  tcp_pcb* pcb = tcp_new_ip_type(IPADDR_TYPE_ANY);
+  if (pcb == nullptr) return false;
+  if (tcp_bind(pcb, IP_ANY_TYPE, config_.port) != ERR_OK) {
+    tcp_close(pcb);  // never connected: tcp_close just frees it
+    return false;
+  }
+  const u16_t bound_port = pcb->local_port;
+  // On success tcp_listen frees `pcb` and returns a smaller listen pcb.
+  tcp_pcb* listener = tcp_listen_with_backlog(pcb, TCP_DEFAULT_LISTEN_BACKLOG);
+  if (listener == nullptr) {
+    tcp_close(pcb);
+    return false;
+  }
+  listener_ = listener;
+  port_ = bound_port;
+  tcp_arg(listener_, this);
+  tcp_accept(listener_, &Glue::on_accept);
+  return true;
+}
+
+void TcpServer::stop() {
+  for (Connection& c : slots_) {
+    if (c.pcb_ != nullptr) close(c);
+  }
+  if (listener_ != nullptr) {
+    tcp_arg(listener_, nullptr);
+    tcp_accept(listener_, nullptr);
+    tcp_close(listener_);  // never fails for a listen pcb
+    listener_ = nullptr;
+  }
+}
+
+void TcpServer::poll(Millis now) {
+  for (Connection& c : slots_) {
+    if (c.pcb_ == nullptr) continue;
+    c.session_->poll(now, c);
+    c.flush();
+    settle(c);  // outside any lwIP callback: the returned ERR_ABRT is nobody's
+  }
+}
+
+std::size_t TcpServer::client_count() const {
+  return static_cast<std::size_t>(
+      std::count_if(slots_.begin(), slots_.end(), [](const Connection& c) { return c.active(); }));
+}
+
+TcpServer::Connection* TcpServer::free_slot() {
+  const std::size_t limit = std::min(config_.max_clients, slots_.size());
+  if (client_count() >= limit) return nullptr;
+  for (Connection& c : slots_) {
+    if (!c.active()) return &c;
+  }
+  return nullptr;
+}
+
+err_t TcpServer::settle(Connection& c) {
+  if (c.pcb_ == nullptr) return ERR_OK;
+  if (c.overflow_) {
+    ++stats_.dropped_backlog;
+    return drop(c);
+  }
+  if (c.close_requested_ && c.out_len_ == 0) return close(c);
+  return ERR_OK;
+}
+
+err_t TcpServer::close(Connection& c) {
+  tcp_pcb* pcb = c.pcb_;
+  if (pcb == nullptr) return ERR_OK;
+  ++stats_.closed;
+  detach(pcb);
+  release(c);
+  if (tcp_close(pcb) != ERR_OK) {
+    // Out of memory for the FIN: lwIP's rule is to abort and report ERR_ABRT
+    // so the calling callback does not touch the pcb again.
+    tcp_abort(pcb);
+    return ERR_ABRT;
+  }
+  return ERR_OK;
+}
+
+err_t TcpServer::drop(Connection& c) {
+  tcp_pcb* pcb = c.pcb_;
+  if (pcb == nullptr) return ERR_OK;
+  detach(pcb);  // tcp_abort calls the err callback; the slot is released here
+  release(c);
+  tcp_abort(pcb);
+  return ERR_ABRT;
+}
+
+void TcpServer::release(Connection& c) {
+  if (c.session_ != nullptr) sessions_.release(c.index_);
+  c.session_ = nullptr;
+  c.pcb_ = nullptr;
+  c.out_len_ = 0;
+  c.overflow_ = false;
+  c.close_requested_ = false;
+}
+
+}  // namespace rotord::lwip_port

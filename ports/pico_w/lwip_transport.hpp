@@ -1,0 +1,175 @@
+#pragma once
+// The Pico W's TCP transport for core byte sessions, on lwIP's raw API.
+//
+// Portable lwIP code with no pico-sdk include: the firmware builds it against
+// the SDK's lwIP (NO_SYS=1, pico_cyw43_arch_lwip_poll) and tests/lwip builds
+// the same file against Debian's liblwip-dev, so the network glue that only
+// runs on the Pico is exercised in CI.
+//
+// Threading: lwIP calls back into this code and the port calls poll() and the
+// control tick; all of it must run in one context (the Pico's poll loop, or
+// with the lwIP core lock held on a NO_SYS=0 host), so sessions call the
+// controller without locks.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <new>
+#include <span>
+#include <string_view>
+#include <utility>
+
+#include "protocol/session.hpp"
+
+struct tcp_pcb;
+
+namespace rotord::lwip_port {
+
+/// Makes and destroys the sessions of one server in caller-owned storage, so a
+/// connection never allocates (DESIGN.md: no heap after start-up).
+class SessionPool {
+ public:
+  virtual ~SessionPool() = default;
+  virtual std::size_t capacity() const = 0;
+  /// Constructs the session of slot `slot`; null when the slot is taken.
+  virtual protocol::Session* open(std::size_t slot) = 0;
+  virtual void release(std::size_t slot) = 0;
+};
+
+/// N sessions of type S built in place by `make()` (which returns an S by
+/// value; guaranteed copy elision means S need not be movable).
+template <typename S, std::size_t N, typename Make>
+class StaticSessionPool final : public SessionPool {
+ public:
+  explicit StaticSessionPool(Make make) : make_(std::move(make)) {}
+  ~StaticSessionPool() override {
+    for (std::size_t i = 0; i < N; ++i) release(i);
+  }
+  StaticSessionPool(const StaticSessionPool&) = delete;
+  StaticSessionPool& operator=(const StaticSessionPool&) = delete;
+
+  std::size_t capacity() const override { return N; }
+  protocol::Session* open(std::size_t slot) override {
+    if (slot >= N || live_[slot] != nullptr) return nullptr;
+    live_[slot] = ::new (static_cast<void*>(storage_[slot].bytes)) S(make_());
+    return live_[slot];
+  }
+  void release(std::size_t slot) override {
+    if (slot >= N || live_[slot] == nullptr) return;
+    live_[slot]->~S();
+    live_[slot] = nullptr;
+  }
+
+ private:
+  struct alignas(S) Slot {
+    unsigned char bytes[sizeof(S)];
+  };
+  Make make_;
+  std::array<Slot, N> storage_{};
+  std::array<S*, N> live_{};
+};
+
+struct ServerConfig {
+  const char* name = "";            ///< for logs, e.g. "WRC text protocol"
+  std::uint16_t port = 0;           ///< 0 = an ephemeral port (tests)
+  std::size_t max_clients = 4;      ///< clamped to the slots given; one more is refused
+  std::string_view reject_message;  ///< sent to a refused client before the close
+};
+
+/// Serves one protocol on one TCP port: a byte session per connection from a
+/// static pool. Mirrors ports/linux/tcp_server: replies go out in the order
+/// and units the session wrote them (Nagle off), and a client that stops
+/// reading is dropped once its backlog passes the per-connection output
+/// buffer, so it can never hold pbufs or block the others.
+class TcpServer {
+  struct Glue;  // the lwIP callbacks (lwip_transport.cpp)
+
+ public:
+  /// Per-connection output buffer: what the session wrote and lwIP's send
+  /// buffer could not take yet. A WRC reply is < 128 bytes and MONITOR pushes
+  /// ~60 bytes every 100 ms, so 1 KiB is seconds of a stalled client.
+  static constexpr std::size_t kOutputBytes = 1024;
+  /// lwIP's coarse poll (units of 500 ms): retries a flush that ran out of
+  /// lwIP memory and a close that failed.
+  static constexpr std::uint8_t kLwipPollInterval = 2;
+
+  /// One connection slot; the storage is the caller's (a static array).
+  class Connection final : public protocol::ByteSink {
+   public:
+    void write(std::string_view bytes) override;
+    bool active() const { return pcb_ != nullptr; }
+
+   private:
+    friend class TcpServer;
+    friend struct Glue;
+    void flush();
+
+    TcpServer* server_ = nullptr;
+    tcp_pcb* pcb_ = nullptr;
+    protocol::Session* session_ = nullptr;
+    std::size_t index_ = 0;
+    std::array<char, kOutputBytes> out_{};
+    std::size_t out_len_ = 0;
+    bool overflow_ = false;         ///< backlog full or lwIP refused: drop it
+    bool close_requested_ = false;  ///< close once the output is flushed
+  };
+
+  struct Stats {
+    std::uint32_t accepted = 0;
+    std::uint32_t rejected = 0;         ///< refused: max clients
+    std::uint32_t dropped_backlog = 0;  ///< output buffer overflowed
+    std::uint32_t closed = 0;           ///< by the peer, the session or an error
+  };
+
+  TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots);
+  ~TcpServer();
+  TcpServer(const TcpServer&) = delete;
+  TcpServer& operator=(const TcpServer&) = delete;
+
+  /// Binds and listens on every address. False when lwIP refuses (port in
+  /// use, out of pcbs); the server is then inert.
+  bool start();
+  /// Closes every connection and the listener.
+  void stop();
+  /// Gives every session its chance to send unsolicited output (WRC MONITOR)
+  /// and retries pending output. Call from the loop that ticks the controller.
+  void poll(Millis now);
+
+  std::uint16_t port() const { return port_; }
+  const char* name() const { return config_.name; }
+  std::size_t client_count() const;
+  const Stats& stats() const { return stats_; }
+
+ private:
+  Connection* free_slot();
+  /// Called after every session call from an lwIP callback: applies a drop
+  /// or a requested close. Returns what the callback must return (ERR_ABRT
+  /// once the pcb is gone).
+  std::int8_t settle(Connection& c);
+  std::int8_t close(Connection& c);
+  std::int8_t drop(Connection& c);
+  void release(Connection& c);
+
+  ServerConfig config_;
+  SessionPool& sessions_;
+  std::span<Connection> slots_;
+  tcp_pcb* listener_ = nullptr;
+  std::uint16_t port_ = 0;
+  Stats stats_;
+};
+
+/// A server with its own session pool and connection slots, meant for static
+/// storage (the firmware's composition root).
+template <typename S, std::size_t N, typename Make>
+class StaticService {
+ public:
+  StaticService(ServerConfig config, Make make)
+      : pool_(std::move(make)), server_(config, pool_, slots_) {}
+  TcpServer& server() { return server_; }
+
+ private:
+  std::array<TcpServer::Connection, N> slots_{};
+  StaticSessionPool<S, N, Make> pool_;
+  TcpServer server_;  // last: constructed after, destroyed before its storage
+};
+
+}  // namespace rotord::lwip_port

@@ -1,0 +1,393 @@
+// The Pico W's lwIP transport against Debian's lwIP: real TCP state machines
+// on both ends, a server pcb from ports/pico_w/lwip_transport.cpp and client
+// pcbs from the raw API, over one netif that loops packets sent to its own
+// address back into the stack (LWIP_NETIF_LOOPBACK).
+//
+// Debian's liblwip is built with NO_SYS=0 and core locking, so lwIP runs its
+// own tcpip thread; the test holds the core lock around every lwIP call and
+// every server poll, which gives the transport the single context it gets
+// from the Pico's poll loop. Waits are bounded by a step count, not a clock.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "fake_rotator.hpp"
+#include "lwip_transport.hpp"
+// Debian's lwipopts.h declares the core-lock functions outside lwIP's own
+// extern "C" blocks; without this they would get C++ linkage.
+extern "C" {
+#include "lwip/init.h"
+#include "lwip/ip_addr.h"
+#include "lwip/netif.h"
+#include "lwip/tcp.h"
+#include "lwip/tcpip.h"
+}
+#include "protocol/wrc_session.hpp"
+
+namespace rotord {
+namespace {
+
+using lwip_port::ServerConfig;
+using lwip_port::StaticService;
+using lwip_port::TcpServer;
+
+/// Starts lwIP's tcpip thread once for the whole process (lwIP cannot be
+/// de-initialised).
+void ensure_lwip() {
+  static std::atomic<bool> ready{false};
+  static bool started = false;
+  if (!started) {
+    started = true;
+    tcpip_init([](void*) { ready = true; }, nullptr);
+  }
+  while (!ready) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+class CoreLock {
+ public:
+  CoreLock() { LOCK_TCPIP_CORE(); }
+  ~CoreLock() { UNLOCK_TCPIP_CORE(); }
+  CoreLock(const CoreLock&) = delete;
+  CoreLock& operator=(const CoreLock&) = delete;
+};
+
+/// A raw-API client pcb and what it saw.
+struct Client {
+  tcp_pcb* pcb = nullptr;
+  std::string received;
+  bool connected = false;
+  bool peer_closed = false;  ///< FIN from the server
+  bool reset = false;        ///< the err callback ran (RST or abort)
+  err_t error = ERR_OK;
+  bool reading = true;  ///< false: never tcp_recved, so the window closes
+
+  static err_t on_connected(void* arg, tcp_pcb*, err_t) {
+    static_cast<Client*>(arg)->connected = true;
+    return ERR_OK;
+  }
+  static err_t on_recv(void* arg, tcp_pcb* pcb, pbuf* p, err_t) {
+    auto* c = static_cast<Client*>(arg);
+    if (p == nullptr) {
+      c->peer_closed = true;
+      c->detach_and_close();
+      return ERR_OK;
+    }
+    for (const pbuf* q = p; q != nullptr; q = q->next)
+      c->received.append(static_cast<const char*>(q->payload), q->len);
+    if (c->reading) tcp_recved(pcb, p->tot_len);
+    pbuf_free(p);
+    return ERR_OK;
+  }
+  static void on_err(void* arg, err_t err) {
+    auto* c = static_cast<Client*>(arg);
+    c->reset = true;
+    c->error = err;
+    c->pcb = nullptr;  // already freed by lwIP
+  }
+
+  void detach_and_close() {
+    if (pcb == nullptr) return;
+    tcp_arg(pcb, nullptr);
+    tcp_recv(pcb, nullptr);
+    tcp_err(pcb, nullptr);
+    if (tcp_close(pcb) != ERR_OK) tcp_abort(pcb);
+    pcb = nullptr;
+  }
+
+  /// Call with the core lock held.
+  void connect(const ip_addr_t& addr, std::uint16_t port) {
+    pcb = tcp_new_ip_type(IPADDR_TYPE_V4);
+    ASSERT_NE(pcb, nullptr);
+    tcp_arg(pcb, this);
+    tcp_recv(pcb, &Client::on_recv);
+    tcp_err(pcb, &Client::on_err);
+    ASSERT_EQ(tcp_connect(pcb, &addr, port, &Client::on_connected), ERR_OK);
+  }
+  /// Call with the core lock held.
+  void send(std::string_view text) {
+    ASSERT_NE(pcb, nullptr);
+    ASSERT_EQ(tcp_write(pcb, text.data(), static_cast<u16_t>(text.size()), TCP_WRITE_FLAG_COPY),
+              ERR_OK);
+    ASSERT_EQ(tcp_output(pcb), ERR_OK);
+  }
+};
+
+/// A session for transport tests: 'F' starts a flood of kFloodBytes written
+/// from poll() in 200-byte writes (a counting pattern, so order is checked),
+/// 'Q' answers BYE and asks for the close, 'P' answers PONG.
+class TestSession final : public protocol::Session {
+ public:
+  static constexpr std::size_t kFloodBytes = 200000;
+  static inline int live = 0;
+
+  TestSession() { ++live; }
+  ~TestSession() override { --live; }
+  TestSession(const TestSession&) = delete;
+  TestSession& operator=(const TestSession&) = delete;
+
+  void receive(std::string_view bytes, protocol::ByteSink& out) override {
+    for (char ch : bytes) {
+      if (ch == 'F') flood_left_ = kFloodBytes;
+      if (ch == 'P') out.write("PONG\n");
+      if (ch == 'Q') {
+        out.write("BYE\n");
+        close_ = true;
+      }
+    }
+  }
+  void poll(Millis, protocol::ByteSink& out) override {
+    for (int i = 0; i < 4 && flood_left_ > 0; ++i) {
+      char chunk[200];
+      const std::size_t n = std::min(sizeof(chunk), flood_left_);
+      for (std::size_t k = 0; k < n; ++k) chunk[k] = pattern(sent_ + k);
+      out.write(std::string_view(chunk, n));
+      sent_ += n;
+      flood_left_ -= n;
+    }
+  }
+  bool wants_close() const override { return close_; }
+
+  static char pattern(std::size_t i) { return static_cast<char>('a' + i % 26); }
+
+ private:
+  std::size_t flood_left_ = 0;
+  std::size_t sent_ = 0;
+  bool close_ = false;
+};
+
+auto make_test_session() {
+  return [] { return TestSession(); };
+}
+using TestService = StaticService<TestSession, 4, decltype(make_test_session())>;
+
+class LwipTransportTest : public ::testing::Test {
+ protected:
+  static constexpr int kMaxSteps = 10000;  // x 1 ms sleep: generous, never reached when passing
+
+  void SetUp() override {
+    ensure_lwip();
+    CoreLock lock;
+    IP4_ADDR(ip_2_ip4(&addr_), 10, 0, 0, 1);
+    IP_SET_TYPE_VAL(addr_, IPADDR_TYPE_V4);
+    ip4_addr_t mask;
+    ip4_addr_t gw;
+    IP4_ADDR(&mask, 255, 255, 255, 0);
+    IP4_ADDR(&gw, 0, 0, 0, 0);
+    ASSERT_NE(netif_add(&netif_, ip_2_ip4(&addr_), &mask, &gw, nullptr, &init_netif, tcpip_input),
+              nullptr);
+    netif_set_up(&netif_);
+    netif_set_link_up(&netif_);
+  }
+
+  void TearDown() override {
+    CoreLock lock;
+    netif_remove(&netif_);
+  }
+
+  /// Stops the server and aborts the clients under the core lock when a test
+  /// ends, before the server's storage (a local of the test) goes away.
+  class Served {
+   public:
+    explicit Served(LwipTransportTest& t) : t_(t) {}
+    ~Served() {
+      CoreLock lock;
+      for (Client& c : t_.clients_) {
+        if (c.pcb == nullptr) continue;
+        tcp_arg(c.pcb, nullptr);
+        tcp_recv(c.pcb, nullptr);
+        tcp_err(c.pcb, nullptr);
+        tcp_abort(c.pcb);
+        c.pcb = nullptr;
+      }
+      t_.server_->stop();
+      t_.server_ = nullptr;
+    }
+    Served(const Served&) = delete;
+    Served& operator=(const Served&) = delete;
+
+   private:
+    LwipTransportTest& t_;
+  };
+
+  /// The netif sends nothing anywhere: traffic to its own address is looped
+  /// back by lwIP before output() is reached.
+  static err_t init_netif(netif* n) {
+    n->name[0] = 't';
+    n->name[1] = 'l';
+    n->mtu = 1500;
+    n->output = [](netif*, pbuf*, const ip4_addr_t*) -> err_t { return ERR_OK; };
+    return ERR_OK;
+  }
+
+  [[nodiscard]] std::unique_ptr<Served> serve(TcpServer& server) {
+    server_ = &server;
+    CoreLock lock;
+    EXPECT_TRUE(server.start());
+    EXPECT_NE(server.port(), 0);
+    return std::make_unique<Served>(*this);
+  }
+
+  Client& connect() {
+    Client& c = clients_[client_count_++];
+    {
+      CoreLock lock;
+      c.connect(addr_, server_->port());
+    }
+    EXPECT_TRUE(wait([&] { return c.connected || c.reset; }));
+    return c;
+  }
+
+  void send(Client& c, std::string_view text) {
+    CoreLock lock;
+    c.send(text);
+  }
+
+  /// Lets lwIP's thread run and polls the server (as the firmware's loop
+  /// does every tick) until pred() holds, checked under the core lock.
+  template <typename Pred>
+  bool wait(Pred pred) {
+    for (int i = 0; i < kMaxSteps; ++i) {
+      {
+        CoreLock lock;
+        if (server_ != nullptr) server_->poll(now_ += 10);
+        if (pred()) return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return false;
+  }
+
+  netif netif_{};
+  ip_addr_t addr_{};
+  TcpServer* server_ = nullptr;
+  std::array<Client, 8> clients_{};
+  std::size_t client_count_ = 0;
+  Millis now_ = 0;
+};
+
+TEST_F(LwipTransportTest, ServesWrcCommandsOverTcp) {
+  testing::FakeRotator rotator(false);
+  auto make = [&rotator] { return protocol::WrcSession(*rotator.controller, "test"); };
+  StaticService<protocol::WrcSession, 2, decltype(make)> wrc(
+      {"WRC", 0, 2, protocol::WrcSession::kTooManyConnections}, make);
+  auto served = serve(wrc.server());
+
+  Client& c = connect();
+  ASSERT_TRUE(c.connected);
+  send(c, "AZ?\r\n");
+  EXPECT_TRUE(wait([&] { return c.received.find("\r\n") != std::string::npos; }));
+  EXPECT_EQ(c.received, "OK AZ 100.0\r\n");
+
+  // A command split over two segments is one command to the session.
+  c.received.clear();
+  send(c, "A");
+  send(c, "Z?\r\nBOGUS\r\n");
+  EXPECT_TRUE(wait([&] { return c.received.find("ERROR") != std::string::npos; }));
+  EXPECT_EQ(c.received.rfind("OK AZ 100.0\r\n", 0), 0u) << c.received;
+  CoreLock lock;
+  EXPECT_EQ(wrc.server().client_count(), 1u);
+}
+
+TEST_F(LwipTransportTest, RefusesClientsOverTheLimitWithTheRejectMessage) {
+  TestService service({"test", 0, 2, "ERROR TOO MANY CONNECTIONS\r\n"}, make_test_session());
+  auto served = serve(service.server());
+
+  Client& a = connect();
+  Client& b = connect();
+  ASSERT_TRUE(wait([&] { return service.server().client_count() == 2; }));
+  Client& c = connect();
+  EXPECT_TRUE(wait([&] { return c.peer_closed || c.reset; }));
+  EXPECT_EQ(c.received, "ERROR TOO MANY CONNECTIONS\r\n");
+  EXPECT_TRUE(c.peer_closed) << "a refused client gets a FIN after the message, not a reset";
+  {
+    CoreLock lock;
+    EXPECT_EQ(service.server().client_count(), 2u);
+    EXPECT_EQ(service.server().stats().rejected, 1u);
+    EXPECT_EQ(TestSession::live, 2);
+  }
+
+  // The accepted clients still work, and a slot freed by a close is reused.
+  send(a, "P");
+  EXPECT_TRUE(wait([&] { return a.received == "PONG\n"; }));
+  {
+    CoreLock lock;
+    b.detach_and_close();
+  }
+  EXPECT_TRUE(wait([&] { return service.server().client_count() == 1; }));
+  Client& d = connect();
+  send(d, "P");
+  EXPECT_TRUE(wait([&] { return d.received == "PONG\n"; }));
+  CoreLock lock;
+  EXPECT_EQ(service.server().client_count(), 2u);
+  EXPECT_EQ(TestSession::live, 2);
+}
+
+TEST_F(LwipTransportTest, PeerCloseReleasesTheSession) {
+  TestService service({"test", 0, 4, "busy\r\n"}, make_test_session());
+  auto served = serve(service.server());
+  Client& c = connect();
+  ASSERT_TRUE(wait([&] { return TestSession::live == 1; }));
+  {
+    CoreLock lock;
+    c.detach_and_close();
+  }
+  EXPECT_TRUE(wait([&] { return service.server().client_count() == 0; }));
+  CoreLock lock;
+  EXPECT_EQ(TestSession::live, 0);
+  EXPECT_EQ(service.server().stats().closed, 1u);
+}
+
+TEST_F(LwipTransportTest, SessionCloseFlushesTheReplyThenSendsFin) {
+  TestService service({"test", 0, 4, "busy\r\n"}, make_test_session());
+  auto served = serve(service.server());
+  Client& c = connect();
+  send(c, "Q");
+  EXPECT_TRUE(wait([&] { return c.peer_closed || c.reset; }));
+  EXPECT_TRUE(c.peer_closed);
+  EXPECT_EQ(c.received, "BYE\n");
+  CoreLock lock;
+  EXPECT_EQ(service.server().client_count(), 0u);
+  EXPECT_EQ(TestSession::live, 0);
+}
+
+TEST_F(LwipTransportTest, AReadingClientGetsTheWholeFloodInOrder) {
+  TestService service({"test", 0, 4, "busy\r\n"}, make_test_session());
+  auto served = serve(service.server());
+  Client& c = connect();
+  send(c, "F");
+  EXPECT_TRUE(wait([&] { return c.received.size() >= TestSession::kFloodBytes || c.reset; }));
+  ASSERT_EQ(c.received.size(), TestSession::kFloodBytes);
+  for (std::size_t i = 0; i < c.received.size(); ++i) {
+    ASSERT_EQ(c.received[i], TestSession::pattern(i)) << "at byte " << i;
+  }
+  CoreLock lock;
+  EXPECT_EQ(service.server().stats().dropped_backlog, 0u);
+  EXPECT_EQ(service.server().client_count(), 1u);
+}
+
+TEST_F(LwipTransportTest, AClientThatStopsReadingIsDroppedAndTheOthersCarryOn) {
+  TestService service({"test", 0, 4, "busy\r\n"}, make_test_session());
+  auto served = serve(service.server());
+  Client& stalled = connect();
+  Client& other = connect();
+  stalled.reading = false;  // its receive window closes, then lwIP's send buffer fills
+  send(stalled, "F");
+  EXPECT_TRUE(wait([&] { return stalled.reset; }));
+  EXPECT_EQ(stalled.error, ERR_RST);
+  EXPECT_LT(stalled.received.size(), TestSession::kFloodBytes);
+  {
+    CoreLock lock;
+    EXPECT_EQ(service.server().stats().dropped_backlog, 1u);
+    EXPECT_EQ(service.server().client_count(), 1u);
+    EXPECT_EQ(TestSession::live, 1);
+  }
+  send(other, "P");
+  EXPECT_TRUE(wait([&] { return other.received == "PONG\n"; }));
+}
+
+}  // namespace
+}  // namespace rotord
