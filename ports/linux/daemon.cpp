@@ -28,11 +28,52 @@ bool Daemon::setup() {
       return false;
     }
   }
+  defaults_ = settings_;
+  load_settings();
   sim_ = std::make_unique<sim::SimRotator>(*profile, options_.seed);
-  controller_ =
-      std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
   std::printf("rotord %s: simulated rotator '%s' (%s), speedup %g\n", ROTORD_VERSION, profile->name,
               profile->description, options_.speedup);
+  if (!start_controller()) return false;
+  std::printf("rotord: ready\n");
+  std::fflush(stdout);
+  return true;
+}
+
+void Daemon::load_settings() {
+  storage_ = std::make_unique<FileStorage>(
+      options_.config_path.empty() ? FileStorage::default_path() : options_.config_path);
+  // Heap is fine here (start-up, Linux); the Pico keeps this buffer static.
+  std::vector<char> buf(web::Api::kMaxDocumentBytes);
+  auto scratch = std::make_unique<settings::Settings>();
+  const web::LoadOutcome r =
+      web::load_settings(*storage_, settings_, *scratch, buf.data(), buf.size());
+  switch (r.status) {
+    case web::LoadOutcome::kNothingStored:
+      std::printf("rotord: no settings file at %s yet, using the defaults\n",
+                  storage_->path().c_str());
+      break;
+    case web::LoadOutcome::kLoaded:
+      std::printf("rotord: settings loaded from %s\n", storage_->path().c_str());
+      break;
+    case web::LoadOutcome::kCorrupt:
+      // Keep running on the defaults, and keep the file: it may hold hours of
+      // calibration that one wrong character made unreadable.
+      std::fprintf(stderr,
+                   "rotord: settings file %s is invalid (%s%s%s%s%s); running on the defaults. "
+                   "The file is left as it is; the next save keeps it as %s.bad\n",
+                   storage_->path().c_str(), r.key, r.key[0] != '\0' ? ": " : "", r.reason,
+                   storage_->last_error().empty() ? "" : ": ", storage_->last_error().c_str(),
+                   storage_->path().c_str());
+      storage_->keep_backup_before_next_save();
+      break;
+  }
+}
+
+bool Daemon::start_controller() {
+  controller_ =
+      std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
+  api_ = std::make_unique<web::Api>(
+      web::ApiContext{*controller_, storage_.get(), &defaults_, this, ROTORD_VERSION});
 
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);
@@ -41,7 +82,7 @@ bool Daemon::setup() {
     return false;
   }
   const auto max_clients = static_cast<std::size_t>(settings_.i(settings::Id::kNetMaxClients));
-  for (auto& service : make_services(options_, *controller_, max_clients)) {
+  for (auto& service : make_services(options_, *controller_, *api_, max_clients)) {
     if (service.port == 0) continue;
     try {
       servers_.push_back(std::make_unique<TcpServer>(io_, bind, std::move(service)));
@@ -53,9 +94,31 @@ bool Daemon::setup() {
     std::printf("rotord: %s listening on %s:%u\n", servers_.back()->name().c_str(),
                 options_.bind.c_str(), static_cast<unsigned>(servers_.back()->port()));
   }
+  return true;
+}
+
+bool Daemon::request_reboot() {
+  // Later, from the tick: the request's own connection must first send its
+  // response, and the servers cannot be replaced while one of them runs.
+  reboot_pending_ = true;
+  reboot_at_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
+  return true;
+}
+
+void Daemon::reboot() {
+  reboot_pending_ = false;
+  std::printf("rotord: restarting the controller\n");
+  controller_->shutdown();
+  servers_.clear();
+  api_.reset();
+  controller_.reset();
+  if (!start_controller()) {
+    stop();
+    return;
+  }
+  controller_->begin(now_ms_);
   std::printf("rotord: ready\n");
   std::fflush(stdout);
-  return true;
 }
 
 int Daemon::run() {
@@ -108,6 +171,7 @@ void Daemon::on_tick() {
     controller_->tick(now_ms_);
   }
   for (auto& server : servers_) server->poll(now_ms_);
+  if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();
 }
 
 }  // namespace rotord::linux_port

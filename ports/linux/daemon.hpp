@@ -3,18 +3,20 @@
 #include <memory>
 #include <vector>
 
+#include "file_storage.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "settings/settings.hpp"
 #include "sim/sim_rotator.hpp"
 #include "tcp_server.hpp"
+#include "web/web_api.hpp"
 
 namespace rotord::linux_port {
 
 /// The composition root of the Linux daemon: settings, the simulated (or
 /// real) hardware, the controller, the protocol servers and the one asio loop
 /// that runs the 100 Hz control tick and every socket.
-class Daemon {
+class Daemon final : private web::RebootHook {
  public:
   static constexpr Millis kTickMs = 10;
 
@@ -25,6 +27,13 @@ class Daemon {
 
  private:
   bool setup();
+  void load_settings();
+  /// Creates the controller, the REST API and the protocol servers.
+  bool start_controller();
+  /// POST /api/reboot: the controller is re-created with the current
+  /// settings (restart-only settings take effect), every client reconnects.
+  bool request_reboot() override;
+  void reboot();
   void add_service(ServiceConfig config);
   void schedule_tick();
   void on_tick();
@@ -35,8 +44,13 @@ class Daemon {
   asio::steady_timer timer_;
   asio::signal_set signals_;
   settings::Settings settings_;
+  settings::Settings defaults_;  ///< table defaults + the profile: what a reset restores
+  std::unique_ptr<FileStorage> storage_;
   std::unique_ptr<sim::SimRotator> sim_;
   std::unique_ptr<Controller> controller_;
+  std::unique_ptr<web::Api> api_;
+  bool reboot_pending_ = false;
+  std::chrono::steady_clock::time_point reboot_at_;
   std::vector<std::unique_ptr<TcpServer>> servers_;
   std::chrono::steady_clock::time_point wall_start_;
   Millis now_ms_ = 0;

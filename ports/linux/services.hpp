@@ -4,12 +4,13 @@
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "tcp_server.hpp"
+#include "web/web_api.hpp"
 
 namespace rotord::linux_port {
 
 /// Every protocol the daemon serves on TCP, with its port from the options.
 /// A port of 0 leaves that service out.
 std::vector<ServiceConfig> make_services(const Options& options, Controller& controller,
-                                         std::size_t max_clients);
+                                         web::Api& api, std::size_t max_clients);
 
 }  // namespace rotord::linux_port

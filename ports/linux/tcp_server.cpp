@@ -28,7 +28,10 @@ class TcpServer::Connection final : public protocol::ByteSink,
   }
 
   void poll(Millis now) {
-    if (!closing_) session_->poll(now, *this);
+    if (closing_) return;
+    session_->poll(now, *this);
+    // A session may end itself from poll too (HTTP idle and request timeouts).
+    if (session_->wants_close()) close_after_flush();
   }
 
   void close() {
@@ -109,6 +112,11 @@ TcpServer::TcpServer(asio::io_context& io, const asio::ip::address& bind, Servic
 TcpServer::~TcpServer() {
   std::error_code ignored;
   acceptor_.close(ignored);
+  // Close every connection, so their pending handlers see a closed connection
+  // and never call back into this server (the daemon destroys servers while
+  // the loop keeps running when it restarts the controller).
+  const std::vector<std::shared_ptr<Connection>> snapshot(connections_.begin(), connections_.end());
+  for (const auto& c : snapshot) c->close();
   connections_.clear();
 }
 

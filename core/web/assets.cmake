@@ -1,0 +1,17 @@
+# The web UI (web/ in the source tree), gzipped with Debian's gzip at build
+# time and compiled into rotord_core as constant byte arrays (web_assets.cpp),
+# for both the Linux daemon and the Pico firmware. Included from
+# core/CMakeLists.txt after rotord_core is defined.
+find_program(ROTORD_GZIP gzip REQUIRED)
+set(ROTORD_WEB_DIR ${PROJECT_SOURCE_DIR}/web)
+file(GLOB ROTORD_WEB_FILES CONFIGURE_DEPENDS
+  ${ROTORD_WEB_DIR}/*.html ${ROTORD_WEB_DIR}/*.css ${ROTORD_WEB_DIR}/*.js ${ROTORD_WEB_DIR}/*.svg)
+set(ROTORD_WEB_ASSETS_CPP ${CMAKE_CURRENT_BINARY_DIR}/web_assets.cpp)
+add_custom_command(
+  OUTPUT ${ROTORD_WEB_ASSETS_CPP}
+  COMMAND ${CMAKE_COMMAND} -DGZIP=${ROTORD_GZIP} -DWEB_DIR=${ROTORD_WEB_DIR}
+          -DOUT=${ROTORD_WEB_ASSETS_CPP} -P ${CMAKE_CURRENT_LIST_DIR}/embed_assets.cmake
+  DEPENDS ${ROTORD_WEB_FILES} ${CMAKE_CURRENT_LIST_DIR}/embed_assets.cmake
+  COMMENT "Embedding the web UI (gzip)"
+  VERBATIM)
+target_sources(rotord_core PRIVATE ${ROTORD_WEB_ASSETS_CPP})

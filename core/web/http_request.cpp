@@ -1,0 +1,225 @@
+#include "web/http_request.hpp"
+
+#include <cstring>
+
+#include "util/text.hpp"
+
+namespace rotord::web {
+namespace {
+
+std::string_view trim_ows(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+/// Case-insensitive search for a token in a header value list ("keep-alive, Upgrade").
+bool contains_token(std::string_view list, std::string_view token) {
+  while (!list.empty()) {
+    const std::size_t comma = list.find(',');
+    std::string_view item = trim_ows(list.substr(0, comma));
+    const std::size_t semi = item.find(';');
+    if (text::iequals(trim_ows(item.substr(0, semi)), token)) return true;
+    if (comma == std::string_view::npos) break;
+    list.remove_prefix(comma + 1);
+  }
+  return false;
+}
+
+bool is_token_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+         std::strchr("!#$%&'*+-.^_`|~", c) != nullptr;
+}
+
+}  // namespace
+
+void HttpRequestParser::reset() {
+  state_ = State::kStart;
+  head_length_ = 0;
+  line_start_ = 0;
+  body_length_ = 0;
+  content_length_ = 0;
+  has_content_length_ = false;
+  request_ = HttpRequest{};
+  error_status_ = 0;
+  error_message_ = "";
+}
+
+HttpRequestParser::Status HttpRequestParser::fail(int status, const char* message) {
+  state_ = State::kError;
+  error_status_ = status;
+  error_message_ = message;
+  return Status::kError;
+}
+
+HttpRequestParser::Status HttpRequestParser::feed(std::string_view& in) {
+  while (!in.empty()) {
+    switch (state_) {
+      case State::kComplete:
+        return Status::kComplete;
+      case State::kError:
+        return Status::kError;
+      case State::kStart:
+        // RFC 9112 2.2: ignore empty lines before a request line (keep-alive
+        // clients sometimes send a stray CRLF after a body).
+        if (in.front() == '\r' || in.front() == '\n') {
+          in.remove_prefix(1);
+          continue;
+        }
+        state_ = State::kHead;
+        continue;
+      case State::kHead: {
+        const char c = in.front();
+        in.remove_prefix(1);
+        if (c == '\r') continue;  // CR LF and bare LF both end a line (RFC 9112 2.2)
+        if (c == '\n') {
+          if (head_length_ == line_start_) {  // empty line: end of the head
+            if (!parse_head()) return Status::kError;
+            if (content_length_ > 0) {
+              state_ = State::kBody;
+              continue;
+            }
+            state_ = State::kComplete;
+            return Status::kComplete;
+          }
+          head_[head_length_++] = '\n';  // room kept by the check below
+          line_start_ = head_length_;
+          continue;
+        }
+        if (line_start_ == 0 && head_length_ >= kMaxRequestLineBytes)
+          return fail(414, "request line too long");
+        if (head_length_ >= kMaxHeadBytes - 1) return fail(431, "request headers too large");
+        head_[head_length_++] = c;
+        continue;
+      }
+      case State::kBody: {
+        std::size_t take = content_length_ - body_length_;
+        if (take > in.size()) take = in.size();
+        std::memcpy(body_ + body_length_, in.data(), take);
+        body_length_ += take;
+        in.remove_prefix(take);
+        if (body_length_ == content_length_) {
+          request_.body = std::string_view(body_, body_length_);
+          state_ = State::kComplete;
+          return Status::kComplete;
+        }
+        continue;
+      }
+    }
+  }
+  if (state_ == State::kComplete) return Status::kComplete;
+  if (state_ == State::kError) return Status::kError;
+  return Status::kNeedMore;
+}
+
+bool HttpRequestParser::parse_head() {
+  std::string_view head(head_, head_length_);
+  const std::size_t eol = head.find('\n');
+  std::string_view line = head.substr(0, eol);
+  std::string_view headers =
+      eol == std::string_view::npos ? std::string_view{} : head.substr(eol + 1);
+
+  // Request line: METHOD SP request-target SP HTTP-version
+  const std::size_t sp1 = line.find(' ');
+  const std::size_t sp2 = sp1 == std::string_view::npos ? sp1 : line.find(' ', sp1 + 1);
+  if (sp1 == 0 || sp2 == std::string_view::npos ||
+      line.find(' ', sp2 + 1) != std::string_view::npos) {
+    fail(400, "malformed request line");
+    return false;
+  }
+  const std::string_view method = line.substr(0, sp1);
+  const std::string_view target = line.substr(sp1 + 1, sp2 - sp1 - 1);
+  const std::string_view version = line.substr(sp2 + 1);
+  for (char c : method) {
+    if (!is_token_char(c)) {
+      fail(400, "malformed request line");
+      return false;
+    }
+  }
+  if (version.substr(0, 5) != "HTTP/") {
+    fail(400, "malformed request line");
+    return false;
+  }
+  if (version != "HTTP/1.1" && version != "HTTP/1.0") {
+    fail(505, "only HTTP/1.0 and HTTP/1.1 are supported");
+    return false;
+  }
+  if (target.empty() || target.front() != '/') {
+    fail(400, "the request target must be a path");
+    return false;
+  }
+  request_.method_text = method;
+  request_.method = method == "GET"    ? Method::kGet
+                    : method == "HEAD" ? Method::kHead
+                    : method == "POST" ? Method::kPost
+                                       : Method::kOther;
+  request_.path = target.substr(0, target.find('?'));
+  request_.keep_alive = version == "HTTP/1.1";
+
+  while (!headers.empty()) {
+    const std::size_t nl = headers.find('\n');
+    const std::string_view field = headers.substr(0, nl);
+    headers = nl == std::string_view::npos ? std::string_view{} : headers.substr(nl + 1);
+    if (field.front() == ' ' || field.front() == '\t') {
+      fail(400, "folded header lines are not allowed");
+      return false;
+    }
+    const std::size_t colon = field.find(':');
+    if (colon == std::string_view::npos || colon == 0) {
+      fail(400, "malformed header line");
+      return false;
+    }
+    const std::string_view name = field.substr(0, colon);
+    for (char c : name) {
+      if (!is_token_char(c)) {
+        fail(400, "malformed header name");
+        return false;
+      }
+    }
+    if (!parse_header(name, trim_ows(field.substr(colon + 1)))) return false;
+  }
+  if (content_length_ > kMaxBodyBytes) {
+    fail(413, "request body too large");
+    return false;
+  }
+  return true;
+}
+
+bool HttpRequestParser::parse_header(std::string_view name, std::string_view value) {
+  if (text::iequals(name, "Content-Length")) {
+    // Digits only (no sign); a second, different Content-Length is smuggling.
+    std::size_t n = 0;
+    for (char c : value) {
+      if (c < '0' || c > '9') {
+        fail(400, "invalid Content-Length");
+        return false;
+      }
+      // Saturate: anything past the body limit is refused with 413 anyway.
+      if (n <= kMaxBodyBytes) n = n * 10 + static_cast<std::size_t>(c - '0');
+    }
+    if (value.empty()) {
+      fail(400, "invalid Content-Length");
+      return false;
+    }
+    if (has_content_length_ && n != content_length_) {
+      fail(400, "conflicting Content-Length headers");
+      return false;
+    }
+    has_content_length_ = true;
+    content_length_ = n;
+  } else if (text::iequals(name, "Transfer-Encoding")) {
+    fail(501, "chunked request bodies are not supported; send a Content-Length");
+    return false;
+  } else if (text::iequals(name, "Connection")) {
+    if (contains_token(value, "close")) request_.keep_alive = false;
+    if (contains_token(value, "keep-alive")) request_.keep_alive = true;
+  } else if (text::iequals(name, "Content-Type")) {
+    const std::string_view media = trim_ows(value.substr(0, value.find(';')));
+    request_.json_body = text::iequals(media, "application/json");
+  } else if (text::iequals(name, "If-None-Match")) {
+    request_.if_none_match = value;
+  }
+  return true;
+}
+
+}  // namespace rotord::web

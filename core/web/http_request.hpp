@@ -1,0 +1,70 @@
+#pragma once
+#include <cstddef>
+#include <string_view>
+
+namespace rotord::web {
+
+enum class Method : unsigned char { kGet, kHead, kPost, kOther };
+
+/// One parsed request. Views point into the parser's buffers and stay valid
+/// until the parser is reset for the next request.
+struct HttpRequest {
+  Method method = Method::kOther;
+  std::string_view method_text;
+  std::string_view path;  ///< without the query string
+  bool keep_alive = true;
+  bool json_body = false;  ///< Content-Type: application/json
+  std::string_view if_none_match;
+  std::string_view body;
+};
+
+/// Incremental HTTP/1.1 request parser over fixed buffers (the same code runs
+/// on the Pico's lwIP, where a request arrives in pieces of any size). Limits
+/// are named constants; exceeding one is an error with its HTTP status, and
+/// the excess bytes are never stored. Bodies need a Content-Length; chunked
+/// uploads are refused (no client of this API sends them).
+class HttpRequestParser {
+ public:
+  static constexpr std::size_t kMaxRequestLineBytes = 256;  ///< 414 beyond
+  static constexpr std::size_t kMaxHeadBytes = 2048;        ///< line + headers; 431 beyond
+  /// 413 beyond. Holds the whole settings document (about 2.2 KB) with room
+  /// to grow; a unit test keeps the two in step.
+  static constexpr std::size_t kMaxBodyBytes = 4096;
+
+  enum class Status : unsigned char { kNeedMore, kComplete, kError };
+
+  /// Consumes bytes from the front of `in` until one request is complete (the
+  /// rest stays in `in`, e.g. a pipelined request) or an error is found.
+  Status feed(std::string_view& in);
+
+  const HttpRequest& request() const { return request_; }
+  /// kError: the status to answer with (400, 413, 414, 431, 501, 505) and why.
+  int error_status() const { return error_status_; }
+  const char* error_message() const { return error_message_; }
+
+  /// Ready for the next request on the same connection.
+  void reset();
+  /// Bytes of an unfinished request have arrived.
+  bool in_progress() const { return state_ != State::kStart || head_length_ > 0; }
+
+ private:
+  enum class State : unsigned char { kStart, kHead, kBody, kComplete, kError };
+
+  Status fail(int status, const char* message);
+  bool parse_head();
+  bool parse_header(std::string_view name, std::string_view value);
+
+  State state_ = State::kStart;
+  char head_[kMaxHeadBytes];
+  std::size_t head_length_ = 0;
+  std::size_t line_start_ = 0;  ///< where the current head line begins
+  char body_[kMaxBodyBytes];
+  std::size_t body_length_ = 0;
+  std::size_t content_length_ = 0;
+  bool has_content_length_ = false;
+  HttpRequest request_;
+  int error_status_ = 0;
+  const char* error_message_ = "";
+};
+
+}  // namespace rotord::web

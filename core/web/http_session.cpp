@@ -1,0 +1,113 @@
+#include "web/http_session.hpp"
+
+#include <cstdio>
+
+#include "web/assets.hpp"
+#include "web/http_response.hpp"
+
+namespace rotord::web {
+
+HttpSession::HttpSession(Api& api) : api_(api), last_activity_(api.controller().now()) {}
+
+void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
+  // An event stream only talks; anything the client sends is ignored.
+  if (close_ || events_) return;
+  last_activity_ = api_.controller().now();
+  while (!bytes.empty() && !close_ && !events_) {
+    const auto status = parser_.feed(bytes);
+    if (status == HttpRequestParser::Status::kNeedMore) break;
+    if (status == HttpRequestParser::Status::kError) {
+      send_error(out, parser_.error_status(), parser_.error_message(), {false, false, {}});
+      close_ = true;
+      break;
+    }
+    handle(parser_.request(), out);
+    parser_.reset();
+  }
+}
+
+void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
+  const ResponseOptions options{request.keep_alive, request.method == Method::kHead, {}};
+  if (request.path.substr(0, 5) == "/api/") {
+    switch (api_.handle(request, out, options)) {
+      case Api::Outcome::kStartEvents:
+        events_ = true;
+        out.write("retry: 1000\n\n");  // EventSource reconnects after 1 s
+        send_event(api_.controller().now(), out);
+        return;
+      case Api::Outcome::kClose:
+        close_ = true;
+        return;
+      case Api::Outcome::kDone:
+        break;
+    }
+  } else if (request.method == Method::kGet || request.method == Method::kHead) {
+    serve_asset(request, options, out);
+  } else {
+    ResponseOptions o = options;
+    o.extra_headers = "Allow: GET, HEAD\r\n";
+    send_error(out, 405, "method not allowed here", o);
+  }
+  if (!request.keep_alive) close_ = true;
+}
+
+void HttpSession::serve_asset(const HttpRequest& request, const ResponseOptions& options,
+                              protocol::ByteSink& out) {
+  const Asset* asset = find_asset(request.path);
+  if (asset == nullptr) {
+    send_error(out, 404, "not found", options);
+    return;
+  }
+  // Always gzip: every browser accepts it, and the Pico has no room for a
+  // second, uncompressed copy (curl users add --compressed). no-cache makes
+  // the browser revalidate with the ETag, so an update shows at once.
+  char headers[160];
+  ResponseOptions o = options;
+  const bool unchanged = request.if_none_match == asset->etag;
+  const int n = std::snprintf(headers, sizeof(headers), "%sCache-Control: no-cache\r\nETag: %s\r\n",
+                              unchanged ? "" : "Content-Encoding: gzip\r\n", asset->etag);
+  if (n > 0 && static_cast<std::size_t>(n) < sizeof(headers))
+    o.extra_headers = std::string_view(headers, static_cast<std::size_t>(n));
+  if (unchanged) {
+    write_head(out, 304, asset->content_type, -1, o);
+    return;
+  }
+  write_head(out, 200, asset->content_type, static_cast<long>(asset->gzip_size), o);
+  if (options.head_only) return;
+  out.write(std::string_view(reinterpret_cast<const char*>(asset->gzip_data), asset->gzip_size));
+}
+
+void HttpSession::poll(Millis now, protocol::ByteSink& out) {
+  if (close_) return;
+  if (events_) {
+    const RotatorStatus s = api_.controller().status();
+    const bool changed =
+        s.moving() != last_moving_ || s.any_fault() != last_fault_ || s.mode != last_mode_;
+    const Millis period = s.moving() ? kEventPeriodMovingMs : kEventPeriodIdleMs;
+    if (changed || now - last_event_ >= period) send_event(now, out);
+    return;
+  }
+  const Millis quiet = now - last_activity_;
+  if (parser_.in_progress() && quiet > kRequestTimeoutMs) {
+    send_error(out, 408, "request not completed in time", {false, false, {}});
+    close_ = true;
+  } else if (!parser_.in_progress() && quiet > kIdleTimeoutMs) {
+    close_ = true;
+  }
+}
+
+void HttpSession::send_event(Millis now, protocol::ByteSink& out) {
+  const RotatorStatus s = api_.controller().status();
+  last_event_ = now;
+  last_moving_ = s.moving();
+  last_fault_ = s.any_fault();
+  last_mode_ = s.mode;
+  out.write("data: ");
+  {
+    JsonWriter w(out);
+    api_.write_status(w);
+  }
+  out.write("\n\n");
+}
+
+}  // namespace rotord::web

@@ -1,0 +1,57 @@
+#pragma once
+#include <string_view>
+
+#include "protocol/session.hpp"
+#include "rotator/controller.hpp"
+#include "web/http_request.hpp"
+#include "web/web_api.hpp"
+
+namespace rotord::web {
+
+/// HTTP/1.1 over a byte session: the web UI's files, the REST API and the
+/// live event stream (Server-Sent Events), on the same transports as the
+/// other protocols. Keep-alive and pipelining are supported; a framing error
+/// answers with its status and closes, because the stream cannot be resynced.
+class HttpSession final : public protocol::Session {
+ public:
+  /// A request that has started must be complete within this (slow clients
+  /// would otherwise hold a connection slot forever).
+  static constexpr Millis kRequestTimeoutMs = 10000;
+  /// A keep-alive connection with no request for this long is closed:
+  /// browsers keep several idle connections per page, and slots are few.
+  static constexpr Millis kIdleTimeoutMs = 5000;
+  /// Event stream: an update every 100 ms while an axis moves (10/s), every
+  /// second otherwise, and at once when moving, faults or mode change.
+  static constexpr Millis kEventPeriodMovingMs = 100;
+  static constexpr Millis kEventPeriodIdleMs = 1000;
+  /// What a transport sends to a client over its connection limit.
+  static constexpr std::string_view kTooManyConnections =
+      "HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\n"
+      "Content-Length: 32\r\nConnection: close\r\nRetry-After: 2\r\n\r\n"
+      "{\"error\":\"too many connections\"}";
+
+  explicit HttpSession(Api& api);
+
+  void receive(std::string_view bytes, protocol::ByteSink& out) override;
+  void poll(Millis now, protocol::ByteSink& out) override;
+  bool wants_close() const override { return close_; }
+  bool streaming_events() const { return events_; }
+
+ private:
+  void handle(const HttpRequest& request, protocol::ByteSink& out);
+  void serve_asset(const HttpRequest& request, const ResponseOptions& options,
+                   protocol::ByteSink& out);
+  void send_event(Millis now, protocol::ByteSink& out);
+
+  Api& api_;
+  HttpRequestParser parser_;
+  bool close_ = false;
+  bool events_ = false;
+  Millis last_activity_ = 0;
+  Millis last_event_ = 0;
+  bool last_moving_ = false;
+  bool last_fault_ = false;
+  Mode last_mode_ = Mode::kIdle;
+};
+
+}  // namespace rotord::web

@@ -1,0 +1,84 @@
+#pragma once
+#include <bitset>
+#include <cstddef>
+#include <string_view>
+
+#include "hal/storage.hpp"
+#include "settings/settings.hpp"
+#include "web/json_reader.hpp"
+#include "web/json_writer.hpp"
+
+namespace rotord::web {
+
+/// The settings as JSON: one flat object {"key": value} in table order, with
+/// numbers as numbers, booleans as true/false and enum settings by choice
+/// name. The same document is GET /api/settings, the body of POST
+/// /api/settings (partial), the web page's export file and what hal::Storage
+/// keeps, so an exported file can be imported or dropped in as the config.
+void write_settings(const settings::Settings& values, JsonWriter& out);
+
+/// One value in its JSON form (number, true/false or the choice's name).
+void write_setting_value(settings::Id id, double value, JsonWriter& out);
+
+/// The settings table for forms: groups in table order, then every row with
+/// key, type, unit, min, max, default (taken from `defaults`), group, help,
+/// choices and whether it needs a restart.
+void write_settings_schema(const settings::Settings& defaults, JsonWriter& out);
+
+/// Per-key reasons a document was refused, in a fixed table (no heap).
+class SettingErrors {
+ public:
+  static constexpr std::size_t kMax = 8;
+  struct Entry {
+    char key[JsonObjectReader::kMaxKeyBytes + 1];
+    const char* reason;
+  };
+  void add(std::string_view key, const char* reason);
+  void clear() { count_ = 0, dropped_ = 0; }
+  std::size_t size() const { return count_; }
+  const Entry& operator[](std::size_t i) const { return entries_[i]; }
+  /// Errors past kMax, counted but not kept.
+  std::size_t dropped() const { return dropped_; }
+
+ private:
+  Entry entries_[kMax];
+  std::size_t count_ = 0;
+  std::size_t dropped_ = 0;
+};
+
+using SettingSet = std::bitset<settings::kCount>;
+
+struct ApplyOutcome {
+  enum Status : unsigned char { kApplied, kBadJson, kInvalid } status = kApplied;
+  /// kBadJson: the syntax error; kInvalid: the first reason (or the
+  /// consistency rule that failed).
+  const char* message = "";
+  SettingSet changed;  ///< kApplied: the settings whose value changed
+};
+
+/// Applies a (partial) settings document all-or-nothing: every member is
+/// checked (known key, type, range) on a copy, then the cross-setting rules;
+/// only when all pass is `target` updated. `scratch` holds the copy so the
+/// caller decides where its ~600 bytes live (not the Pico's small stack).
+ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& target,
+                                 settings::Settings& scratch, SettingErrors& errors);
+
+/// The outcome of reading the stored document at start-up.
+struct LoadOutcome {
+  enum Status : unsigned char { kNothingStored, kLoaded, kCorrupt } status = kNothingStored;
+  const char* reason = "";                            ///< kCorrupt: why (first error)
+  char key[JsonObjectReader::kMaxKeyBytes + 1] = "";  ///< kCorrupt: the offending key, if any
+};
+
+/// Loads the stored settings over `target` (which holds the defaults). A
+/// corrupt or invalid document leaves `target` untouched; the caller reports
+/// it and must not overwrite the stored copy on its own.
+LoadOutcome load_settings(hal::Storage& storage, settings::Settings& target,
+                          settings::Settings& scratch, char* buf, std::size_t capacity);
+
+/// Serialises `values` into buf (pretty, one setting per line) and saves it.
+/// False when it does not fit or the storage fails.
+bool save_settings(hal::Storage& storage, const settings::Settings& values, char* buf,
+                   std::size_t capacity);
+
+}  // namespace rotord::web

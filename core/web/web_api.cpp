@@ -1,0 +1,511 @@
+#include "web/web_api.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "web/json_reader.hpp"
+
+namespace rotord::web {
+namespace {
+
+using settings::Id;
+
+const char* dir_name(Direction d) {
+  return d == Direction::kCw ? "cw" : d == Direction::kCcw ? "ccw" : "none";
+}
+
+const char* lower_name(const char* upper, char* buf, std::size_t cap) {
+  std::size_t n = 0;
+  for (; upper[n] != '\0' && n + 1 < cap; ++n)
+    buf[n] = (upper[n] >= 'A' && upper[n] <= 'Z') ? static_cast<char>(upper[n] + 32) : upper[n];
+  buf[n] = '\0';
+  return buf;
+}
+
+void write_axis(JsonWriter& w, const AxisStatus& a, bool ma3) {
+  char name[24];
+  w.begin_object()
+      .member("position_deg", a.position_deg)
+      .member("valid", a.position_valid)
+      .member("speed_deg_s", a.speed_deg_s)
+      .member("raw", a.raw)
+      .member("raw_unit", ma3 ? "code" : "counts");
+  w.key("target_deg");
+  if (a.has_target) {
+    w.number(a.target_deg);
+  } else {
+    w.null();
+  }
+  w.member("jogging", a.jogging)
+      .member("arrived", a.arrived)
+      .member("state", lower_name(axis_state_name(a.state), name, sizeof(name)))
+      .member("dir", dir_name(a.drive_dir))
+      .member("fault", lower_name(axis_fault_name(a.fault), name, sizeof(name)))
+      .member("limit_cw", a.limit_cw)
+      .member("limit_ccw", a.limit_ccw)
+      .member("switch_cw", a.switch_cw)
+      .member("switch_ccw", a.switch_ccw)
+      .member("coast_s", a.coast_s)
+      .member("moves", a.moves);
+  static constexpr const char* kOutputs[] = {"relay_cw",     "relay_ccw", "speed_fast", "brake",
+                                             "voltage_fast", "pwm_cw",    "pwm_ccw"};
+  static_assert(sizeof(kOutputs) / sizeof(kOutputs[0]) == kOutputChannelCount);
+  w.key("outputs").begin_object();
+  for (std::size_t n = 0; n < kOutputChannelCount; ++n) w.member(kOutputs[n], a.outputs.value[n]);
+  w.end_object().end_object();
+}
+
+/// The members of a small command body, checked against what the endpoint takes.
+struct Member {
+  Member(const char* member_name, JsonType member_type) : name(member_name), type(member_type) {}
+  const char* name;
+  JsonType type;
+  bool present = false;
+  JsonValue value;
+  char text_copy[16] = {};
+};
+
+/// Reads `body` (empty = {}) into `members`. On failure writes the 400 and
+/// returns false: bad JSON, an unknown member or a member of the wrong type.
+template <std::size_t N>
+bool read_members(std::string_view body, Member (&members)[N], protocol::ByteSink& out,
+                  const ResponseOptions& options) {
+  if (body.empty()) return true;
+  JsonObjectReader reader(body);
+  char message[160];
+  if (!reader.valid()) {
+    std::snprintf(message, sizeof(message), "invalid JSON: %s (byte %u)", reader.error(),
+                  static_cast<unsigned>(reader.error_offset()));
+    send_error(out, 400, message, options);
+    return false;
+  }
+  std::string_view key;
+  JsonValue value;
+  while (reader.next(key, value)) {
+    Member* found = nullptr;
+    for (Member& m : members)
+      if (key == m.name) found = &m;
+    if (found == nullptr) {
+      std::snprintf(message, sizeof(message), "unknown member '%.*s'",
+                    static_cast<int>(key.size() > 40 ? 40 : key.size()), key.data());
+      send_error(out, 400, message, options);
+      return false;
+    }
+    if (value.type != found->type) {
+      std::snprintf(message, sizeof(message), "%s must be a %s", found->name,
+                    json_type_name(found->type));
+      send_error(out, 400, message, options);
+      return false;
+    }
+    found->present = true;
+    found->value = value;
+    if (value.type == JsonType::kString) {
+      // The reader's scratch is reused for the next member; keep the few
+      // bytes the commands need (axis, dir, mode names).
+      found->value.text = {};
+      static_assert(JsonObjectReader::kMaxStringBytes >= 16);
+      std::size_t len = value.text.size() < 15 ? value.text.size() : 15;
+      if (value.text.size() > 15) len = 0;  // never a valid name
+      std::memcpy(found->text_copy, value.text.data(), len);
+      found->value.text = std::string_view(found->text_copy, len);
+    }
+  }
+  return true;
+}
+
+void send_ok(protocol::ByteSink& out, const ResponseOptions& options) {
+  send_json(out, 200, options,
+            [](JsonWriter& w) { w.begin_object().member("ok", true).end_object(); });
+}
+
+/// Maps a refused command onto its HTTP status and message.
+void send_command_error(Error e, protocol::ByteSink& out, const ResponseOptions& options) {
+  switch (e) {
+    case Error::kFaulted:
+      return send_error(out, 409, "an axis has a latched fault: clear it with POST /api/reset",
+                        options);
+    case Error::kLimit:
+      return send_error(out, 409, "that direction is blocked by a limit", options);
+    case Error::kNotSupported:
+      return send_error(out, 422, "this rotator has no elevation axis", options);
+    case Error::kOutOfRange:
+      return send_error(out, 422, "outside the allowed range", options);
+    default:
+      return send_error(out, 422, error_name(e), options);
+  }
+}
+
+bool is_whole(double v) {
+  return std::floor(v) == v;
+}
+
+}  // namespace
+
+void Api::write_status(JsonWriter& w) const {
+  const Controller& c = ctx_.controller;
+  const RotatorStatus s = c.status();
+  Controller& mutable_c = ctx_.controller;  // settings() is not const
+  const settings::Settings& values = mutable_c.settings();
+  w.begin_object()
+      .member("version", ctx_.version)
+      .member("time_ms", static_cast<long long>(c.now()))
+      .member("mode", mode_name(s.mode))
+      .member("speed_pct", s.speed_pct)
+      .member("moving", s.moving())
+      .member("fault", s.any_fault());
+  w.key("limits")
+      .begin_object()
+      .member("az_min", s.limits.az_min_deg)
+      .member("az_max", s.limits.az_max_deg)
+      .member("az_continuous", s.limits.az_continuous)
+      .member("has_el", s.limits.has_el)
+      .member("el_min", s.limits.el_min_deg)
+      .member("el_max", s.limits.el_max_deg)
+      .end_object();
+  w.key("park")
+      .begin_object()
+      .member("az", values.get(Id::kParkAzDeg))
+      .member("el", values.get(Id::kParkElDeg))
+      .end_object();
+  w.key("az");
+  write_axis(w, s.az, values.i(Id::kAzSensor) == 1);
+  w.key("el");
+  if (s.el.present) {
+    write_axis(w, s.el, values.i(Id::kElSensor) == 1);
+  } else {
+    w.null();
+  }
+  w.end_object();
+}
+
+Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
+                         const ResponseOptions& options) {
+  struct Route {
+    const char* path;
+    bool post;
+  };
+  static constexpr Route kRoutes[] = {
+      {"/api/status", false},        {"/api/events", false},
+      {"/api/settings", false},      {"/api/settings/schema", false},
+      {"/api/goto", true},           {"/api/move", true},
+      {"/api/stop", true},           {"/api/park", true},
+      {"/api/mode", true},           {"/api/reset", true},
+      {"/api/speed", true},          {"/api/settings", true},
+      {"/api/settings/reset", true}, {"/api/reboot", true},
+  };
+  const std::string_view path = request.path;
+  const bool is_post = request.method == Method::kPost;
+  const bool is_get = request.method == Method::kGet || request.method == Method::kHead;
+  bool path_known = false;
+  bool allows_get = false;
+  bool allows_post = false;
+  for (const Route& r : kRoutes) {
+    if (path != r.path) continue;
+    path_known = true;
+    (r.post ? allows_post : allows_get) = true;
+  }
+  if (!path_known) {
+    send_error(out, 404, "no such API endpoint", options);
+    return Outcome::kDone;
+  }
+  if ((is_post && !allows_post) || (is_get && !allows_get) || (!is_post && !is_get)) {
+    ResponseOptions o = options;
+    o.extra_headers = allows_get && allows_post ? "Allow: GET, HEAD, POST\r\n"
+                      : allows_get              ? "Allow: GET, HEAD\r\n"
+                                                : "Allow: POST\r\n";
+    send_error(out, 405, "method not allowed here", o);
+    return Outcome::kDone;
+  }
+
+  Controller& c = ctx_.controller;
+  if (is_get) {
+    if (path == "/api/status") {
+      send_json(out, 200, options, [this](JsonWriter& w) { write_status(w); });
+    } else if (path == "/api/events") {
+      if (request.method == Method::kHead) {
+        write_head(out, 200, "text/event-stream", -1, {false, true, {}});
+        return Outcome::kClose;
+      }
+      // The stream ends when the connection closes: no length, no keep-alive.
+      write_head(out, 200, "text/event-stream", -1, {false, false, "Cache-Control: no-store\r\n"});
+      return Outcome::kStartEvents;
+    } else if (path == "/api/settings") {
+      get_settings(out, options);
+    } else {
+      send_json(out, 200, options, [this](JsonWriter& w) {
+        write_settings_schema(ctx_.defaults != nullptr ? *ctx_.defaults : settings::Settings(), w);
+      });
+    }
+    return Outcome::kDone;
+  }
+
+  // POST. A body must be JSON, declared as such: a cross-site HTML form or
+  // no-cors fetch cannot send that header, so another web page open in the
+  // same browser cannot move the antenna. STOP is exempt: it must always work.
+  if (path != "/api/stop" && !request.json_body) {
+    send_error(out, 415, "send Content-Type: application/json", options);
+    return Outcome::kDone;
+  }
+
+  if (path == "/api/stop") {
+    c.stop();
+    send_ok(out, options);
+  } else if (path == "/api/goto") {
+    Member m[] = {
+        {"az", JsonType::kNumber}, {"el", JsonType::kNumber}, {"unwrapped", JsonType::kBool}};
+    if (!read_members(request.body, m, out, options)) return Outcome::kDone;
+    if (!m[0].present && !m[1].present) {
+      send_error(out, 400, "give az and/or el (degrees)", options);
+      return Outcome::kDone;
+    }
+    const AzTarget mode =
+        m[2].present && m[2].value.boolean ? AzTarget::kUnwrapped : AzTarget::kCompass;
+    const Limits l = c.limits();
+    char message[128];
+    if (m[0].present && !c.resolve_az(static_cast<float>(m[0].value.number), mode)) {
+      std::snprintf(message, sizeof(message), "az %g is outside the travel %g..%g",
+                    m[0].value.number, static_cast<double>(l.az_min_deg),
+                    static_cast<double>(l.az_max_deg));
+      send_error(out, 422, message, options);
+      return Outcome::kDone;
+    }
+    if (m[1].present && l.has_el &&
+        (m[1].value.number < l.el_min_deg || m[1].value.number > l.el_max_deg)) {
+      std::snprintf(message, sizeof(message), "el %g is outside the travel %g..%g",
+                    m[1].value.number, static_cast<double>(l.el_min_deg),
+                    static_cast<double>(l.el_max_deg));
+      send_error(out, 422, message, options);
+      return Outcome::kDone;
+    }
+    std::optional<float> az;
+    std::optional<float> el;
+    if (m[0].present) az = static_cast<float>(m[0].value.number);
+    if (m[1].present) el = static_cast<float>(m[1].value.number);
+    const Error e = c.go_to(az, el, mode);
+    if (e != Error::kOk) {
+      send_command_error(e, out, options);
+      return Outcome::kDone;
+    }
+    const RotatorStatus s = c.status();
+    send_json(out, 200, options, [&](JsonWriter& w) {
+      w.begin_object().member("ok", true).key("az_target");
+      if (az) {
+        w.number(s.az.target_deg);
+      } else {
+        w.null();
+      }
+      w.key("el_target");
+      if (el) {
+        w.number(s.el.target_deg);
+      } else {
+        w.null();
+      }
+      w.end_object();
+    });
+  } else if (path == "/api/move") {
+    Member m[] = {{"axis", JsonType::kString},
+                  {"dir", JsonType::kString},
+                  {"speed", JsonType::kNumber},
+                  {"hold_ms", JsonType::kNumber}};
+    if (!read_members(request.body, m, out, options)) return Outcome::kDone;
+    if (!m[1].present) {
+      send_error(out, 400, "give dir: cw, ccw, up, down or stop", options);
+      return Outcome::kDone;
+    }
+    const std::string_view dir_text = m[1].value.text;
+    Direction dir = Direction::kNone;
+    std::optional<AxisId> axis;
+    if (dir_text == "cw" || dir_text == "ccw") {
+      dir = dir_text == "cw" ? Direction::kCw : Direction::kCcw;
+    } else if (dir_text == "up" || dir_text == "down") {
+      dir = dir_text == "up" ? Direction::kCw : Direction::kCcw;
+      axis = AxisId::kEl;
+    } else if (dir_text != "stop") {
+      send_error(out, 422, "dir must be cw, ccw, up, down or stop", options);
+      return Outcome::kDone;
+    }
+    if (m[0].present) {
+      const std::string_view a = m[0].value.text;
+      if (a != "az" && a != "el") {
+        send_error(out, 422, "axis must be az or el", options);
+        return Outcome::kDone;
+      }
+      const AxisId named = a == "az" ? AxisId::kAz : AxisId::kEl;
+      if (axis && *axis != named) {
+        send_error(out, 422, "up and down move the elevation axis", options);
+        return Outcome::kDone;
+      }
+      axis = named;
+    }
+    int speed = -1;
+    if (m[2].present) {
+      const double v = m[2].value.number;
+      if (!is_whole(v) || v < 1 || v > 100) {
+        send_error(out, 422, "speed must be a whole number 1..100 (%)", options);
+        return Outcome::kDone;
+      }
+      speed = static_cast<int>(v);
+    }
+    Millis hold = kDefaultHoldMs;
+    if (m[3].present) {
+      const double v = m[3].value.number;
+      if (!is_whole(v) || (v != 0 && (v < static_cast<double>(kMinHoldMs) ||
+                                      v > static_cast<double>(kMaxHoldMs)))) {
+        send_error(out, 422, "hold_ms must be 0 (no dead-man) or 100..10000", options);
+        return Outcome::kDone;
+      }
+      hold = static_cast<Millis>(v);
+    }
+    if (dir == Direction::kNone && !axis) {
+      c.stop();
+      send_ok(out, options);
+      return Outcome::kDone;
+    }
+    const Error e = c.move(axis.value_or(AxisId::kAz), dir, speed, hold);
+    if (e != Error::kOk) {
+      send_command_error(e, out, options);
+      return Outcome::kDone;
+    }
+    send_ok(out, options);
+  } else if (path == "/api/park") {
+    if (const Error e = c.park(); e != Error::kOk) {
+      send_command_error(e, out, options);
+      return Outcome::kDone;
+    }
+    send_ok(out, options);
+  } else if (path == "/api/mode") {
+    Member m[] = {{"mode", JsonType::kString}};
+    if (!read_members(request.body, m, out, options)) return Outcome::kDone;
+    const std::string_view mode = m[0].value.text;
+    if (!m[0].present) {
+      send_error(out, 400, "give mode: idle or park", options);
+    } else if (mode == "idle") {
+      c.stop();
+      send_ok(out, options);
+    } else if (mode == "park") {
+      const Error e = c.park();
+      if (e != Error::kOk) {
+        send_command_error(e, out, options);
+      } else {
+        send_ok(out, options);
+      }
+    } else if (mode == "goto" || mode == "manual") {
+      send_error(out, 422, "goto and manual start with POST /api/goto and /api/move", options);
+    } else {
+      send_error(out, 422, "mode must be idle or park", options);
+    }
+  } else if (path == "/api/reset") {
+    c.reset();
+    send_ok(out, options);
+  } else if (path == "/api/speed") {
+    Member m[] = {{"speed_pct", JsonType::kNumber}};
+    if (!read_members(request.body, m, out, options)) return Outcome::kDone;
+    if (!m[0].present) {
+      send_error(out, 400, "give speed_pct", options);
+    } else if (!is_whole(m[0].value.number) ||
+               c.set_speed_pct(static_cast<int>(m[0].value.number)) != Error::kOk) {
+      send_error(out, 422, "speed_pct must be a whole number 1..100", options);
+    } else {
+      send_ok(out, options);
+    }
+  } else if (path == "/api/settings") {
+    post_settings(request.body, out, options);
+  } else if (path == "/api/settings/reset") {
+    reset_settings(out, options);
+  } else if (path == "/api/reboot") {
+    if (ctx_.reboot == nullptr || !ctx_.reboot->request_reboot()) {
+      send_error(out, 501, "this port cannot restart the controller", options);
+      return Outcome::kDone;
+    }
+    ResponseOptions o = options;
+    o.keep_alive = false;
+    send_json(out, 202, o, [](JsonWriter& w) {
+      w.begin_object().member("ok", true).member("rebooting", true).end_object();
+    });
+    return Outcome::kClose;
+  }
+  return Outcome::kDone;
+}
+
+void Api::get_settings(protocol::ByteSink& out, const ResponseOptions& options) {
+  const settings::Settings& values = ctx_.controller.settings();
+  send_json(out, 200, options, [&](JsonWriter& w) { write_settings(values, w); });
+}
+
+void Api::post_settings(std::string_view body, protocol::ByteSink& out,
+                        const ResponseOptions& options) {
+  settings::Settings& values = ctx_.controller.settings();
+  backup_ = values;
+  const ApplyOutcome r = apply_settings_json(body, values, scratch_, errors_);
+  if (r.status == ApplyOutcome::kBadJson) {
+    char message[160];
+    std::snprintf(message, sizeof(message), "invalid JSON: %s", r.message);
+    send_error(out, 400, message, options);
+    return;
+  }
+  if (r.status == ApplyOutcome::kInvalid) {
+    send_json(out, 422, options, [&](JsonWriter& w) {
+      w.begin_object().member("error", r.message).key("errors").begin_object();
+      for (std::size_t n = 0; n < errors_.size(); ++n) w.member(errors_[n].key, errors_[n].reason);
+      w.end_object().end_object();
+    });
+    return;
+  }
+  if (r.changed.any() && !persist(out, options)) {
+    for (std::size_t n = 0; n < settings::kCount; ++n)
+      if (r.changed.test(n)) values.set(static_cast<Id>(n), backup_.get(static_cast<Id>(n)));
+    return;
+  }
+  send_changed(out, options, r.changed);
+}
+
+void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options) {
+  settings::Settings& values = ctx_.controller.settings();
+  if (ctx_.defaults != nullptr) {
+    scratch_ = *ctx_.defaults;
+  } else {
+    scratch_.reset_to_defaults();
+  }
+  const settings::Settings& defaults = scratch_;
+  backup_ = values;
+  SettingSet changed;
+  for (std::size_t n = 0; n < settings::kCount; ++n) {
+    const auto id = static_cast<Id>(n);
+    if (values.get(id) != defaults.get(id)) {
+      changed.set(n);
+      values.set(id, defaults.get(id));
+    }
+  }
+  if (changed.any() && !persist(out, options)) {
+    for (std::size_t n = 0; n < settings::kCount; ++n)
+      if (changed.test(n)) values.set(static_cast<Id>(n), backup_.get(static_cast<Id>(n)));
+    return;
+  }
+  send_changed(out, options, changed);
+}
+
+bool Api::persist(protocol::ByteSink& out, const ResponseOptions& options) {
+  if (ctx_.storage == nullptr) return true;
+  if (save_settings(*ctx_.storage, ctx_.controller.settings(), document_, sizeof(document_)))
+    return true;
+  send_error(out, 500, "the settings could not be saved; nothing was changed", options);
+  return false;
+}
+
+void Api::send_changed(protocol::ByteSink& out, const ResponseOptions& options,
+                       const SettingSet& changed) {
+  send_json(out, 200, options, [&](JsonWriter& w) {
+    w.begin_object().member("ok", true).member("saved", ctx_.storage != nullptr);
+    w.key("changed").begin_array();
+    for (std::size_t n = 0; n < settings::kCount; ++n)
+      if (changed.test(n)) w.string(settings::def(static_cast<Id>(n)).key);
+    w.end_array().key("restart_required").begin_array();
+    for (std::size_t n = 0; n < settings::kCount; ++n)
+      if (changed.test(n) && (settings::def(static_cast<Id>(n)).flags & settings::kRestart))
+        w.string(settings::def(static_cast<Id>(n)).key);
+    w.end_array().end_object();
+  });
+}
+
+}  // namespace rotord::web

@@ -1,0 +1,73 @@
+#pragma once
+#include <cstddef>
+
+#include "hal/storage.hpp"
+#include "rotator/controller.hpp"
+#include "web/http_request.hpp"
+#include "web/http_response.hpp"
+#include "web/settings_json.hpp"
+
+namespace rotord::web {
+
+/// What a port does for POST /api/reboot (Linux: re-create the controller in
+/// process; Pico: watchdog reset). Called while a request is being handled, so
+/// the port must act later, after the response has gone out.
+class RebootHook {
+ public:
+  virtual ~RebootHook() = default;
+  virtual bool request_reboot() = 0;
+};
+
+struct ApiContext {
+  Controller& controller;
+  /// Where POST /api/settings persists; nullptr keeps settings in RAM only.
+  hal::Storage* storage = nullptr;
+  /// What POST /api/settings/reset restores and the schema reports as the
+  /// defaults: the table's defaults plus what the port's hardware profile sets.
+  const settings::Settings* defaults = nullptr;
+  RebootHook* reboot = nullptr;  ///< nullptr: POST /api/reboot answers 501
+  const char* version = "";
+};
+
+/// The REST API (docs/web_api.md) on the controller's command API. One per
+/// controller, shared by every HTTP session: requests are handled one at a
+/// time in the control loop's thread, so the scratch space below is shared
+/// too (it would not fit the Pico's stack).
+class Api {
+ public:
+  static constexpr Millis kDefaultHoldMs = 1000;
+  static constexpr Millis kMinHoldMs = 100;
+  static constexpr Millis kMaxHoldMs = 10000;
+  /// The stored settings document (pretty-printed), with room to grow.
+  static constexpr std::size_t kMaxDocumentBytes = 6144;
+
+  explicit Api(const ApiContext& context) : ctx_(context) {}
+
+  enum class Outcome : unsigned char { kDone, kStartEvents, kClose };
+  /// Answers one request whose path starts with /api/. kStartEvents: the
+  /// response head of an event stream went out and events follow (poll).
+  Outcome handle(const HttpRequest& request, protocol::ByteSink& out,
+                 const ResponseOptions& options);
+
+  /// The live state: GET /api/status and every event of /api/events.
+  void write_status(JsonWriter& w) const;
+  Controller& controller() { return ctx_.controller; }
+
+ private:
+  void get_settings(protocol::ByteSink& out, const ResponseOptions& options);
+  void post_settings(std::string_view body, protocol::ByteSink& out,
+                     const ResponseOptions& options);
+  void reset_settings(protocol::ByteSink& out, const ResponseOptions& options);
+  /// Persists the settings, or restores `backup_` when that fails.
+  bool persist(protocol::ByteSink& out, const ResponseOptions& options);
+  void send_changed(protocol::ByteSink& out, const ResponseOptions& options,
+                    const SettingSet& changed);
+
+  ApiContext ctx_;
+  settings::Settings scratch_;
+  settings::Settings backup_;
+  SettingErrors errors_;
+  char document_[kMaxDocumentBytes];
+};
+
+}  // namespace rotord::web

@@ -1,0 +1,126 @@
+#include "file_storage.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+
+namespace rotord::linux_port {
+namespace {
+
+std::string parent_dir(const std::string& path) {
+  const auto slash = path.rfind('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+/// mkdir -p, for the first save into ~/.config/rotord.
+bool make_dirs(const std::string& dir) {
+  if (dir.empty() || dir == "/" || dir == ".") return true;
+  struct stat st {};
+  if (::stat(dir.c_str(), &st) == 0) return S_ISDIR(st.st_mode);
+  if (!make_dirs(parent_dir(dir))) return false;
+  return ::mkdir(dir.c_str(), 0755) == 0 || errno == EEXIST;
+}
+
+bool write_all(int fd, std::string_view data) {
+  while (!data.empty()) {
+    const ssize_t n = ::write(fd, data.data(), data.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    data.remove_prefix(static_cast<std::size_t>(n));
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string FileStorage::default_path() {
+  if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg != nullptr && xdg[0] == '/')
+    return std::string(xdg) + "/rotord/settings.json";
+  if (const char* home = std::getenv("HOME"); home != nullptr && home[0] != '\0')
+    return std::string(home) + "/.config/rotord/settings.json";
+  return "rotord-settings.json";
+}
+
+long FileStorage::load(char* buf, std::size_t capacity) {
+  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) return -1;  // nothing stored yet
+    last_error_ = std::strerror(errno);
+    return -2;
+  }
+  last_error_.clear();
+  std::size_t length = 0;
+  for (;;) {
+    if (length == capacity) {
+      char extra = 0;
+      const ssize_t more = ::read(fd, &extra, 1);
+      ::close(fd);
+      if (more != 0) {
+        last_error_ = "file larger than the settings buffer";
+        return -2;
+      }
+      return static_cast<long>(length);
+    }
+    const ssize_t n = ::read(fd, buf + length, capacity - length);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      last_error_ = std::strerror(errno);
+      ::close(fd);
+      return -2;
+    }
+    if (n == 0) break;
+    length += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  return static_cast<long>(length);
+}
+
+bool FileStorage::save(std::string_view document) {
+  const std::string dir = parent_dir(path_);
+  if (!make_dirs(dir)) {
+    last_error_ = "cannot create " + dir + ": " + std::strerror(errno);
+    return false;
+  }
+  if (backup_pending_) {
+    // Keep the file we could not load as a hard link, so the settings file
+    // itself is never missing, not even for an instant.
+    const std::string bad = path_ + ".bad";
+    ::unlink(bad.c_str());
+    if (::link(path_.c_str(), bad.c_str()) == 0 || errno == ENOENT) backup_pending_ = false;
+  }
+  const std::string temp = path_ + ".tmp";
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    last_error_ = "cannot write " + temp + ": " + std::strerror(errno);
+    return false;
+  }
+  const bool written = write_all(fd, document) && ::fsync(fd) == 0;
+  const int saved_errno = errno;
+  ::close(fd);
+  if (!written) {
+    last_error_ = std::string("cannot write ") + temp + ": " + std::strerror(saved_errno);
+    ::unlink(temp.c_str());
+    return false;
+  }
+  if (::rename(temp.c_str(), path_.c_str()) != 0) {
+    last_error_ = "cannot replace " + path_ + ": " + std::strerror(errno);
+    ::unlink(temp.c_str());
+    return false;
+  }
+  // The rename is durable only once the directory entry is on disk.
+  if (const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+  return true;
+}
+
+}  // namespace rotord::linux_port

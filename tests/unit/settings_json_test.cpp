@@ -1,0 +1,206 @@
+// The settings document: round trip, all-or-nothing application, and loading
+// from storage (a corrupt or invalid document leaves the defaults alone).
+#include "web/settings_json.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "http_test_client.hpp"
+#include "web/http_request.hpp"
+#include "web/web_api.hpp"
+
+namespace rotord::web {
+namespace {
+
+using settings::Id;
+
+class FakeStorage final : public hal::Storage {
+ public:
+  long result = -1;  ///< what load returns when no document is set
+  std::string document;
+  bool has_document = false;
+  int saves = 0;
+  long load(char* buf, std::size_t capacity) override {
+    if (!has_document) return result;
+    if (document.size() > capacity) return -2;
+    document.copy(buf, document.size());
+    return static_cast<long>(document.size());
+  }
+  bool save(std::string_view doc) override {
+    ++saves;
+    document = std::string(doc);
+    has_document = true;
+    return true;
+  }
+};
+
+std::string encode(const settings::Settings& s) {
+  rotord::testing::StringSink sink;
+  {
+    JsonWriter w(sink);
+    write_settings(s, w);
+  }
+  return sink.data;
+}
+
+TEST(SettingsJson, RoundTripsEveryType) {
+  settings::Settings a;
+  a.set(Id::kAzOffsetDeg, -12.25);
+  a.set(Id::kAzCoastS, 0.15);
+  a.set(Id::kAzDrive, 3);
+  a.set(Id::kElEnabled, 1);
+  a.set(Id::kAzMinDeg, -180);
+  a.set(Id::kAzMaxDeg, 540);
+  a.set(Id::kNetMaxClients, 3);
+  const std::string doc = encode(a);
+  EXPECT_NE(doc.find(R"("az.drive":"hbridge")"), std::string::npos) << doc;
+  EXPECT_NE(doc.find(R"("az.coast_s":0.15,)"), std::string::npos) << doc;
+  settings::Settings b;
+  settings::Settings scratch;
+  SettingErrors errors;
+  const ApplyOutcome r = apply_settings_json(doc, b, scratch, errors);
+  ASSERT_EQ(r.status, ApplyOutcome::kApplied) << r.message;
+  for (std::size_t n = 0; n < settings::kCount; ++n)
+    EXPECT_EQ(a.get(static_cast<Id>(n)), b.get(static_cast<Id>(n)))
+        << settings::def(static_cast<Id>(n)).key;
+  EXPECT_EQ(encode(b), doc);
+}
+
+TEST(SettingsJson, TheWholeDocumentFitsTheRequestBodyWithRoomToGrow) {
+  const std::string doc = encode(settings::Settings());
+  EXPECT_LT(doc.size() * 4 / 3, HttpRequestParser::kMaxBodyBytes) << doc.size();
+  // The pretty stored form fits the storage buffer with the same margin.
+  FakeStorage storage;
+  char buf[Api::kMaxDocumentBytes];
+  ASSERT_TRUE(save_settings(storage, settings::Settings(), buf, sizeof(buf)));
+  EXPECT_LT(storage.document.size() * 4 / 3, sizeof(buf)) << storage.document.size();
+}
+
+TEST(SettingsJson, PartialDocumentsChangeOnlyTheirKeys) {
+  settings::Settings s;
+  settings::Settings scratch;
+  SettingErrors errors;
+  const ApplyOutcome r =
+      apply_settings_json(R"({"park.az_deg": 90, "az.has_brake": true})", s, scratch, errors);
+  ASSERT_EQ(r.status, ApplyOutcome::kApplied);
+  EXPECT_EQ(r.changed.count(), 2u);
+  EXPECT_TRUE(r.changed.test(static_cast<std::size_t>(Id::kParkAzDeg)));
+  EXPECT_EQ(s.get(Id::kParkAzDeg), 90.0);
+  EXPECT_TRUE(s.b(Id::kAzHasBrake));
+  EXPECT_EQ(s.get(Id::kAzMaxDeg), settings::def(Id::kAzMaxDeg).default_value);
+}
+
+TEST(SettingsJson, AllOrNothingWithAReasonPerKey) {
+  settings::Settings s;
+  const settings::Settings before = s;
+  settings::Settings scratch;
+  SettingErrors errors;
+  const ApplyOutcome r = apply_settings_json(
+      R"({"park.az_deg": 90, "az.stall_ms": 1.5, "az.sensor": 1, "az.continuous": "yes",)"
+      R"( "az.tolerance_deg": {"x":1}, "park.az_deg": 91})",
+      s, scratch, errors);
+  EXPECT_EQ(r.status, ApplyOutcome::kInvalid);
+  ASSERT_EQ(errors.size(), 5u);
+  EXPECT_STREQ(errors[0].key, "az.stall_ms");
+  EXPECT_STREQ(errors[0].reason, "must be a whole number");
+  EXPECT_STREQ(errors[1].key, "az.sensor");
+  EXPECT_STREQ(errors[2].key, "az.continuous");
+  EXPECT_STREQ(errors[3].reason, "expected a number");
+  EXPECT_STREQ(errors[4].reason, "given twice");
+  for (std::size_t n = 0; n < settings::kCount; ++n)
+    EXPECT_EQ(s.get(static_cast<Id>(n)), before.get(static_cast<Id>(n)));
+  EXPECT_EQ(s.revision(), before.revision());
+}
+
+TEST(SettingsJson, ManyErrorsAreCountedBeyondTheTable) {
+  std::string doc = "{";
+  for (int n = 0; n < 20; ++n)
+    doc += (n ? "," : "") + std::string("\"bad") + std::to_string(n) + "\":1";
+  doc += "}";
+  settings::Settings s;
+  settings::Settings scratch;
+  SettingErrors errors;
+  EXPECT_EQ(apply_settings_json(doc, s, scratch, errors).status, ApplyOutcome::kInvalid);
+  EXPECT_EQ(errors.size(), SettingErrors::kMax);
+  EXPECT_EQ(errors.dropped(), 20u - SettingErrors::kMax);
+}
+
+TEST(SettingsJson, LoadNothingStoredKeepsTheDefaults) {
+  FakeStorage storage;
+  settings::Settings s;
+  settings::Settings scratch;
+  char buf[256];
+  EXPECT_EQ(load_settings(storage, s, scratch, buf, sizeof(buf)).status,
+            LoadOutcome::kNothingStored);
+}
+
+TEST(SettingsJson, LoadAppliesAValidDocument) {
+  FakeStorage storage;
+  storage.has_document = true;
+  storage.document = "{\n  \"az.offset_deg\": 4.5\n}\n";
+  settings::Settings s;
+  settings::Settings scratch;
+  char buf[256];
+  EXPECT_EQ(load_settings(storage, s, scratch, buf, sizeof(buf)).status, LoadOutcome::kLoaded);
+  EXPECT_EQ(s.get(Id::kAzOffsetDeg), 4.5);
+}
+
+TEST(SettingsJson, CorruptOrInvalidDocumentsLeaveTheDefaultsAndAreNotRewritten) {
+  const struct {
+    const char* doc;
+    const char* key;
+  } cases[] = {
+      {"{\"az.offset_deg\": 4.5", ""},                                   // truncated (torn write)
+      {"\x00\x00\x00", ""},                                              // zeros
+      {"{\"az.offset_deg\": 4.5, \"az.max_deg\": 9000}", "az.max_deg"},  // out of range
+      {"{\"az.min_deg\": 300, \"az.max_deg\": 200}", "az.min_deg"},      // inconsistent
+      {"{\"az.offset\": 1}", "az.offset"},  // unknown (hand-edited) key
+  };
+  for (const auto& c : cases) {
+    FakeStorage storage;
+    storage.has_document = true;
+    storage.document = c.doc;
+    settings::Settings s;
+    const settings::Settings before = s;
+    settings::Settings scratch;
+    char buf[256];
+    const LoadOutcome r = load_settings(storage, s, scratch, buf, sizeof(buf));
+    EXPECT_EQ(r.status, LoadOutcome::kCorrupt) << c.doc;
+    EXPECT_STRNE(r.reason, "") << c.doc;
+    EXPECT_STREQ(r.key, c.key) << c.doc;
+    for (std::size_t n = 0; n < settings::kCount; ++n)
+      EXPECT_EQ(s.get(static_cast<Id>(n)), before.get(static_cast<Id>(n))) << c.doc;
+    EXPECT_EQ(storage.saves, 0);
+  }
+}
+
+TEST(SettingsJson, LoadReportsADocumentTooLargeForTheBuffer) {
+  FakeStorage storage;
+  storage.has_document = true;
+  storage.document = std::string(300, ' ') + "{}";
+  settings::Settings s;
+  settings::Settings scratch;
+  char buf[256];
+  EXPECT_EQ(load_settings(storage, s, scratch, buf, sizeof(buf)).status, LoadOutcome::kCorrupt);
+}
+
+TEST(SettingsJson, SaveWritesAPrettyDocumentThatLoadsBack) {
+  FakeStorage storage;
+  settings::Settings s;
+  s.set(Id::kParkElDeg, 45);
+  char buf[Api::kMaxDocumentBytes];
+  ASSERT_TRUE(save_settings(storage, s, buf, sizeof(buf)));
+  EXPECT_EQ(storage.document.rfind("{\n  \"el.enabled\": false,\n", 0), 0u) << storage.document;
+  EXPECT_EQ(storage.document.back(), '\n');
+  settings::Settings t;
+  settings::Settings scratch;
+  ASSERT_EQ(load_settings(storage, t, scratch, buf, sizeof(buf)).status, LoadOutcome::kLoaded);
+  EXPECT_EQ(t.get(Id::kParkElDeg), 45.0);
+  char small[64];
+  EXPECT_FALSE(save_settings(storage, s, small, sizeof(small)));  // does not fit: not saved
+  EXPECT_EQ(storage.saves, 1);
+}
+
+}  // namespace
+}  // namespace rotord::web

@@ -1,0 +1,67 @@
+// Shared by the control and settings pages: REST calls and the live event
+// stream with reconnection. Plain JS, no framework: the files are compiled
+// into the firmware and must stay small.
+'use strict';
+
+const rotord = (() => {
+  /** GET (no body) or POST JSON; resolves to {status, body}, never throws. */
+  async function api(path, body) {
+    const init = body === undefined ? {} : {
+      method: 'POST',
+      headers: { 'Content-Type': 'application/json' },
+      body: JSON.stringify(body),
+    };
+    try {
+      const r = await fetch(path, init);
+      let parsed = null;
+      try { parsed = await r.json(); } catch (e) { parsed = null; }
+      return { status: r.status, body: parsed };
+    } catch (e) {
+      return { status: 0, body: { error: 'no connection to the controller' } };
+    }
+  }
+  const post = (path, body) => api(path, body === undefined ? {} : body);
+  const get = (path) => api(path);
+
+  /**
+   * Subscribes to /api/events. EventSource reconnects by itself after a
+   * dropped stream; when it gives up (an HTTP error such as 503), start over.
+   */
+  function live(onStatus) {
+    const conn = document.getElementById('conn');
+    let source = null;
+    let watchdog = 0;
+    const setConn = (text, cls) => { if (conn) { conn.textContent = text; conn.className = 'conn ' + cls; } };
+    function arm() {
+      clearTimeout(watchdog);
+      // The server sends at least one event a second; silence means a stalled link.
+      watchdog = setTimeout(() => { setConn('reconnecting…', 'lost'); open(); }, 5000);
+    }
+    function open() {
+      if (source) source.close();
+      source = new EventSource('/api/events');
+      source.onopen = () => { setConn('live', 'live'); arm(); };
+      source.onmessage = (e) => {
+        arm();
+        try { onStatus(JSON.parse(e.data)); } catch (err) { /* ignore a torn event */ }
+      };
+      source.onerror = () => {
+        setConn('reconnecting…', 'lost');
+        if (source.readyState === EventSource.CLOSED) setTimeout(open, 2000);
+      };
+    }
+    open();
+    window.addEventListener('pagehide', () => { if (source) source.close(); });
+  }
+
+  function message(el, text, ok) {
+    el.textContent = text || '';
+    el.className = 'msg ' + (text ? (ok ? 'ok' : 'error') : '');
+  }
+
+  // Rounds -0.04 to "0.0", not "-0.0".
+  const fmt = (v, digits = 1) =>
+    (typeof v === 'number' && isFinite(v) ? (Math.abs(v) < 0.5 * 10 ** -digits ? 0 : v).toFixed(digits) : '–');
+
+  return { api, post, get, live, message, fmt };
+})();

@@ -1,0 +1,227 @@
+// The control page: compass rose, readouts, go-to, hold-to-move, park, STOP.
+'use strict';
+
+(() => {
+  const $ = (id) => document.getElementById(id);
+  const SVGNS = 'http://www.w3.org/2000/svg';
+  const msg = $('msg');
+  const R = 100;
+  let last = null;
+  let drawQueued = false;
+
+  // --- drawing ---------------------------------------------------------------
+  const polar = (deg, r) => {
+    const a = (deg * Math.PI) / 180;
+    return [r * Math.sin(a), -r * Math.cos(a)];
+  };
+  /** A filled annular sector from compass angle a0 clockwise to a1 (degrees). */
+  function sector(a0, a1, r0, r1) {
+    let span = a1 - a0;
+    if (span <= 0) return '';
+    if (span >= 360) span = 359.99;
+    const large = span > 180 ? 1 : 0;
+    const [x0, y0] = polar(a0, r1);
+    const [x1, y1] = polar(a0 + span, r1);
+    const [x2, y2] = polar(a0 + span, r0);
+    const [x3, y3] = polar(a0, r0);
+    return `M${x0} ${y0}A${r1} ${r1} 0 ${large} 1 ${x1} ${y1}L${x2} ${y2}` +
+      `A${r0} ${r0} 0 ${large} 0 ${x3} ${y3}Z`;
+  }
+
+  (function ticks() {
+    const g = $('ticks');
+    for (let d = 0; d < 360; d += 10) {
+      const major = d % 30 === 0;
+      const [x1, y1] = polar(d, major ? 88 : 93);
+      const [x2, y2] = polar(d, 100);
+      const line = document.createElementNS(SVGNS, 'line');
+      line.setAttribute('class', major ? 'tick major' : 'tick');
+      line.setAttribute('x1', x1); line.setAttribute('y1', y1);
+      line.setAttribute('x2', x2); line.setAttribute('y2', y2);
+      g.appendChild(line);
+      if (major) {
+        const [tx, ty] = polar(d, 79);
+        const t = document.createElementNS(SVGNS, 'text');
+        t.setAttribute('class', 'rose-label');
+        t.setAttribute('x', tx); t.setAttribute('y', ty);
+        t.textContent = { 0: 'N', 90: 'E', 180: 'S', 270: 'W' }[d] || String(d);
+        g.appendChild(t);
+      }
+    }
+  })();
+
+  const wrap = (d) => ((d % 360) + 360) % 360;
+
+  function draw() {
+    drawQueued = false;
+    const s = last;
+    if (!s) return;
+    const l = s.limits;
+    document.body.classList.toggle('no-el', !l.has_el);
+    // Travel: the overlap (reachable twice) and the unreachable part.
+    const travel = l.az_max - l.az_min;
+    $('overlap').setAttribute('d', !l.az_continuous && travel > 360
+      ? sector(wrap(l.az_min + 360), wrap(l.az_min + 360) + (travel - 360), 60, R) : '');
+    $('blocked').setAttribute('d', !l.az_continuous && travel < 360
+      ? sector(wrap(l.az_max), wrap(l.az_max) + (360 - travel), 60, R) : '');
+    for (const [id, v] of [['limit-min', l.az_min], ['limit-max', l.az_max]]) {
+      $(id).setAttribute('transform', `rotate(${wrap(v)})`);
+      $(id).setAttribute('visibility', l.az_continuous ? 'hidden' : 'visible');
+    }
+    const az = s.az.position_deg;
+    $('needle').setAttribute('transform', `rotate(${wrap(az)})`);
+    $('beam').setAttribute('d', sector(wrap(az) - 15, wrap(az) + 15, 0, 98));
+    const t = s.az.target_deg;
+    $('target').setAttribute('visibility', t === null ? 'hidden' : 'visible');
+    if (t !== null) $('target').setAttribute('transform', `rotate(${wrap(t)})`);
+
+    $('az').textContent = rotord.fmt(az) + '°';
+    $('az').title = `unwrapped ${rotord.fmt(az)}°, raw ${rotord.fmt(s.az.raw, 0)} ${s.az.raw_unit}`;
+    const targets = [];
+    if (t !== null) targets.push('az ' + rotord.fmt(t));
+    if (s.el) {
+      $('el').textContent = rotord.fmt(s.el.position_deg) + '°';
+      $('el-needle').setAttribute('transform', `rotate(${-s.el.position_deg} 100 0)`);
+      const et = s.el.target_deg;
+      $('el-target').setAttribute('visibility', et === null ? 'hidden' : 'visible');
+      if (et !== null) {
+        $('el-target').setAttribute('transform', `rotate(${-et} 100 0)`);
+        targets.push('el ' + rotord.fmt(et));
+      }
+      const lo = Math.max(0, l.el_max), hi = 180;
+      $('el-blocked').setAttribute('d', lo < hi ? elevSector(lo, hi) : '');
+    }
+    $('tgt').textContent = targets.length ? targets.join(', ') : '–';
+    const axes = s.el ? [['az', s.az], ['el', s.el]] : [['az', s.az]];
+    $('state').textContent = s.mode + ' · ' + axes.map(([n, a]) => `${n} ${a.state}`).join(', ');
+    const faults = axes.filter(([, a]) => a.fault !== 'none').map(([n, a]) => `${n}: ${a.fault}`);
+    $('faults').hidden = faults.length === 0;
+    $('fault-text').textContent = faults.length ? 'Fault ' + faults.join(', ') : '';
+    if (document.activeElement !== $('speed')) $('speed').value = s.speed_pct;
+    $('speed-out').textContent = s.speed_pct + '%';
+  }
+  function elevSector(e0, e1) {
+    const p = (e, r) => [100 + r * Math.cos((e * Math.PI) / 180), -r * Math.sin((e * Math.PI) / 180)];
+    const [x0, y0] = p(e0, 100), [x1, y1] = p(e1, 100);
+    return `M100 0L${x0} ${y0}A100 100 0 0 0 ${x1} ${y1}Z`;
+  }
+
+  // --- the simulated clock's rate (rotord --speedup) ---------------------------
+  // Dead-man times are in controller time; scaling by the observed rate keeps
+  // "stops within one second" true in wall time on a fast simulation too.
+  let rate = 1;
+  let rateRef = null;
+  function updateRate(s) {
+    const now = performance.now();
+    if (!rateRef) { rateRef = { wall: now, ctrl: s.time_ms }; return; }
+    const dw = now - rateRef.wall;
+    if (dw < 1000) return;
+    const r = (s.time_ms - rateRef.ctrl) / dw;
+    if (r > 0.05 && r < 2000) rate = r;
+    rateRef = { wall: now, ctrl: s.time_ms };
+  }
+  const HOLD_WALL_MS = 700;  // motion stops at most this long after the last renewal
+  const RENEW_MS = 200;
+  const holdMs = () => Math.min(10000, Math.max(100, Math.round(HOLD_WALL_MS * rate)));
+
+  // --- commands ----------------------------------------------------------------
+  async function command(path, body, okText) {
+    const r = await rotord.post(path, body);
+    if (r.status === 200 || r.status === 202) rotord.message(msg, okText || '', true);
+    else rotord.message(msg, (r.body && r.body.error) || `error ${r.status}`, false);
+    return r;
+  }
+
+  let holding = null;  // {dir, timer, button}
+  function startHold(dir, button) {
+    if (holding && holding.dir === dir) return;
+    stopHold(false);
+    const send = () => rotord.post('/api/move', { dir, speed: Number($('speed').value) || undefined,
+      hold_ms: holdMs() }).then((r) => {
+      if (r.status !== 200 && holding && holding.dir === dir) {
+        rotord.message(msg, (r.body && r.body.error) || `error ${r.status}`, false);
+        stopHold(true);
+      }
+    });
+    holding = { dir, button, timer: setInterval(send, RENEW_MS) };
+    if (button) button.classList.add('held');
+    rotord.message(msg, '');
+    send();
+  }
+  function stopHold(sendStop) {
+    if (!holding) return;
+    clearInterval(holding.timer);
+    if (holding.button) holding.button.classList.remove('held');
+    const axis = holding.dir === 'up' || holding.dir === 'down' ? 'el' : 'az';
+    holding = null;
+    if (sendStop !== false) rotord.post('/api/move', { axis, dir: 'stop' });
+  }
+
+  for (const b of document.querySelectorAll('.hold button')) {
+    b.addEventListener('pointerdown', (e) => {
+      e.preventDefault();
+      b.setPointerCapture(e.pointerId);
+      startHold(b.dataset.dir, b);
+    });
+    for (const ev of ['pointerup', 'pointercancel', 'lostpointercapture']) {
+      b.addEventListener(ev, () => { if (holding && holding.button === b) stopHold(); });
+    }
+    b.addEventListener('contextmenu', (e) => e.preventDefault());  // long-press menu on phones
+  }
+  // Anything that takes the page away stops a held move at once.
+  window.addEventListener('blur', () => stopHold());
+  window.addEventListener('pagehide', () => stopHold());
+  document.addEventListener('visibilitychange', () => { if (document.hidden) stopHold(); });
+
+  const keys = { ArrowLeft: 'ccw', ArrowRight: 'cw', ArrowUp: 'up', ArrowDown: 'down' };
+  const typing = () => ['INPUT', 'SELECT', 'TEXTAREA'].includes(document.activeElement.tagName);
+  document.addEventListener('keydown', (e) => {
+    if (typing()) return;
+    if (e.key === 'Escape' || e.key === ' ') {
+      e.preventDefault();
+      stopHold(false);
+      command('/api/stop');
+      return;
+    }
+    const dir = keys[e.key];
+    if (!dir || (last && !last.el && (dir === 'up' || dir === 'down'))) return;
+    e.preventDefault();
+    if (!e.repeat) startHold(dir, document.querySelector(`.hold [data-dir="${dir}"]`));
+  });
+  document.addEventListener('keyup', (e) => {
+    if (keys[e.key] && holding && holding.dir === keys[e.key]) stopHold();
+  });
+
+  $('stop').addEventListener('click', () => { stopHold(false); command('/api/stop', {}, 'stopped'); });
+  $('park').addEventListener('click', () => command('/api/park', {}, 'parking'));
+  $('clear').addEventListener('click', () => command('/api/reset', {}, 'faults cleared'));
+  $('speed').addEventListener('change', () => command('/api/speed', { speed_pct: Number($('speed').value) }));
+  $('speed').addEventListener('input', () => { $('speed-out').textContent = $('speed').value + '%'; });
+  $('goto').addEventListener('submit', (e) => {
+    e.preventDefault();
+    const body = {};
+    const az = $('goto-az').value.trim();
+    const el = $('goto-el').value.trim();
+    if (az !== '') body.az = Number(az);
+    if (el !== '' && last && last.el) body.el = Number(el);
+    if (!Object.keys(body).length) return rotord.message(msg, 'enter an azimuth or elevation', false);
+    command('/api/goto', body, 'going');
+  });
+  $('rose').addEventListener('click', (e) => {
+    const svg = $('rose');
+    const pt = svg.createSVGPoint();
+    pt.x = e.clientX; pt.y = e.clientY;
+    const p = pt.matrixTransform(svg.getScreenCTM().inverse());
+    if (Math.hypot(p.x, p.y) > 112) return;
+    const az = Math.round(wrap((Math.atan2(p.x, -p.y) * 180) / Math.PI));
+    $('goto-az').value = az;
+    command('/api/goto', { az }, `going to ${az}°`);
+  });
+
+  rotord.live((s) => {
+    last = s;
+    updateRate(s);
+    if (!drawQueued) { drawQueued = true; requestAnimationFrame(draw); }
+  });
+  rotord.get('/api/status').then((r) => { if (r.status === 200 && !last) { last = r.body; draw(); } });
+})();

@@ -1,0 +1,215 @@
+// The settings page, generated from GET /api/settings/schema (the one
+// settings table): nothing here lists setting names except the calibration
+// helpers, which name the pot calibration rows they write.
+'use strict';
+
+(() => {
+  const $ = (id) => document.getElementById(id);
+  const msg = $('msg');
+  let schema = null;
+  let values = {};
+  const fields = {};  // key -> {row, input, error, def}
+
+  function el(tag, attrs, ...children) {
+    const e = document.createElement(tag);
+    for (const [k, v] of Object.entries(attrs || {})) {
+      if (k === 'class') e.className = v;
+      else if (v !== undefined && v !== null) e.setAttribute(k, v);
+    }
+    for (const c of children) if (c !== null && c !== undefined) e.append(c);
+    return e;
+  }
+
+  function build() {
+    const groups = $('groups');
+    groups.textContent = '';
+    for (const g of schema.groups) {
+      const fs = el('fieldset', {}, el('legend', {}, g));
+      for (const d of schema.settings.filter((s) => s.group === g)) {
+        const id = 'f-' + d.key;
+        let input;
+        if (d.type === 'bool') {
+          input = el('input', { type: 'checkbox', id });
+        } else if (d.type === 'enum') {
+          input = el('select', { id }, ...d.choices.map((c) => el('option', { value: c }, c)));
+        } else {
+          input = el('input', { type: 'number', id, min: d.min, max: d.max,
+            step: d.type === 'int' ? 1 : 'any', inputmode: 'decimal' });
+        }
+        input.dataset.key = d.key;
+        const error = el('div', { class: 'error', role: 'alert' });
+        const range = d.type === 'float' || d.type === 'int' ? `${d.min} … ${d.max}` : null;
+        const row = el('div', { class: 'field' },
+          el('label', { for: id }, d.key),
+          el('div', { class: 'input' }, input,
+            d.unit ? el('span', { class: 'unit' }, d.unit) : null,
+            range ? el('span', { class: 'range' }, `(${range}, default ${d.default})`) : null,
+            d.restart ? el('span', { class: 'badge', title: 'takes effect after a restart' }, 'restart') : null),
+          el('div', { class: 'help' }, d.help),
+          error);
+        fields[d.key] = { row, input, error, def: d };
+        fs.append(row);
+      }
+      groups.append(fs);
+    }
+  }
+
+  function show(v) {
+    values = v;
+    for (const [key, f] of Object.entries(fields)) {
+      if (!(key in v)) continue;
+      if (f.def.type === 'bool') f.input.checked = !!v[key];
+      else f.input.value = v[key];
+    }
+  }
+
+  function read(f) {
+    if (f.def.type === 'bool') return f.input.checked;
+    if (f.def.type === 'enum') return f.input.value;
+    const t = f.input.value.trim();
+    return t === '' || isNaN(Number(t)) ? t : Number(t);  // text goes through: the server explains
+  }
+
+  function clearErrors() {
+    for (const f of Object.values(fields)) { f.error.textContent = ''; f.row.classList.remove('invalid'); }
+  }
+
+  /** Shows the result of a settings POST; true on success. */
+  function report(r, okText) {
+    clearErrors();
+    if (r.status === 200) {
+      const restart = (r.body && r.body.restart_required) || [];
+      $('reboot').hidden = restart.length === 0 && $('reboot').hidden;
+      rotord.message(msg, okText + (restart.length ? ` — restart needed for ${restart.join(', ')}` : ''), true);
+      return true;
+    }
+    const errors = (r.body && r.body.errors) || {};
+    let first = null;
+    for (const [key, reason] of Object.entries(errors)) {
+      const f = fields[key];
+      if (!f) continue;
+      f.error.textContent = reason;
+      f.row.classList.add('invalid');
+      first = first || f.input;
+    }
+    rotord.message(msg, (r.body && r.body.error) || `error ${r.status}`, false);
+    if (first) first.scrollIntoView({ block: 'center' });
+    return false;
+  }
+
+  async function reload() {
+    const r = await rotord.get('/api/settings');
+    if (r.status === 200) show(r.body);
+  }
+
+  $('form').addEventListener('submit', async (e) => {
+    e.preventDefault();
+    const changed = {};
+    for (const [key, f] of Object.entries(fields)) {
+      const v = read(f);
+      if (v !== values[key]) changed[key] = v;
+    }
+    if (!Object.keys(changed).length) return rotord.message(msg, 'nothing changed', true);
+    const r = await rotord.post('/api/settings', changed);
+    if (report(r, 'saved')) await reload();
+  });
+
+  $('export').addEventListener('click', async () => {
+    const r = await rotord.get('/api/settings');
+    if (r.status !== 200) return rotord.message(msg, 'cannot read the settings', false);
+    const blob = new Blob([JSON.stringify(r.body, null, 2) + '\n'], { type: 'application/json' });
+    const a = el('a', { href: URL.createObjectURL(blob), download: 'rotord-settings.json' });
+    document.body.append(a);
+    a.click();
+    a.remove();
+  });
+
+  $('import').addEventListener('change', async (e) => {
+    const file = e.target.files[0];
+    e.target.value = '';
+    if (!file) return;
+    let doc;
+    try { doc = JSON.parse(await file.text()); } catch (err) {
+      return rotord.message(msg, `${file.name} is not JSON: ${err.message}`, false);
+    }
+    const r = await rotord.post('/api/settings', doc);
+    if (report(r, `imported ${file.name}`)) await reload();
+  });
+
+  $('reset').addEventListener('click', async () => {
+    if (!confirm('Reset every setting to its default?')) return;
+    const r = await rotord.post('/api/settings/reset', {});
+    if (report(r, 'defaults restored')) await reload();
+  });
+
+  $('reboot').addEventListener('click', async () => {
+    const r = await rotord.post('/api/reboot', {});
+    rotord.message(msg, r.status === 202 ? 'restarting…' : (r.body && r.body.error) || 'failed', r.status === 202);
+    if (r.status === 202) { $('reboot').hidden = true; setTimeout(reload, 1500); }
+  });
+
+  // --- live calibration ----------------------------------------------------------
+  const cal = {};
+  function buildCalibration(status) {
+    const box = $('calibration');
+    box.textContent = '';
+    const axes = status.el ? ['az', 'el'] : ['az'];
+    for (const axis of axes) {
+      const name = axis === 'az' ? 'Azimuth' : 'Elevation';
+      const sensor = values[axis + '.sensor'];
+      const raw = el('span', {}, '–');
+      const deg = el('span', {}, '–');
+      const card = el('div', { class: 'cal', id: 'cal-' + axis },
+        el('h2', {}, `${name} sensor (${sensor})`),
+        el('div', { class: 'live' },
+          el('span', {}, 'raw ', raw), el('span', {}, 'angle ', deg)));
+      if (sensor === 'pot') {
+        const at = el('input', { type: 'number', step: 'any', id: `cal-${axis}-deg`,
+          'aria-label': 'angle of this position' });
+        at.value = Math.round(status[axis].position_deg);
+        const point = (which) => el('button', { type: 'button', id: `cal-${axis}-${which}` },
+          `Set as ${which === 'lo' ? 'low' : 'high'} point`);
+        const lo = point('lo'), hi = point('hi');
+        const set = async (which) => {
+          const s = cal.status;
+          const angle = Number(at.value);
+          if (!s || at.value.trim() === '' || !isFinite(angle)) {
+            return rotord.message(msg, 'enter the angle the antenna points at now', false);
+          }
+          const body = {};
+          body[`${axis}.pot_cal_${which}_counts`] = Math.round(s[axis].raw * 10) / 10;
+          body[`${axis}.pot_cal_${which}_deg`] = angle;
+          const r = await rotord.post('/api/settings', body);
+          if (report(r, `${name}: ${which === 'lo' ? 'low' : 'high'} point set to ${body[Object.keys(body)[0]]} counts = ${angle}°`)) await reload();
+        };
+        lo.addEventListener('click', () => set('lo'));
+        hi.addEventListener('click', () => set('hi'));
+        card.append(el('div', { class: 'buttons' },
+          el('label', {}, 'antenna now at ', at, ' °'), lo, hi));
+      }
+      box.append(card);
+      cal[axis] = { raw, deg };
+    }
+  }
+
+  async function start() {
+    const [s, v, st] = await Promise.all([rotord.get('/api/settings/schema'),
+      rotord.get('/api/settings'), rotord.get('/api/status')]);
+    if (s.status !== 200 || v.status !== 200) {
+      return rotord.message(msg, 'cannot load the settings from the controller', false);
+    }
+    schema = s.body;
+    build();
+    show(v.body);
+    if (st.status === 200) buildCalibration(st.body);
+    rotord.live((status) => {
+      cal.status = status;
+      for (const axis of ['az', 'el']) {
+        if (!cal[axis] || !status[axis]) continue;
+        cal[axis].raw.textContent = `${rotord.fmt(status[axis].raw, 1)} ${status[axis].raw_unit}`;
+        cal[axis].deg.textContent = `${rotord.fmt(status[axis].position_deg, 1)}°`;
+      }
+    });
+  }
+  start();
+})();
