@@ -4,7 +4,7 @@ PRESET    ?= default
 JOBS      ?= $(shell nproc)
 ROTORD_ARGS ?= --sim g5500
 
-.PHONY: all deps build run test bench embedded format format-check clean
+.PHONY: all deps build run test bench embedded pico format format-check clean
 
 all: build
 
@@ -31,8 +31,20 @@ embedded: deps
 	@cmake --build --preset embedded -j $(JOBS)
 	ctest --preset embedded
 
+# The Pico W firmware (ports/pico_w): a separate pico-sdk project, built only
+# when PICO_SDK_PATH points at a pico-sdk 2.x checkout (see ports/pico_w/README.md).
+# picotool_DIR (optional) points at an installed picotool's CMake package.
+PICO_BUILD_DIR ?= build-pico
+pico:
+ifeq ($(strip $(PICO_SDK_PATH)),)
+	@echo "pico-sdk not found (PICO_SDK_PATH): skipping the Pico W firmware"
+else
+	@cmake -S ports/pico_w -B $(PICO_BUILD_DIR) -G Ninja $(if $(picotool_DIR),-Dpicotool_DIR=$(picotool_DIR)) >/dev/null
+	@cmake --build $(PICO_BUILD_DIR) -j $(JOBS)
+endif
+
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD_DIR) build-embedded
+	rm -rf $(BUILD_DIR) build-embedded $(PICO_BUILD_DIR)

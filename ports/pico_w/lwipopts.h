@@ -1,0 +1,52 @@
+#pragma once
+// lwIP configuration of the Pico W firmware (pico_cyw43_arch_lwip_poll).
+// Modelled on pico-examples' lwipopts_examples_common.h, sized for rotord:
+// a handful of protocol ports with a few clients each, static pools only.
+
+// Poll mode: lwIP runs only from cyw43_arch_poll() in the main loop, the
+// same loop that ticks the controller, so no locks are needed anywhere.
+#define NO_SYS 1
+#define LWIP_SOCKET 0
+#define LWIP_NETCONN 0
+
+// Static memory: no malloc after start-up (DESIGN.md).
+#define MEM_LIBC_MALLOC 0
+#define MEM_ALIGNMENT 4
+#define MEM_SIZE 16000
+#define MEMP_NUM_TCP_SEG 32
+#define MEMP_NUM_ARP_QUEUE 10
+#define PBUF_POOL_SIZE 24
+
+// Connections: 4 clients on each of up to 4 protocol ports, plus refused
+// clients and pcbs in TIME_WAIT. Listeners: one per protocol port.
+#define MEMP_NUM_TCP_PCB 20
+#define MEMP_NUM_TCP_PCB_LISTEN 6
+#define MEMP_NUM_UDP_PCB 6
+
+#define LWIP_ARP 1
+#define LWIP_ETHERNET 1
+#define LWIP_ICMP 1
+#define LWIP_RAW 1
+#define LWIP_IPV4 1
+#define LWIP_TCP 1
+#define LWIP_UDP 1
+#define LWIP_DNS 1
+#define LWIP_DHCP 1
+#define LWIP_TCP_KEEPALIVE 1
+#define TCP_MSS 1460
+#define TCP_WND (8 * TCP_MSS)
+#define TCP_SND_BUF (8 * TCP_MSS)
+#define TCP_SND_QUEUELEN ((4 * (TCP_SND_BUF) + (TCP_MSS - 1)) / (TCP_MSS))
+#define LWIP_NETIF_STATUS_CALLBACK 1
+#define LWIP_NETIF_LINK_CALLBACK 1
+#define LWIP_NETIF_HOSTNAME 1
+#define LWIP_NETIF_TX_SINGLE_PBUF 1
+#define DHCP_DOES_ARP_CHECK 0
+#define LWIP_DHCP_DOES_ACD_CHECK 0
+// The RP2040 has no hardware checksum; this is lwIP's fastest portable one.
+#define LWIP_CHKSUM_ALGORITHM 3
+
+#define MEM_STATS 0
+#define SYS_STATS 0
+#define MEMP_STATS 0
+#define LINK_STATS 0

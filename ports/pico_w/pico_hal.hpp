@@ -1,0 +1,114 @@
+#pragma once
+// The core's HAL interfaces over the pico-sdk: ADC pots, switch inputs, relay
+// and H-bridge PWM outputs, and the MA3 encoder's PWM input. Constructors
+// touch no hardware (these objects are statics); begin() does.
+#include <array>
+#include <cstdint>
+
+#include "axis/drive_outputs.hpp"
+#include "hal/analog_in.hpp"
+#include "hal/digital_in.hpp"
+#include "hal/pwm_in.hpp"
+
+namespace rotord::pico_w {
+
+/// No pin wired to this function.
+inline constexpr int kNoPin = -1;
+
+/// A potentiometer wiper on one of the RP2040's ADC inputs (GPIO 26..28).
+class PicoAdc final : public hal::AnalogIn {
+ public:
+  explicit PicoAdc(int gpio) : gpio_(gpio) {}
+  void begin();
+  std::uint16_t read_counts() override;
+  std::uint16_t full_scale_counts() const override { return 4095; }
+  float reference_v() const override { return 3.3f; }
+
+ private:
+  int gpio_;
+};
+
+/// A switch to ground with the internal pull-up: closed = active. Limit and
+/// threshold switches are wired this way so a broken wire reads "not
+/// active"; the core's safety rules do not rely on the switch alone.
+class PicoSwitch final : public hal::DigitalIn {
+ public:
+  explicit PicoSwitch(int gpio) : gpio_(gpio) {}
+  void begin();
+  bool active() override;
+
+ private:
+  int gpio_;
+};
+
+/// The MA3's PWM output timed from GPIO edge interrupts: each rising edge
+/// closes a period (high time = fall - previous rise, low time = rise - fall).
+/// The core decodes the duty ratio, so the encoder's +-10 % clock drift does
+/// not matter. Used until the PIO decoder (ma3_pwm.pio, drivers work) exists.
+class Ma3EdgeInput final : public hal::PwmIn {
+ public:
+  /// No edge for this long means the encoder is unplugged (a 10-bit MA3's
+  /// period is ~1 ms, a 12-bit one's ~4 ms).
+  static constexpr std::uint32_t kTimeoutUs = 100'000;
+
+  explicit Ma3EdgeInput(int gpio) : gpio_(gpio) {}
+  /// Enables the edge interrupt; at most two inputs (az and el).
+  void begin();
+  hal::PwmPeriod read() override;
+
+ private:
+  static void on_irq();
+  void on_edge(std::uint32_t events, std::uint32_t now_us);
+
+  int gpio_;
+  // Written by the interrupt, read with interrupts off.
+  volatile std::uint32_t rise_us_ = 0;
+  volatile std::uint32_t fall_us_ = 0;
+  volatile std::uint32_t high_us_ = 0;
+  volatile std::uint32_t low_us_ = 0;
+  volatile std::uint32_t last_edge_us_ = 0;
+  volatile bool have_period_ = false;
+  volatile bool seen_rise_ = false;
+  volatile bool seen_fall_ = false;
+};
+
+/// Which pin each logical output of one axis drives; kNoPin = not wired.
+struct DrivePins {
+  std::array<int, kOutputChannelCount> pin;
+  DrivePins() { pin.fill(kNoPin); }
+  DrivePins& set(OutputChannel ch, int gpio) {
+    pin[static_cast<std::size_t>(ch)] = gpio;
+    return *this;
+  }
+};
+
+/// Writes one axis's outputs: relays as push-pull GPIO (high = energised),
+/// H-bridge channels as 20 kHz PWM (above hearing, within the range of
+/// common H-bridge drivers).
+class PicoDriveSink final : public DriveSink {
+ public:
+  static constexpr std::uint32_t kPwmHz = 20'000;
+  static constexpr std::uint16_t kPwmWrap = 999;  // 1000 duty steps
+
+  explicit PicoDriveSink(const DrivePins& pins) : pins_(pins) {}
+  /// Drives every wired pin low: the first thing the firmware does, before
+  /// the network or anything that can fail.
+  void begin();
+  /// Re-maps the pins once the settings are known (drive type) and applies
+  /// the new map, outputs off.
+  void configure(const DrivePins& pins) {
+    pins_ = pins;
+    begin();
+  }
+  void apply(const DriveOutputs& outputs) override;
+  /// All outputs off without going through the axis (watchdog path, faults).
+  void all_off();
+
+ private:
+  static bool is_pwm(OutputChannel ch) {
+    return ch == OutputChannel::kPwmCw || ch == OutputChannel::kPwmCcw;
+  }
+  DrivePins pins_;
+};
+
+}  // namespace rotord::pico_w

@@ -1,0 +1,42 @@
+#pragma once
+// Wi-Fi bring-up for the Pico W: join the configured network as a station;
+// when there is no network configured, or it cannot be joined within the
+// timeout, open the access point `rotord-setup` instead. Stepped from the
+// main loop like everything else: nothing here blocks.
+#include <cstdint>
+
+#include "util/time.hpp"
+
+namespace rotord::pico_w {
+
+class Wifi {
+ public:
+  enum class State : std::uint8_t { kOff, kJoining, kStation, kAccessPoint };
+
+  static constexpr const char* kApSsid = "rotord-setup";
+
+  struct Config {
+    const char* ssid = "";
+    const char* password = "";     ///< empty: open network
+    const char* ap_password = "";  ///< empty or < 8 characters: open AP
+    Millis join_timeout_ms = 30'000;
+  };
+
+  explicit Wifi(const Config& config) : config_(config) {}
+  /// cyw43_arch_init() must have succeeded.
+  void begin(Millis now);
+  void step(Millis now);
+  State state() const { return state_; }
+
+ private:
+  void start_join(Millis now);
+  void start_access_point();
+  static void log_address(const char* what, int itf);
+
+  Config config_;
+  State state_ = State::kOff;
+  Millis join_started_ = 0;
+  int last_status_ = 0;
+};
+
+}  // namespace rotord::pico_w
