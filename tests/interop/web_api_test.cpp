@@ -1,0 +1,272 @@
+// The REST API and the settings file over real TCP against a running rotord
+// on the simulated G-5500 (speedup 10), with --config in a temporary dir.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "daemon_process.hpp"
+
+namespace rotord::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Response {
+  int status = 0;
+  std::string head;
+  std::string body;
+};
+
+/// One request on its own connection (Connection: close), read to the end.
+Response http(int port, const std::string& method, const std::string& path,
+              const std::string& body = "", const std::string& type = "application/json") {
+  TcpClient c(port);
+  Response r;
+  if (!c.connected()) return r;
+  std::string req = method + " " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n";
+  if (!type.empty() && method == "POST") req += "Content-Type: " + type + "\r\n";
+  if (method == "POST") req += "Content-Length: " + std::to_string(body.size()) + "\r\n";
+  c.send(req + "\r\n" + body);
+  c.wait_closed(10000);
+  const std::string raw = c.recv_once(0);
+  const auto end = raw.find("\r\n\r\n");
+  if (raw.rfind("HTTP/1.1 ", 0) != 0 || end == std::string::npos) return r;
+  r.status = std::atoi(raw.c_str() + 9);
+  r.head = raw.substr(0, end);
+  r.body = raw.substr(end + 4);
+  return r;
+}
+
+double number(const std::string& json, const std::string& key, std::size_t from = 0) {
+  const auto pos = json.find("\"" + key + "\":", from);
+  if (pos == std::string::npos) return -1e9;
+  return std::strtod(json.c_str() + pos + key.size() + 3, nullptr);
+}
+
+double az_of(const std::string& status) {
+  return number(status, "position_deg", status.find("\"az\":{"));
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class WebApi : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = fs::temp_directory_path() /
+          ("rotord-web-api-" + std::to_string(::getpid()) + "-" +
+           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    config = dir / "conf" / "settings.json";  // the daemon creates conf/ on the first save
+  }
+  void TearDown() override {
+    daemon.reset();
+    fs::remove_all(dir);
+  }
+  void start() {
+    daemon = std::make_unique<DaemonProcess>(
+        std::vector<std::string>{"--sim", "g5500", "--speedup", "10", "--config", config.string()});
+    ASSERT_TRUE(daemon->ready()) << daemon->output();
+    port = daemon->ports().web;
+  }
+  std::string status() { return http(port, "GET", "/api/status").body; }
+
+  fs::path dir;
+  fs::path config;
+  std::unique_ptr<DaemonProcess> daemon;
+  int port = 0;
+};
+
+TEST_F(WebApi, GotoMovesTheSimulatedRotatorAndStatusFollows) {
+  start();
+  Response r = http(port, "POST", "/api/goto", R"({"az": 120})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  double az = 0;
+  for (int n = 0; n < 200; ++n) {
+    const std::string s = status();
+    az = az_of(s);
+    if (std::abs(az - 120) <= 1.0 && s.find("\"moving\":false") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_NEAR(az, 120, 1.0);
+}
+
+TEST_F(WebApi, HoldToMoveStopsWhenRenewalsStop) {
+  start();
+  const double before = az_of(status());
+  // hold_ms is controller time: 1000 ms at speedup 10 is 0.1 s of wall time.
+  for (int n = 0; n < 10; ++n) {
+    ASSERT_EQ(http(port, "POST", "/api/move", R"({"dir":"ccw","hold_ms":1000})").status, 200);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_NE(status().find("\"jogging\":true"), std::string::npos);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // no renewals
+  const std::string s = status();
+  EXPECT_EQ(s.find("\"jogging\":true"), std::string::npos) << s;
+  EXPECT_NE(s.find("\"moving\":false"), std::string::npos) << s;
+  EXPECT_LT(az_of(s), before - 2.0);  // it did move CCW meanwhile
+}
+
+TEST_F(WebApi, EveryCommandEndpointAndItsErrors) {
+  start();
+  EXPECT_EQ(http(port, "POST", "/api/stop", "", "").status, 200);
+  EXPECT_EQ(http(port, "POST", "/api/park", "{}").status, 200);
+  EXPECT_NE(status().find("\"mode\":\"park\""), std::string::npos);
+  EXPECT_EQ(http(port, "POST", "/api/mode", R"({"mode":"idle"})").status, 200);
+  EXPECT_EQ(http(port, "POST", "/api/speed", R"({"speed_pct":30})").status, 200);
+  EXPECT_NE(status().find("\"speed_pct\":30"), std::string::npos);
+  EXPECT_EQ(http(port, "POST", "/api/reset", "").status, 200);
+  EXPECT_NE(status().find("\"speed_pct\":100"), std::string::npos);
+
+  Response r = http(port, "POST", "/api/goto", R"({"az": 9999})");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_NE(r.body.find("\"error\":"), std::string::npos);
+  EXPECT_EQ(http(port, "POST", "/api/goto", R"({"az": )").status, 400);
+  EXPECT_EQ(http(port, "POST", "/api/goto", R"({"az": "x"})").status, 400);
+  EXPECT_EQ(http(port, "POST", "/api/goto", R"({"az": 10})", "text/plain").status, 415);
+  EXPECT_EQ(http(port, "POST", "/api/move", R"({"dir":"sideways"})").status, 422);
+  EXPECT_EQ(http(port, "POST", "/api/mode", R"({"mode":"warp"})").status, 422);
+  EXPECT_EQ(http(port, "GET", "/api/nothing").status, 404);
+  EXPECT_EQ(http(port, "GET", "/api/goto").status, 405);
+  EXPECT_EQ(http(port, "POST", "/api/settings", std::string(100000, ' ')).status, 413);
+  EXPECT_NE(status().find("\"moving\":false"), std::string::npos);
+}
+
+TEST_F(WebApi, AssetsAndSchema) {
+  start();
+  Response r = http(port, "GET", "/");
+  EXPECT_EQ(r.status, 200);
+  EXPECT_NE(r.head.find("Content-Encoding: gzip"), std::string::npos);
+  r = http(port, "GET", "/api/settings/schema");
+  EXPECT_EQ(r.status, 200);
+  EXPECT_NE(r.body.find("\"key\":\"az.pot_cal_lo_counts\""), std::string::npos);
+}
+
+TEST_F(WebApi, EventStreamSendsAtLeastFivePerSecondWhileMoving) {
+  start();
+  ASSERT_EQ(http(port, "POST", "/api/goto", R"({"az": 400})").status, 200);
+  TcpClient c(port);
+  c.send("GET /api/events HTTP/1.1\r\nHost: x\r\nAccept: text/event-stream\r\n\r\n");
+  std::string data;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  while (std::chrono::steady_clock::now() < end) data += c.recv_once(100);
+  std::size_t events = 0;
+  for (auto pos = data.find("data: {"); pos != std::string::npos;
+       pos = data.find("data: {", pos + 1))
+    ++events;
+  EXPECT_GE(events, 5u) << data.substr(0, 300);
+  EXPECT_NE(data.find("Content-Type: text/event-stream"), std::string::npos);
+}
+
+TEST_F(WebApi, TooManyConnectionsGetA503AndOthersKeepWorking) {
+  start();
+  std::vector<std::unique_ptr<TcpClient>> held;
+  for (int n = 0; n < 8; ++n) {
+    held.push_back(std::make_unique<TcpClient>(port));
+    held.back()->send("GET /api/sta");  // slow clients: half a request each
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  TcpClient extra(port);
+  extra.wait_closed(3000);
+  EXPECT_EQ(extra.recv_once(0).rfind("HTTP/1.1 503", 0), 0u);
+  held.clear();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(http(port, "GET", "/api/status").status, 200);
+}
+
+TEST_F(WebApi, SettingsArePersistedAndSurviveARestart) {
+  start();
+  Response r = http(port, "POST", "/api/settings", R"({"park.az_deg": 123.5, "az.max_deg": 9999})");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_NE(r.body.find("\"az.max_deg\":"), std::string::npos);
+  EXPECT_FALSE(fs::exists(config));  // nothing saved on error
+  r = http(port, "POST", "/api/settings", R"({"park.az_deg": 123.5})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  ASSERT_TRUE(fs::exists(config));
+  EXPECT_NE(read_file(config).find("\"park.az_deg\": 123.5"), std::string::npos);
+  daemon.reset();
+  start();
+  EXPECT_NE(daemon->output().find("settings loaded from"), std::string::npos) << daemon->output();
+  EXPECT_NE(http(port, "GET", "/api/settings").body.find("\"park.az_deg\":123.5"),
+            std::string::npos);
+  // Reset to defaults is persisted too.
+  ASSERT_EQ(http(port, "POST", "/api/settings/reset", "{}").status, 200);
+  EXPECT_NE(read_file(config).find("\"park.az_deg\": 0,"), std::string::npos);
+}
+
+TEST_F(WebApi, ACorruptFileIsReportedKeptAndTheDefaultsRun) {
+  fs::create_directories(config.parent_path());
+  const std::string garbage = "{\"park.az_deg\": 45, \"az.max_deg\": ";  // torn by hand
+  std::ofstream(config) << garbage;
+  start();
+  EXPECT_NE(daemon->output().find("is invalid"), std::string::npos) << daemon->output();
+  EXPECT_EQ(read_file(config), garbage);  // not overwritten
+  EXPECT_NE(http(port, "GET", "/api/settings").body.find("\"park.az_deg\":0,"), std::string::npos);
+  // An explicit save replaces it and keeps the bad one aside.
+  ASSERT_EQ(http(port, "POST", "/api/settings", R"({"park.az_deg": 10})").status, 200);
+  EXPECT_EQ(read_file(config.string() + ".bad"), garbage);
+  EXPECT_NE(read_file(config).find("\"park.az_deg\": 10"), std::string::npos);
+}
+
+TEST_F(WebApi, AKillDuringSavingNeverLeavesABrokenFile) {
+  for (int round = 0; round < 4; ++round) {
+    start();
+    std::atomic<bool> run{true};
+    std::thread writer([&] {
+      for (int n = 0; run; ++n)
+        http(port, "POST", "/api/settings",
+             "{\"park.az_deg\": " + std::to_string(n % 300) +
+                 ", \"az.offset_deg\": " + std::to_string((n % 7) - 3) + "}");
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(150 + 70 * round));
+    ::kill(daemon->pid(), SIGKILL);
+    run = false;
+    writer.join();
+    daemon.reset();
+    if (fs::exists(config)) {
+      const std::string doc = read_file(config);
+      EXPECT_EQ(doc.front(), '{') << doc;
+      EXPECT_EQ(doc.substr(doc.size() - 2), "}\n") << doc;
+    }
+    start();
+    EXPECT_EQ(daemon->output().find("is invalid"), std::string::npos) << daemon->output();
+    daemon.reset();
+  }
+}
+
+TEST_F(WebApi, RebootRestartsTheControllerWithRestartOnlySettings) {
+  start();
+  Response r = http(port, "POST", "/api/settings", R"({"el.enabled": false})");
+  ASSERT_EQ(r.status, 200);
+  EXPECT_NE(r.body.find("\"restart_required\":[\"el.enabled\"]"), std::string::npos) << r.body;
+  EXPECT_NE(status().find("\"has_el\":true"), std::string::npos);
+  r = http(port, "POST", "/api/reboot", "{}");
+  EXPECT_EQ(r.status, 202);
+  std::string s;
+  for (int n = 0; n < 50 && s.find("\"has_el\":false") == std::string::npos; ++n) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    s = status();
+  }
+  EXPECT_NE(s.find("\"has_el\":false"), std::string::npos) << s;
+  EXPECT_NE(s.find("\"el\":null"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rotord::testing

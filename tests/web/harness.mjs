@@ -1,0 +1,116 @@
+// Runs a real rotord and Debian's chromium (through playwright-core, never a
+// downloaded browser) for the browser tests.
+import { spawn } from 'node:child_process';
+import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
+import net from 'node:net';
+import os from 'node:os';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+
+export const ROTORD = process.env.ROTORD ?? path.resolve(import.meta.dirname, '../../build/rotord');
+export const ARTIFACTS = process.env.ROTORD_ARTIFACTS ??
+  path.resolve(path.dirname(ROTORD), 'test-artifacts');
+const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
+
+export function freePort() {
+  return new Promise((resolve, reject) => {
+    const s = net.createServer();
+    s.listen(0, '127.0.0.1', () => {
+      const { port } = s.address();
+      s.close(() => resolve(port));
+    });
+    s.on('error', reject);
+  });
+}
+
+export function tempDir() {
+  return mkdtempSync(path.join(os.tmpdir(), 'rotord-web-'));
+}
+
+/** A running `rotord --sim g5500 --speedup 10` on free loopback ports. */
+export class Rotord {
+  constructor({ configPath, speedup = 10, profile = 'g5500' } = {}) {
+    this.configPath = configPath;
+    this.speedup = speedup;
+    this.profile = profile;
+    this.output = '';
+  }
+
+  async start() {
+    this.port = this.port ?? (await freePort());
+    const args = ['--sim', this.profile, '--speedup', String(this.speedup), '--bind', '127.0.0.1',
+      '--web-port', String(this.port), '--wrc-port', '0', '--rotctld-port', '0',
+      '--gs232-port', '0', '--easycomm-port', '0', '--config', this.configPath];
+    this.proc = spawn(ROTORD, args, { stdio: ['ignore', 'pipe', 'pipe'] });
+    const ready = new Promise((resolve, reject) => {
+      const onData = (d) => {
+        this.output += d;
+        if (this.output.includes('rotord: ready')) resolve();
+      };
+      this.proc.stdout.on('data', onData);
+      this.proc.stderr.on('data', onData);
+      this.proc.on('exit', (code) => reject(new Error(`rotord exited (${code}): ${this.output}`)));
+      setTimeout(() => reject(new Error(`rotord not ready: ${this.output}`)), 15000);
+    });
+    await ready;
+    this.url = `http://127.0.0.1:${this.port}`;
+    return this;
+  }
+
+  async stop() {
+    if (!this.proc || this.proc.exitCode !== null) return;
+    const exited = new Promise((resolve) => this.proc.on('exit', resolve));
+    this.proc.kill('SIGTERM');
+    await exited;
+  }
+
+  async status() {
+    return (await fetch(`${this.url}/api/status`)).json();
+  }
+
+  async post(p, body) {
+    const r = await fetch(this.url + p, { method: 'POST', headers: { 'Content-Type': 'application/json' },
+      body: JSON.stringify(body ?? {}) });
+    return { status: r.status, body: await r.json() };
+  }
+}
+
+export async function launchBrowser() {
+  return chromium.launch({
+    executablePath: CHROMIUM,
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking'],
+  });
+}
+
+/** A page that records console errors and uncaught exceptions. */
+export async function openPage(browser, url, { width = 1280, height = 900, colorScheme = 'light' } = {}) {
+  const context = await browser.newContext({ viewport: { width, height }, colorScheme,
+    hasTouch: width < 500, isMobile: false });
+  const page = await context.newPage();
+  page.errors = [];
+  page.on('console', (m) => { if (m.type() === 'error') page.errors.push(m.text()); });
+  page.on('pageerror', (e) => page.errors.push(String(e)));
+  await page.goto(url);
+  return page;
+}
+
+export async function screenshot(page, name) {
+  mkdirSync(ARTIFACTS, { recursive: true });
+  await page.screenshot({ path: path.join(ARTIFACTS, name), fullPage: true });
+}
+
+/** Polls fn() until it returns a truthy value or the time runs out. */
+export async function until(fn, { timeout = 15000, interval = 100, what = 'condition' } = {}) {
+  const end = Date.now() + timeout;
+  let last;
+  while (Date.now() < end) {
+    last = await fn();
+    if (last) return last;
+    await new Promise((r) => setTimeout(r, interval));
+  }
+  throw new Error(`timed out waiting for ${what} (last: ${JSON.stringify(last)})`);
+}
+
+export function cleanup(dir) {
+  rmSync(dir, { recursive: true, force: true });
+}

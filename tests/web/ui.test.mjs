@@ -1,0 +1,154 @@
+// The real web page in Debian's chromium (playwright-core) against a running
+// `rotord --sim g5500 --speedup 10`.
+import assert from 'node:assert/strict';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+
+import {
+  cleanup, launchBrowser, openPage, Rotord, screenshot, tempDir, until,
+} from './harness.mjs';
+
+let browser;
+let dir;
+let rotord;
+
+before(async () => {
+  dir = tempDir();
+  rotord = await new Rotord({ configPath: path.join(dir, 'settings.json') }).start();
+  browser = await launchBrowser();
+});
+
+after(async () => {
+  if (browser) await browser.close();
+  if (rotord) await rotord.stop();
+  cleanup(dir);
+});
+
+const displayedAz = async (page) => parseFloat(await page.textContent('#az'));
+
+test('control page loads without console errors, phone and desktop, light and dark', async () => {
+  for (const [width, height, scheme] of [[360, 780, 'light'], [360, 780, 'dark'],
+    [1280, 900, 'light'], [1280, 900, 'dark']]) {
+    const page = await openPage(browser, rotord.url + '/', { width, height, colorScheme: scheme });
+    await page.waitForSelector('#conn.live');
+    await until(async () => (await page.textContent('#az')).includes('°'), { what: 'azimuth' });
+    const overflow = await page.evaluate(() => document.documentElement.scrollWidth > innerWidth);
+    assert.equal(overflow, false, `horizontal scroll at ${width} px`);
+    await screenshot(page, `control-${width}-${scheme}.png`);
+    assert.deepEqual(page.errors, []);
+    await page.context().close();
+  }
+});
+
+test('clicking the rose moves the rotator and the displayed azimuth follows', async () => {
+  const page = await openPage(browser, rotord.url + '/');
+  await page.waitForSelector('#conn.live');
+  const box = await page.locator('#rose').boundingBox();
+  // East of the centre, inside the face: azimuth 90.
+  await page.mouse.click(box.x + box.width / 2 + box.width * 0.3, box.y + box.height / 2);
+  await until(async () => (await rotord.status()).az.target_deg !== null, { what: 'a target' });
+  assert.ok(Math.abs((await rotord.status()).az.target_deg - 90) <= 2);
+  await until(async () => {
+    const s = await rotord.status();
+    return !s.moving && Math.abs(s.az.position_deg - 90) <= 1.5;
+  }, { timeout: 30000, what: 'arrival at 90' });
+  await until(async () => Math.abs((await displayedAz(page)) - 90) <= 1.5, { what: 'display at 90' });
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
+
+async function holdCw(page) {
+  const b = await page.locator('.hold [data-dir="cw"]').boundingBox();
+  await page.mouse.move(b.x + b.width / 2, b.y + b.height / 2);
+  await page.mouse.down();
+}
+
+test('holding CW moves, releasing stops', async () => {
+  const page = await openPage(browser, rotord.url + '/');
+  await page.waitForSelector('#conn.live');
+  await page.waitForTimeout(1200);  // let the page measure the simulation's clock rate
+  const start = (await rotord.status()).az.position_deg;
+  await holdCw(page);
+  await page.waitForTimeout(1500);
+  const held = await rotord.status();
+  assert.equal(held.az.jogging, true, 'jogging while held');
+  assert.ok(held.az.position_deg > start + 5, `moved CW: ${start} -> ${held.az.position_deg}`);
+  await page.mouse.up();
+  await until(async () => !(await rotord.status()).az.jogging, { timeout: 1000, what: 'stop on release' });
+  await until(async () => !(await rotord.status()).moving, { timeout: 5000, what: 'standstill' });
+  await until(async () => Math.abs((await displayedAz(page)) - (await rotord.status()).az.position_deg) < 1,
+    { what: 'display follows' });
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
+
+test('closing the page while holding stops the motor', async () => {
+  const page = await openPage(browser, rotord.url + '/');
+  await page.waitForSelector('#conn.live');
+  await page.waitForTimeout(1200);
+  await holdCw(page);
+  await until(async () => (await rotord.status()).az.jogging, { what: 'jogging' });
+  await page.context().close();
+  await until(async () => !(await rotord.status()).az.jogging, { timeout: 1500, what: 'stop after close' });
+});
+
+test('a stalled network stops the motor (dead-man, no stop message)', async () => {
+  const page = await openPage(browser, rotord.url + '/');
+  await page.waitForSelector('#conn.live');
+  await page.waitForTimeout(1200);
+  await holdCw(page);
+  await until(async () => (await rotord.status()).az.jogging, { what: 'jogging' });
+  await page.context().setOffline(true);  // renewals and the stop on release are lost
+  const t0 = Date.now();
+  await until(async () => !(await rotord.status()).az.jogging, { timeout: 2000, what: 'dead-man stop' });
+  assert.ok(Date.now() - t0 <= 1500, `stopped after ${Date.now() - t0} ms`);
+  await page.context().close();
+});
+
+test('settings: a bad value shows its error, a good one survives a restart', async () => {
+  let page = await openPage(browser, rotord.url + '/settings.html', { width: 1280, height: 900 });
+  await page.waitForSelector('#f-az\\.max_deg');
+  await page.waitForSelector('#cal-az');
+  await screenshot(page, 'settings-1280.png');
+  await page.fill('#f-az\\.max_deg', '9999');
+  await page.click('#save');
+  const error = page.locator('.field.invalid .error');
+  await error.first().waitFor();
+  assert.match(await error.first().textContent(), /outside the allowed range/);
+  assert.match(await page.textContent('#msg'), /outside the allowed range/);
+  const unchanged = await (await fetch(rotord.url + '/api/settings')).json();
+  assert.equal(unchanged['az.max_deg'], 450);
+
+  await page.fill('#f-az\\.max_deg', '450');
+  await page.fill('#f-park\\.az_deg', '77');
+  await page.click('#save');
+  await until(async () => (await page.textContent('#msg')).includes('saved'), { what: 'saved' });
+  assert.equal(await page.locator('.field.invalid').count(), 0);
+  // Chromium logs the refused POST (422) as a failed resource: that one is expected.
+  assert.deepEqual(page.errors.filter((e) => !/status of 422/.test(e)), []);
+  await page.context().close();
+
+  await rotord.stop();
+  await rotord.start();
+  page = await openPage(browser, rotord.url + '/settings.html', { width: 360, height: 780, colorScheme: 'dark' });
+  await page.waitForSelector('#f-park\\.az_deg');
+  await until(async () => (await page.inputValue('#f-park\\.az_deg')) === '77', { what: 'persisted value' });
+  await screenshot(page, 'settings-360-dark.png');
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
+
+test('calibration: "set as low point" writes the live raw reading', async () => {
+  const page = await openPage(browser, rotord.url + '/settings.html');
+  await page.waitForSelector('#cal-az-lo');
+  await page.waitForTimeout(500);
+  const raw = (await rotord.status()).az.raw;
+  await page.fill('#cal-az-deg', '0');
+  await page.click('#cal-az-lo');
+  await until(async () => (await page.textContent('#msg')).includes('low point set'), { what: 'cal set' });
+  const s = await (await fetch(rotord.url + '/api/settings')).json();
+  assert.ok(Math.abs(s['az.pot_cal_lo_counts'] - raw) < 20, `${s['az.pot_cal_lo_counts']} vs ${raw}`);
+  assert.equal(s['az.pot_cal_lo_deg'], 0);
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
