@@ -40,9 +40,7 @@ struct TcpServer::Glue {
     c->server_ = server;
     c->pcb_ = pcb;
     c->session_ = session;
-    c->out_len_ = 0;
-    c->overflow_ = false;
-    c->close_requested_ = false;
+    c->reset_output();
     // Replies are small and clients (Gpredict) wait for each one: no Nagle
     // delay, like TCP_NODELAY on Linux.
     tcp_nagle_disable(pcb);
@@ -120,37 +118,81 @@ struct TcpServer::Glue {
 };
 
 void TcpServer::Connection::write(std::string_view bytes) {
-  if (pcb_ == nullptr || overflow_) return;
-  if (bytes.size() > out_.size() - out_len_) {
-    // The client stopped reading: drop it rather than block or buffer more.
-    // The drop itself happens after the session call returns (settle()),
-    // because lwIP forbids freeing the pcb under a callback that continues.
-    overflow_ = true;
-    return;
+  if (pcb_ == nullptr || overflow_ || bytes.empty()) return;
+  const auto immutable = server_->config_.is_immutable;
+  if (bytes.size() >= kMinReferenceBytes && immutable != nullptr &&
+      immutable(bytes.data(), bytes.size())) {
+    if (!push_chunk(bytes.data(), bytes.size())) return;
+  } else {
+    if (bytes.size() > out_.size() - out_len_ || !push_chunk(nullptr, bytes.size())) {
+      // The client stopped reading: drop it rather than block or buffer more.
+      // The drop itself happens after the session call returns (settle()),
+      // because lwIP forbids freeing the pcb under a callback that continues.
+      overflow_ = true;
+      return;
+    }
+    std::memcpy(out_.data() + out_len_, bytes.data(), bytes.size());
+    out_len_ += bytes.size();
   }
-  std::memcpy(out_.data() + out_len_, bytes.data(), bytes.size());
-  out_len_ += bytes.size();
   flush();
+}
+
+bool TcpServer::Connection::push_chunk(const char* data, std::size_t size) {
+  if (chunk_count_ > 0) {
+    Chunk& last = chunks_[chunk_count_ - 1];
+    if (data == nullptr && last.data == nullptr) {  // copied bytes are contiguous in out_
+      last.size += size;
+      return true;
+    }
+  }
+  if (chunk_count_ == chunks_.size()) {
+    overflow_ = true;
+    return false;
+  }
+  chunks_[chunk_count_++] = Chunk{data, size};
+  return true;
 }
 
 void TcpServer::Connection::flush() {
   if (pcb_ == nullptr || overflow_) return;
   bool queued = false;
-  while (out_len_ > 0) {
+  while (chunk_count_ > 0) {
+    Chunk& chunk = chunks_[0];
     const std::size_t room = tcp_sndbuf(pcb_);
     if (room == 0) break;  // tcp_sent will call again when the peer acknowledges
-    const std::size_t n = std::min({out_len_, room, std::size_t{0xFFFF}});
-    const err_t err = tcp_write(pcb_, out_.data(), static_cast<u16_t>(n), TCP_WRITE_FLAG_COPY);
+    const std::size_t n = std::min({chunk.size, room, std::size_t{0xFFFF}});
+    const bool copied = chunk.data == nullptr;
+    // Copied bytes are copied again into lwIP (our buffer is reused at once);
+    // immutable ones are referenced until the peer acknowledges them.
+    const err_t err = tcp_write(pcb_, copied ? out_.data() : chunk.data, static_cast<u16_t>(n),
+                                copied ? TCP_WRITE_FLAG_COPY : 0);
     if (err == ERR_MEM) break;  // segment queue or pbufs exhausted: retry on sent/poll
     if (err != ERR_OK) {
       overflow_ = true;  // the connection is unusable (e.g. not connected any more)
       return;
     }
     queued = true;
-    out_len_ -= n;
-    std::memmove(out_.data(), out_.data() + n, out_len_);
+    if (copied) {
+      out_len_ -= n;
+      std::memmove(out_.data(), out_.data() + n, out_len_);
+    } else {
+      chunk.data += n;
+    }
+    chunk.size -= n;
+    if (chunk.size == 0) {
+      std::copy(chunks_.begin() + 1, chunks_.begin() + static_cast<std::ptrdiff_t>(chunk_count_),
+                chunks_.begin());
+      --chunk_count_;
+    }
   }
   if (queued) tcp_output(pcb_);
+}
+
+void TcpServer::Connection::reset_output() {
+  out_len_ = 0;
+  chunk_count_ = 0;
+  overflow_ = false;
+  close_requested_ = false;
 }
 
 TcpServer::TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots)
@@ -228,7 +270,7 @@ err_t TcpServer::settle(Connection& c) {
     ++stats_.dropped_backlog;
     return drop(c);
   }
-  if (c.close_requested_ && c.out_len_ == 0) return close(c);
+  if (c.close_requested_ && c.idle()) return close(c);
   return ERR_OK;
 }
 
@@ -260,9 +302,7 @@ void TcpServer::release(Connection& c) {
   if (c.session_ != nullptr) sessions_.release(c.index_);
   c.session_ = nullptr;
   c.pcb_ = nullptr;
-  c.out_len_ = 0;
-  c.overflow_ = false;
-  c.close_requested_ = false;
+  c.reset_output();
 }
 
 }  // namespace rotord::lwip_port

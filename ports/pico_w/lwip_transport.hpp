@@ -73,13 +73,18 @@ struct ServerConfig {
   std::uint16_t port = 0;           ///< 0 = an ephemeral port (tests)
   std::size_t max_clients = 4;      ///< clamped to the slots given; one more is refused
   std::string_view reject_message;  ///< sent to a refused client before the close
+  /// True when [data, data + size) stays unchanged for the life of the
+  /// program (the Pico's flash: the web UI's gzipped files). Such writes are
+  /// queued by reference and handed to lwIP without a copy, so a 20 KB page
+  /// needs neither a 20 KB buffer nor a copy. nullptr: everything is copied.
+  bool (*is_immutable)(const void* data, std::size_t size) = nullptr;
 };
 
 /// Serves one protocol on one TCP port: a byte session per connection from a
 /// static pool. Mirrors ports/linux/tcp_server: replies go out in the order
 /// and units the session wrote them (Nagle off), and a client that stops
-/// reading is dropped once its backlog passes the per-connection output
-/// buffer, so it can never hold pbufs or block the others.
+/// reading is dropped once its copied backlog passes the per-connection
+/// output buffer, so it can never exhaust memory or block the others.
 class TcpServer {
   struct Glue;  // the lwIP callbacks (lwip_transport.cpp)
 
@@ -88,6 +93,12 @@ class TcpServer {
   /// buffer could not take yet. A WRC reply is < 128 bytes and MONITOR pushes
   /// ~60 bytes every 100 ms, so 1 KiB is seconds of a stalled client.
   static constexpr std::size_t kOutputBytes = 1024;
+  /// Pending output as a queue of pieces: copied bytes (in the buffer above)
+  /// and immutable bytes passed by reference, in the order they were written.
+  static constexpr std::size_t kMaxChunks = 8;
+  /// Immutable writes shorter than this are copied anyway: a reference costs
+  /// a queue entry and an lwIP pbuf, which only pays off for large bodies.
+  static constexpr std::size_t kMinReferenceBytes = 256;
   /// lwIP's coarse poll (units of 500 ms): retries a flush that ran out of
   /// lwIP memory and a close that failed.
   static constexpr std::uint8_t kLwipPollInterval = 2;
@@ -101,7 +112,14 @@ class TcpServer {
    private:
     friend class TcpServer;
     friend struct Glue;
+    struct Chunk {
+      const char* data = nullptr;  ///< nullptr: the next bytes of out_
+      std::size_t size = 0;
+    };
+    bool push_chunk(const char* data, std::size_t size);
     void flush();
+    bool idle() const { return chunk_count_ == 0; }
+    void reset_output();
 
     TcpServer* server_ = nullptr;
     tcp_pcb* pcb_ = nullptr;
@@ -109,6 +127,8 @@ class TcpServer {
     std::size_t index_ = 0;
     std::array<char, kOutputBytes> out_{};
     std::size_t out_len_ = 0;
+    std::array<Chunk, kMaxChunks> chunks_{};
+    std::size_t chunk_count_ = 0;
     bool overflow_ = false;         ///< backlog full or lwIP refused: drop it
     bool close_requested_ = false;  ///< close once the output is flushed
   };

@@ -9,6 +9,7 @@
 // deadline, so network traffic delays a tick by at most one poll.
 #include <cstdio>
 
+#include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
 #include "lwip_transport.hpp"
 #include "pico/binary_info.h"
@@ -18,6 +19,8 @@
 #include "protocol/wrc_session.hpp"
 #include "rotator/controller.hpp"
 #include "settings/settings.hpp"
+#include "web/http_session.hpp"
+#include "web/web_api.hpp"
 #include "wifi.hpp"
 #include "wifi_secrets.h"
 
@@ -32,6 +35,12 @@ constexpr Millis kTickMs = 10;  // 100 Hz, as on Linux
 constexpr std::uint32_t kWatchdogMs = 2000;
 constexpr std::uint16_t kWrcPort = 1234;
 constexpr std::size_t kWrcSlots = 4;  // net.max_clients is clamped to this
+constexpr std::uint16_t kHttpPort = 80;
+// A browser holds a page connection and the event stream, plus short API
+// requests; each HTTP session is ~6 KB of RAM (request head and body buffers).
+constexpr std::size_t kHttpSlots = 4;
+// POST /api/reboot answers first, then the watchdog resets the chip.
+constexpr Millis kRebootDelayMs = 300;
 
 // Pin map. Azimuth: the defaults of issue 6 (relays CW/CCW 5/6, speed 7,
 // T1/T2 9/10, L1/L2 11/12, pot on GPIO 26, MA3 on GPIO 2). The elevation
@@ -67,8 +76,31 @@ Millis now_ms() {
   return static_cast<Millis>(to_us_since_boot(get_absolute_time()) / 1000);
 }
 
+/// The program's flash (XIP) never changes while it runs: the web UI's
+/// gzipped files there are sent by reference, without a copy in RAM.
+bool in_program_flash(const void* data, std::size_t size) {
+  const auto begin = reinterpret_cast<std::uintptr_t>(data);
+  return begin >= XIP_BASE && begin + size <= XIP_BASE + PICO_FLASH_SIZE_BYTES;
+}
+
+/// POST /api/reboot: remembered here, done by the loop once the response is
+/// out (the hook runs inside the request).
+class Reboot final : public web::RebootHook {
+ public:
+  bool request_reboot() override {
+    requested_ = true;
+    return true;
+  }
+  bool requested() const { return requested_; }
+
+ private:
+  bool requested_ = false;
+};
+
 // Hardware objects: static storage, constructors touch nothing.
 settings::Settings g_settings;
+const settings::Settings g_defaults;  // the table's defaults, for the web's reset
+Reboot g_reboot;
 PicoAdc g_az_pot(pin::kAzPot), g_el_pot(pin::kElPot);
 Ma3EdgeInput g_az_ma3(pin::kAzMa3), g_el_ma3(pin::kElMa3);
 PicoSwitch g_az_t1(pin::kAzT1), g_az_t2(pin::kAzT2);
@@ -158,16 +190,31 @@ void declare_pins() {
        static_cast<std::size_t>(settings.i(settings::Id::kNetMaxClients)),
        protocol::WrcSession::kTooManyConnections},
       make_wrc);
-  // TODO(protocols): rotctld on 4533, GS-232/Easycomm and the web UI on 80
-  // join here as StaticServices once their sessions are in the core.
+  // TODO(flash settings): give the API the flash storage so that POST
+  // /api/settings persists; with nullptr it changes the settings in RAM only.
+  static web::Api api(web::ApiContext{controller, nullptr, &g_defaults, &g_reboot, ROTORD_VERSION});
+  auto make_http = [] { return web::HttpSession(api); };
+  lwip_port::ServerConfig http_config;
+  http_config.name = "web UI and REST API";
+  http_config.port = kHttpPort;
+  http_config.max_clients = kHttpSlots;
+  http_config.reject_message = web::HttpSession::kTooManyConnections;
+  http_config.is_immutable = &in_program_flash;
+  static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
+      http_config, make_http);
+  // TODO(protocols): rotctld on 4533 and GS-232/Easycomm join here as
+  // StaticServices once their sessions are in the core.
+  lwip_port::TcpServer* const servers[] = {&wrc.server(), &http.server()};
   if (network) {
     wifi.begin(now_ms());
-    // lwIP listens on every address, so the server works on the station and
+    // lwIP listens on every address, so the servers work on the station and
     // on the setup access point alike.
-    if (wrc.server().start())
-      std::printf("rotord: %s listening on port %u\n", wrc.server().name(), wrc.server().port());
-    else
-      std::printf("rotord: cannot listen on port %u\n", kWrcPort);
+    for (lwip_port::TcpServer* server : servers) {
+      if (server->start())
+        std::printf("rotord: %s on port %u\n", server->name(), server->port());
+      else
+        std::printf("rotord: %s: cannot listen\n", server->name());
+    }
   }
 
   // 5. The loop. Started after the blocking Wi-Fi chip init (firmware load).
@@ -176,6 +223,7 @@ void declare_pins() {
   std::uint32_t late_ticks = 0;
   std::uint32_t reported_late_ticks = 0;
   Millis next_report = now_ms() + 10'000;
+  Millis reboot_at = 0;
   for (;;) {
     watchdog_update();
     if (network) cyw43_arch_poll();
@@ -183,8 +231,19 @@ void declare_pins() {
       const Millis now = now_ms();
       controller.tick(now);
       if (network) {
-        wrc.server().poll(now);
+        for (lwip_port::TcpServer* server : servers) server->poll(now);
         wifi.step(now);
+      }
+      if (g_reboot.requested()) {
+        if (reboot_at == 0) reboot_at = now + kRebootDelayMs;
+        if (now >= reboot_at) {
+          std::printf("rotord: rebooting\n");
+          controller.shutdown();
+          // watchdog_update() would postpone a delayed reboot forever, so
+          // reboot now and wait for it here.
+          watchdog_reboot(0, 0, 0);
+          for (;;) tight_loop_contents();
+        }
       }
       next_tick = delayed_by_ms(next_tick, kTickMs);
       if (time_reached(next_tick)) {

@@ -28,6 +28,10 @@ extern "C" {
 }
 #include "protocol/wrc_session.hpp"
 
+// The options must be Debian's, the ones liblwip.so was built with (struct
+// layouts depend on them), not the Pico's ports/pico_w/config/lwipopts.h.
+static_assert(NO_SYS == 0 && LWIP_TCPIP_CORE_LOCKING == 1, "not Debian's lwipopts.h");
+
 namespace rotord {
 namespace {
 
@@ -116,9 +120,23 @@ struct Client {
   }
 };
 
+/// Stands for the Pico's flash: data that never changes, which the transport
+/// may send by reference.
+constexpr std::size_t kAssetBytes = 50000;
+const std::array<char, kAssetBytes> kAsset = [] {
+  std::array<char, kAssetBytes> a{};
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = static_cast<char>('A' + i % 23);
+  return a;
+}();
+bool in_asset(const void* data, std::size_t size) {
+  const auto* p = static_cast<const char*>(data);
+  return p >= kAsset.data() && p + size <= kAsset.data() + kAsset.size();
+}
+
 /// A session for transport tests: 'F' starts a flood of kFloodBytes written
 /// from poll() in 200-byte writes (a counting pattern, so order is checked),
-/// 'Q' answers BYE and asks for the close, 'P' answers PONG.
+/// 'Q' answers BYE and asks for the close, 'P' answers PONG, 'S' sends the
+/// asset between two copied lines.
 class TestSession final : public protocol::Session {
  public:
   static constexpr std::size_t kFloodBytes = 200000;
@@ -133,6 +151,11 @@ class TestSession final : public protocol::Session {
     for (char ch : bytes) {
       if (ch == 'F') flood_left_ = kFloodBytes;
       if (ch == 'P') out.write("PONG\n");
+      if (ch == 'S') {
+        out.write("HEAD\n");
+        out.write(std::string_view(kAsset.data(), kAsset.size()));
+        out.write("TAIL\n");
+      }
       if (ch == 'Q') {
         out.write("BYE\n");
         close_ = true;
@@ -163,6 +186,15 @@ auto make_test_session() {
   return [] { return TestSession(); };
 }
 using TestService = StaticService<TestSession, 4, decltype(make_test_session())>;
+
+ServerConfig test_config(std::size_t max_clients, std::string_view reject = "busy\r\n") {
+  ServerConfig config;
+  config.name = "test";
+  config.max_clients = max_clients;
+  config.reject_message = reject;
+  config.is_immutable = &in_asset;
+  return config;
+}
 
 class LwipTransportTest : public ::testing::Test {
  protected:
@@ -293,7 +325,7 @@ TEST_F(LwipTransportTest, ServesWrcCommandsOverTcp) {
 }
 
 TEST_F(LwipTransportTest, RefusesClientsOverTheLimitWithTheRejectMessage) {
-  TestService service({"test", 0, 2, "ERROR TOO MANY CONNECTIONS\r\n"}, make_test_session());
+  TestService service(test_config(2, "ERROR TOO MANY CONNECTIONS\r\n"), make_test_session());
   auto served = serve(service.server());
 
   Client& a = connect();
@@ -327,7 +359,7 @@ TEST_F(LwipTransportTest, RefusesClientsOverTheLimitWithTheRejectMessage) {
 }
 
 TEST_F(LwipTransportTest, PeerCloseReleasesTheSession) {
-  TestService service({"test", 0, 4, "busy\r\n"}, make_test_session());
+  TestService service(test_config(4), make_test_session());
   auto served = serve(service.server());
   Client& c = connect();
   ASSERT_TRUE(wait([&] { return TestSession::live == 1; }));
@@ -342,7 +374,7 @@ TEST_F(LwipTransportTest, PeerCloseReleasesTheSession) {
 }
 
 TEST_F(LwipTransportTest, SessionCloseFlushesTheReplyThenSendsFin) {
-  TestService service({"test", 0, 4, "busy\r\n"}, make_test_session());
+  TestService service(test_config(4), make_test_session());
   auto served = serve(service.server());
   Client& c = connect();
   send(c, "Q");
@@ -355,7 +387,7 @@ TEST_F(LwipTransportTest, SessionCloseFlushesTheReplyThenSendsFin) {
 }
 
 TEST_F(LwipTransportTest, AReadingClientGetsTheWholeFloodInOrder) {
-  TestService service({"test", 0, 4, "busy\r\n"}, make_test_session());
+  TestService service(test_config(4), make_test_session());
   auto served = serve(service.server());
   Client& c = connect();
   send(c, "F");
@@ -370,7 +402,7 @@ TEST_F(LwipTransportTest, AReadingClientGetsTheWholeFloodInOrder) {
 }
 
 TEST_F(LwipTransportTest, AClientThatStopsReadingIsDroppedAndTheOthersCarryOn) {
-  TestService service({"test", 0, 4, "busy\r\n"}, make_test_session());
+  TestService service(test_config(4), make_test_session());
   auto served = serve(service.server());
   Client& stalled = connect();
   Client& other = connect();
@@ -387,6 +419,34 @@ TEST_F(LwipTransportTest, AClientThatStopsReadingIsDroppedAndTheOthersCarryOn) {
   }
   send(other, "P");
   EXPECT_TRUE(wait([&] { return other.received == "PONG\n"; }));
+}
+
+TEST_F(LwipTransportTest, ImmutableDataLargerThanTheBufferGoesOutByReferenceInOrder) {
+  TestService service(test_config(4), make_test_session());
+  auto served = serve(service.server());
+  Client& c = connect();
+  send(c, "S");
+  const std::size_t total = 5 + kAssetBytes + 5;
+  EXPECT_TRUE(wait([&] { return c.received.size() >= total || c.reset; }));
+  ASSERT_EQ(c.received.size(), total);
+  EXPECT_EQ(c.received.substr(0, 5), "HEAD\n");
+  EXPECT_EQ(c.received.compare(5, kAssetBytes, kAsset.data(), kAssetBytes), 0);
+  EXPECT_EQ(c.received.substr(5 + kAssetBytes), "TAIL\n");
+  CoreLock lock;
+  EXPECT_EQ(service.server().stats().dropped_backlog, 0u);
+}
+
+TEST_F(LwipTransportTest, WithoutTheImmutablePredicateALargeWriteDropsTheClient) {
+  ServerConfig config = test_config(4);
+  config.is_immutable = nullptr;  // 50 KB cannot be copied into a 1 KB buffer
+  TestService service(config, make_test_session());
+  auto served = serve(service.server());
+  Client& c = connect();
+  send(c, "S");
+  EXPECT_TRUE(wait([&] { return c.reset; }));
+  CoreLock lock;
+  EXPECT_EQ(service.server().stats().dropped_backlog, 1u);
+  EXPECT_EQ(service.server().client_count(), 0u);
 }
 
 }  // namespace

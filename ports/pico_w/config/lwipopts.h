@@ -16,6 +16,9 @@
 #define MEMP_NUM_TCP_SEG 32
 #define MEMP_NUM_ARP_QUEUE 10
 #define PBUF_POOL_SIZE 24
+// Pbufs that reference data in flash: the web UI's files go out without a
+// copy (lwip_transport.hpp, ServerConfig::is_immutable).
+#define MEMP_NUM_PBUF 32
 
 // Connections: 4 clients on each of up to 4 protocol ports, plus refused
 // clients and pcbs in TIME_WAIT. Listeners: one per protocol port.
