@@ -92,6 +92,8 @@ void Wifi::start_access_point() {
   state_ = State::kAccessPoint;
   std::printf("rotord: access point '%s' (%s)\n", kApSsid, open ? "open" : "WPA2");
   log_address("access point", CYW43_ITF_AP);
+  if (!dhcp_.start(&cyw43_state.netif[CYW43_ITF_AP]))
+    std::printf("rotord: DHCP server did not start; clients need a fixed 192.168.4.x address\n");
 }
 
 void Wifi::log_address(const char* what, int itf) {

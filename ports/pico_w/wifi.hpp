@@ -1,10 +1,13 @@
 #pragma once
 // Wi-Fi bring-up for the Pico W: join the configured network as a station;
 // when there is no network configured, or it cannot be joined within the
-// timeout, open the access point `rotord-setup` instead. Stepped from the
-// main loop like everything else: nothing here blocks.
+// timeout, open the access point `rotord-setup` (192.168.4.1, with a small
+// DHCP server) instead. Stepped from the main loop like everything else.
+// The AP stays until the next boot: station retries while the AP runs are
+// not implemented.
 #include <cstdint>
 
+#include "dhcp_server.hpp"
 #include "util/time.hpp"
 
 namespace rotord::pico_w {
@@ -34,6 +37,7 @@ class Wifi {
   static void log_address(const char* what, int itf);
 
   Config config_;
+  lwip_port::DhcpServer dhcp_;  ///< hands out addresses on the setup AP
   State state_ = State::kOff;
   Millis join_started_ = 0;
   int last_status_ = 0;

@@ -14,7 +14,9 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "dhcp_server.hpp"
 #include "fake_rotator.hpp"
 #include "lwip_transport.hpp"
 // Debian's lwipopts.h declares the core-lock functions outside lwIP's own
@@ -25,6 +27,7 @@ extern "C" {
 #include "lwip/netif.h"
 #include "lwip/tcp.h"
 #include "lwip/tcpip.h"
+#include "lwip/udp.h"
 }
 #include "protocol/wrc_session.hpp"
 
@@ -251,7 +254,13 @@ class LwipTransportTest : public ::testing::Test {
     n->name[0] = 't';
     n->name[1] = 'l';
     n->mtu = 1500;
-    n->output = [](netif*, pbuf*, const ip4_addr_t*) -> err_t { return ERR_OK; };
+    // What would go on the wire (broadcasts: the DHCP server's replies).
+    n->output = [](netif*, pbuf* p, const ip4_addr_t*) -> err_t {
+      std::string packet(p->tot_len, '\0');
+      pbuf_copy_partial(p, packet.data(), p->tot_len, 0);
+      wire().push_back(std::move(packet));
+      return ERR_OK;
+    };
     return ERR_OK;
   }
 
@@ -291,6 +300,12 @@ class LwipTransportTest : public ::testing::Test {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     return false;
+  }
+
+  /// Packets the netif sent out, oldest first (read with the core lock held).
+  static std::vector<std::string>& wire() {
+    static std::vector<std::string> packets;
+    return packets;
   }
 
   netif netif_{};
@@ -447,6 +462,157 @@ TEST_F(LwipTransportTest, WithoutTheImmutablePredicateALargeWriteDropsTheClient)
   CoreLock lock;
   EXPECT_EQ(service.server().stats().dropped_backlog, 1u);
   EXPECT_EQ(service.server().client_count(), 0u);
+}
+
+// --- DHCP server for the setup access point ----------------------------------
+
+/// A DHCP client's message from `mac`: type, optional requested address.
+std::string dhcp_message(std::uint8_t type, std::uint8_t mac_last, std::uint32_t requested = 0,
+                         std::uint32_t server_id = 0) {
+  std::string m(300, '\0');
+  m[0] = 1;  // BOOTREQUEST
+  m[1] = 1;
+  m[2] = 6;
+  m[4] = 0x12;  // xid
+  m[7] = static_cast<char>(mac_last);
+  const char mac[6] = {0x02, 0x00, 0x00, 0x00, 0x00, static_cast<char>(mac_last)};
+  m.replace(28, 6, mac, 6);
+  const char cookie[4] = {0x63, static_cast<char>(0x82), 0x53, 0x63};
+  m.replace(236, 4, cookie, 4);
+  std::size_t o = 240;
+  auto put32 = [&](std::uint32_t v) {
+    for (int shift = 24; shift >= 0; shift -= 8) m[o++] = static_cast<char>(v >> shift);
+  };
+  m[o++] = 53;
+  m[o++] = 1;
+  m[o++] = static_cast<char>(type);
+  if (requested != 0) {
+    m[o++] = 50;
+    m[o++] = 4;
+    put32(requested);
+  }
+  if (server_id != 0) {
+    m[o++] = 54;
+    m[o++] = 4;
+    put32(server_id);
+  }
+  m[o++] = static_cast<char>(255);
+  return m;
+}
+
+struct DhcpReply {
+  bool ok = false;
+  std::uint8_t type = 0;
+  std::uint32_t your_ip = 0;
+  std::uint8_t mac_last = 0;
+};
+
+/// Parses the last broadcast on the wire as IPv4 + UDP + DHCP.
+DhcpReply parse_reply(const std::string& packet) {
+  DhcpReply r;
+  const auto u8 = [&](std::size_t i) { return static_cast<std::uint8_t>(packet[i]); };
+  if (packet.size() < 20) return r;
+  const std::size_t ip_header = (u8(0) & 0x0F) * 4u;
+  const std::size_t d = ip_header + 8;  // UDP header
+  if (packet.size() < d + 241 || u8(ip_header + 2) != 0 || u8(ip_header + 3) != 68) return r;
+  const auto be32 = [&](std::size_t i) {
+    return (std::uint32_t{u8(i)} << 24) | (std::uint32_t{u8(i + 1)} << 16) |
+           (std::uint32_t{u8(i + 2)} << 8) | u8(i + 3);
+  };
+  r.your_ip = be32(d + 16);
+  r.mac_last = u8(d + 28 + 5);
+  for (std::size_t i = d + 240; i + 2 < packet.size() && u8(i) != 255; i += 2u + u8(i + 1)) {
+    if (u8(i) == 53) r.type = u8(i + 2);
+  }
+  r.ok = u8(d) == 2;
+  return r;
+}
+
+class DhcpServerTest : public LwipTransportTest {
+ protected:
+  static constexpr std::uint32_t kServer = 0x0A000001;  // 10.0.0.1, the netif
+
+  void SetUp() override {
+    LwipTransportTest::SetUp();
+    CoreLock lock;
+    ASSERT_TRUE(dhcp_.start(&netif_));
+    client_ = udp_new();
+    ASSERT_NE(client_, nullptr);
+    ASSERT_EQ(udp_bind(client_, IP_ANY_TYPE, 68), ERR_OK);
+  }
+  void TearDown() override {
+    {
+      CoreLock lock;
+      udp_remove(client_);
+      dhcp_.stop();
+    }
+    LwipTransportTest::TearDown();
+  }
+
+  /// Sends a client message to the server (looped back: it is addressed to
+  /// the netif) and returns the server's broadcast answer, if any.
+  DhcpReply exchange(const std::string& message) {
+    std::size_t before = 0;
+    {
+      CoreLock lock;
+      before = wire().size();
+      pbuf* p = pbuf_alloc(PBUF_TRANSPORT, static_cast<u16_t>(message.size()), PBUF_RAM);
+      EXPECT_NE(p, nullptr);
+      pbuf_take(p, message.data(), static_cast<u16_t>(message.size()));
+      EXPECT_EQ(udp_sendto(client_, p, &addr_, 67), ERR_OK);
+      pbuf_free(p);
+    }
+    if (!wait([&] { return wire().size() > before; })) return {};
+    CoreLock lock;
+    return parse_reply(wire().back());
+  }
+
+  lwip_port::DhcpServer dhcp_;
+  udp_pcb* client_ = nullptr;
+};
+
+TEST_F(DhcpServerTest, OffersThenAcknowledgesAnAddressPerClient) {
+  const DhcpReply offer = exchange(dhcp_message(1, 0xA1));
+  ASSERT_TRUE(offer.ok);
+  EXPECT_EQ(offer.type, 2);               // OFFER
+  EXPECT_EQ(offer.your_ip, 0x0A000010u);  // 10.0.0.16
+  EXPECT_EQ(offer.mac_last, 0xA1);
+
+  const DhcpReply ack = exchange(dhcp_message(3, 0xA1, offer.your_ip, kServer));
+  ASSERT_TRUE(ack.ok);
+  EXPECT_EQ(ack.type, 5);  // ACK
+  EXPECT_EQ(ack.your_ip, offer.your_ip);
+
+  // Another client gets the next address; the first keeps its own.
+  EXPECT_EQ(exchange(dhcp_message(1, 0xB2)).your_ip, 0x0A000011u);
+  EXPECT_EQ(exchange(dhcp_message(1, 0xA1)).your_ip, 0x0A000010u);
+}
+
+TEST_F(DhcpServerTest, RefusesAnAddressThatIsNotTheClientsLease) {
+  const DhcpReply nak = exchange(dhcp_message(3, 0xC3, 0x0A000063 /* 10.0.0.99 */, kServer));
+  ASSERT_TRUE(nak.ok);
+  EXPECT_EQ(nak.type, 6);  // NAK
+  EXPECT_EQ(nak.your_ip, 0u);
+}
+
+TEST_F(DhcpServerTest, IgnoresRequestsForAnotherServer) {
+  std::size_t before = 0;
+  {
+    CoreLock lock;
+    before = wire().size();
+    const std::string request = dhcp_message(3, 0xD4, 0x0A000010, 0x0A0000FE);
+    pbuf* p = pbuf_alloc(PBUF_TRANSPORT, static_cast<u16_t>(request.size()), PBUF_RAM);
+    ASSERT_NE(p, nullptr);
+    pbuf_take(p, request.data(), static_cast<u16_t>(request.size()));
+    ASSERT_EQ(udp_sendto(client_, p, &addr_, 67), ERR_OK);
+    pbuf_free(p);
+  }
+  // lwIP handles the loopback queue in order: once this DISCOVER is answered,
+  // the REQUEST before it was handled, and it must have produced nothing.
+  const DhcpReply offer = exchange(dhcp_message(1, 0xE5));
+  EXPECT_EQ(offer.type, 2);
+  CoreLock lock;
+  EXPECT_EQ(wire().size(), before + 1);
 }
 
 }  // namespace
