@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "lwip/apps/mdns.h"
 #include "lwip/ip4_addr.h"
 #include "lwip/netif.h"
 #include "pico/cyw43_arch.h"
@@ -35,6 +36,7 @@ const char* link_status_name(int status) {
 }  // namespace
 
 void Wifi::begin(Millis now) {
+  mdns_resp_init();
   if (config_.ssid[0] == '\0') {
     std::printf("rotord: no Wi-Fi network configured (ROTORD_WIFI_SSID)\n");
     start_access_point();
@@ -65,6 +67,7 @@ void Wifi::step(Millis now) {
     if (status == CYW43_LINK_UP) {
       state_ = State::kStation;
       log_address("station", CYW43_ITF_STA);
+      announce(CYW43_ITF_STA);
       return;
     }
     // A wrong password will not fix itself; a missing network might, but
@@ -92,8 +95,24 @@ void Wifi::start_access_point() {
   state_ = State::kAccessPoint;
   std::printf("rotord: access point '%s' (%s)\n", kApSsid, open ? "open" : "WPA2");
   log_address("access point", CYW43_ITF_AP);
+  announce(CYW43_ITF_AP);
   if (!dhcp_.start(&cyw43_state.netif[CYW43_ITF_AP]))
     std::printf("rotord: DHCP server did not start; clients need a fixed 192.168.4.x address\n");
+}
+
+void Wifi::announce(int itf) {
+  netif* n = &cyw43_state.netif[itf];
+  if (mdns_on_[itf]) {
+    mdns_resp_announce(n);  // a new address after a re-join
+    return;
+  }
+  if (mdns_resp_add_netif(n, kMdnsName) != ERR_OK) {
+    std::printf("rotord: mDNS not available on this interface\n");
+    return;
+  }
+  mdns_resp_add_service(n, kMdnsName, "_http", DNSSD_PROTO_TCP, kHttpPort, nullptr, nullptr);
+  mdns_on_[itf] = true;
+  std::printf("rotord: mDNS name %s.local\n", kMdnsName);
 }
 
 void Wifi::log_address(const char* what, int itf) {

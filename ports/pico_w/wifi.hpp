@@ -17,6 +17,9 @@ class Wifi {
   enum class State : std::uint8_t { kOff, kJoining, kStation, kAccessPoint };
 
   static constexpr const char* kApSsid = "rotord-setup";
+  /// mDNS host name: the web UI is at http://rotord.local/ on either network.
+  static constexpr const char* kMdnsName = "rotord";
+  static constexpr std::uint16_t kHttpPort = 80;
 
   struct Config {
     const char* ssid = "";
@@ -35,12 +38,14 @@ class Wifi {
   void start_join(Millis now);
   void start_access_point();
   static void log_address(const char* what, int itf);
+  void announce(int itf);
 
   Config config_;
   lwip_port::DhcpServer dhcp_;  ///< hands out addresses on the setup AP
   State state_ = State::kOff;
   Millis join_started_ = 0;
   int last_status_ = 0;
+  bool mdns_on_[2] = {false, false};  ///< per cyw43 interface (STA, AP)
 };
 
 }  // namespace rotord::pico_w

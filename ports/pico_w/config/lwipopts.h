@@ -36,6 +36,13 @@
 #define LWIP_DNS 1
 #define LWIP_DHCP 1
 #define LWIP_TCP_KEEPALIVE 1
+// mDNS (rotord.local, _http._tcp): multicast needs IGMP, the responder keeps
+// per-netif data and runs a few timers of its own (probing, announcing).
+#define LWIP_MDNS_RESPONDER 1
+#define LWIP_IGMP 1
+#define LWIP_NUM_NETIF_CLIENT_DATA 1
+#define MDNS_MAX_SERVICES 1
+#define MEMP_NUM_SYS_TIMEOUT (LWIP_NUM_SYS_TIMEOUT_INTERNAL + 8)
 #define TCP_MSS 1460
 #define TCP_WND (8 * TCP_MSS)
 #define TCP_SND_BUF (8 * TCP_MSS)
