@@ -13,6 +13,9 @@ using settings::Id;
 /// Formats one reply line into a fixed buffer and writes it with CR LF.
 class Reply {
  public:
+  // A fixed line goes out as it is (and a '%' in it stays a '%').
+  void send(ByteSink& out, const char* line) { send(out, "%s", line); }
+
   template <typename... Args>
   void send(ByteSink& out, const char* fmt, Args... args) {
     int n = std::snprintf(buf_, sizeof(buf_) - 2, fmt, args...);

@@ -8,6 +8,11 @@ out="${FUZZ_BUILD_DIR:-$src/build/fuzz}"
 runs="${FUZZ_RUNS:-20000}"
 mkdir -p "$out"
 core_sources=$(find "$src/core" -name '*.cpp' | sort)
+# The web UI is compiled into the core from a generated source; make it here
+# the same way core/web/assets.cmake does, so the core links on its own.
+cmake -DGZIP="$(command -v gzip)" -DWEB_DIR="$src/web" -DOUT="$out/web_assets.cpp" \
+  -P "$src/core/web/embed_assets.cmake"
+core_sources="$core_sources $out/web_assets.cpp"
 flags=(-std=c++20 -O1 -g -fno-exceptions -fno-rtti -fsanitize=fuzzer,address,undefined
        -fno-sanitize-recover=undefined -I"$src/core" -I"$src/tests/unit" -DROTORD_VERSION='"fuzz"')
 for target in "$src"/tests/fuzz/fuzz_*.cpp; do
