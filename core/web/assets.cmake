@@ -3,7 +3,7 @@
 # for both the Linux daemon and the Pico firmware. Included from
 # core/CMakeLists.txt after rotord_core is defined.
 find_program(ROTORD_GZIP gzip REQUIRED)
-set(ROTORD_WEB_DIR ${PROJECT_SOURCE_DIR}/web)
+set(ROTORD_WEB_DIR ${CMAKE_CURRENT_LIST_DIR}/../../web)  # the repo's web/, also when included from ports/pico_w
 file(GLOB ROTORD_WEB_FILES CONFIGURE_DEPENDS
   ${ROTORD_WEB_DIR}/*.html ${ROTORD_WEB_DIR}/*.css ${ROTORD_WEB_DIR}/*.js ${ROTORD_WEB_DIR}/*.svg)
 set(ROTORD_WEB_ASSETS_CPP ${CMAKE_CURRENT_BINARY_DIR}/web_assets.cpp)

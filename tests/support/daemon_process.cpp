@@ -11,7 +11,10 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <system_error>
 
 namespace rotord::testing {
 
@@ -44,6 +47,10 @@ DaemonProcess::DaemonProcess(std::vector<std::string> extra_args) {
                                    "--easycomm-port",
                                    std::to_string(ports_.easycomm)};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
+  // Each daemon gets its own settings directory, so tests never share saved
+  // settings with each other or with the user running them (~/.config).
+  char config_home[] = "/tmp/rotord-test-XXXXXX";
+  if (::mkdtemp(config_home) != nullptr) config_home_ = config_home;
   int pipe_fds[2];
   if (::pipe(pipe_fds) != 0) return;
   pid_ = ::fork();
@@ -51,6 +58,7 @@ DaemonProcess::DaemonProcess(std::vector<std::string> extra_args) {
     ::dup2(pipe_fds[1], 1);
     ::dup2(pipe_fds[1], 2);
     ::close(pipe_fds[0]);
+    if (!config_home_.empty()) ::setenv("XDG_CONFIG_HOME", config_home_.c_str(), 1);
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -116,6 +124,8 @@ int DaemonProcess::terminate() {
 DaemonProcess::~DaemonProcess() {
   terminate();
   if (out_fd_ >= 0) ::close(out_fd_);
+  std::error_code ignored;
+  if (!config_home_.empty()) std::filesystem::remove_all(config_home_, ignored);
 }
 
 TcpClient::TcpClient(int port) {

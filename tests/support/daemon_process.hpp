@@ -43,6 +43,7 @@ class DaemonProcess {
   int out_fd_ = -1;
   bool ready_ = false;
   std::string output_;
+  std::string config_home_;  ///< XDG_CONFIG_HOME of the child
 };
 
 /// A blocking loopback TCP client with timeouts, for protocol tests.
