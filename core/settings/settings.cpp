@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "settings/pin_rules.hpp"
 #include "util/text.hpp"
 
 namespace rotord::settings {
@@ -112,6 +113,7 @@ Rejection Settings::check_consistency() const {
   if (get(Id::kAzPwmSlowDuty) > get(Id::kAzPwmFastDuty) ||
       get(Id::kElPwmSlowDuty) > get(Id::kElPwmFastDuty))
     return {Error::kOutOfRange, "the slow PWM duty must not exceed the fast duty"};
+  if (const auto pins = check_pins(*this, detail_, sizeof detail_)) return {*pins, detail_};
   return {};
 }
 

@@ -66,7 +66,9 @@ class Settings {
   /// booleans ("true"/"false"/"1"/"0"), enum names or indices.
   Rejection set_from_text(Id id, std::string_view text);
   /// Checks the rules that span several settings (min below max, two
-  /// distinct calibration points...).
+  /// distinct calibration points, no two functions on one pin...). A reason
+  /// that names values (pin conflicts) points into this object and stays
+  /// valid until the next check on it.
   Rejection check_consistency() const;
 
   void reset_to_defaults();
@@ -79,6 +81,9 @@ class Settings {
  private:
   double values_[kCount];
   std::uint32_t revision_ = 0;
+  // The text of the last rule that names keys and values, e.g. "pins.btn_cw
+  // and pins.az_ma3 both use GPIO 2" (the core has no mutable globals).
+  mutable char detail_[96] = {};
 };
 
 /// Checks a value against a row without storing it.
