@@ -32,7 +32,7 @@ void Axis::configure(const AxisConfig& cfg) {
   const bool first = sensor_ == nullptr;
   cfg_ = cfg;
   if (pot_) {
-    pot_->set_calibration({cfg.pot_counts_lo, cfg.pot_deg_lo, cfg.pot_counts_hi, cfg.pot_deg_hi});
+    pot_->configure(cfg.pot_cal, cfg.pot_filter);
   }
   if (ma3_) ma3_->configure(cfg.ma3_bits, cfg.ma3_zero_deg, cfg.ma3_reverse);
   PositionSensor* chosen = nullptr;
@@ -90,7 +90,11 @@ Error Axis::jog(Direction dir, Millis until) {
     stop();
     return Error::kOk;
   }
-  if (blocked(dir)) return Error::kLimit;
+  // A new jog is refused where the status already reports the limit (within
+  // tolerance of the soft limit): a rotator that stopped 0.05 deg short of
+  // its limit must not creep on because of sensor noise.
+  const bool at_limit = dir == Direction::kCw ? status_.limit_cw : status_.limit_ccw;
+  if (blocked(dir) || (at_limit && state_ == AxisState::kIdle)) return Error::kLimit;
   if (request_.kind != RequestKind::kJog || request_.dir != dir) move_started_ = now_;
   request_ = {RequestKind::kJog, 0.0f, dir, until};
   arrived_ = false;
@@ -152,13 +156,14 @@ float Axis::initial_unwrap(float sensor_deg) const {
 
 void Axis::update_position(Millis now) {
   if (sensor_ == nullptr) return;
-  const PositionReading r = sensor_->read();
+  const PositionReading r = sensor_->read(now);
   raw_ = r.raw;
   if (!r.ok) {
     if (bad_since_ < 0) bad_since_ = now;
     if (now - bad_since_ >= kSensorGraceMs && state_ != AxisState::kFault) {
-      latch_fault(r.fault == SensorFault::kOutOfRange ? AxisFault::kSensorRange
-                                                      : AxisFault::kSensorLost);
+      latch_fault(r.fault == SensorFault::kOutOfRange    ? AxisFault::kSensorRange
+                  : r.fault == SensorFault::kImplausible ? AxisFault::kSensorJump
+                                                         : AxisFault::kSensorLost);
     }
     return;
   }

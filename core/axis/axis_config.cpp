@@ -1,5 +1,7 @@
 #include "axis/axis_config.hpp"
 
+#include "settings/pot_table.hpp"
+
 namespace rotord {
 
 using settings::Id;
@@ -24,10 +26,8 @@ AxisConfig axis_config_from(const settings::Settings& s, AxisId axis) {
     c.pwm_slow_duty = s.f(Id::kAzPwmSlowDuty);
     c.pwm_fast_duty = s.f(Id::kAzPwmFastDuty);
     c.sensor = static_cast<SensorType>(s.i(Id::kAzSensor));
-    c.pot_counts_lo = s.f(Id::kAzPotCalLoCounts);
-    c.pot_deg_lo = s.f(Id::kAzPotCalLoDeg);
-    c.pot_counts_hi = s.f(Id::kAzPotCalHiCounts);
-    c.pot_deg_hi = s.f(Id::kAzPotCalHiDeg);
+    c.pot_cal = settings::pot_calibration_from(s, axis);
+    c.pot_filter = {s.i(Id::kAzPotSamples), s.b(Id::kAzPotMedian), s.i(Id::kAzPotLowpassMs)};
     c.ma3_zero_deg = s.f(Id::kAzMa3ZeroDeg);
     c.ma3_reverse = s.b(Id::kAzMa3Reverse);
     c.ma3_bits = s.i(Id::kAzMa3Bits) == 0 ? 10 : 12;
@@ -51,10 +51,8 @@ AxisConfig axis_config_from(const settings::Settings& s, AxisId axis) {
     c.pwm_slow_duty = s.f(Id::kElPwmSlowDuty);
     c.pwm_fast_duty = s.f(Id::kElPwmFastDuty);
     c.sensor = static_cast<SensorType>(s.i(Id::kElSensor));
-    c.pot_counts_lo = s.f(Id::kElPotCalLoCounts);
-    c.pot_deg_lo = s.f(Id::kElPotCalLoDeg);
-    c.pot_counts_hi = s.f(Id::kElPotCalHiCounts);
-    c.pot_deg_hi = s.f(Id::kElPotCalHiDeg);
+    c.pot_cal = settings::pot_calibration_from(s, axis);
+    c.pot_filter = {s.i(Id::kElPotSamples), s.b(Id::kElPotMedian), s.i(Id::kElPotLowpassMs)};
     c.ma3_zero_deg = s.f(Id::kElMa3ZeroDeg);
     c.ma3_reverse = s.b(Id::kElMa3Reverse);
     c.ma3_bits = s.i(Id::kElMa3Bits) == 0 ? 10 : 12;

@@ -2,6 +2,8 @@
 #include <cstdint>
 
 #include "axis/axis_id.hpp"
+#include "sensors/pot_calibration.hpp"
+#include "sensors/pot_filter.hpp"
 #include "settings/settings.hpp"
 
 namespace rotord {
@@ -31,10 +33,8 @@ struct AxisConfig {
   float pwm_fast_duty = 1.0f;
 
   SensorType sensor = SensorType::kPot;
-  float pot_counts_lo = 0.0f;
-  float pot_deg_lo = 0.0f;
-  float pot_counts_hi = 4095.0f;
-  float pot_deg_hi = 360.0f;
+  PotCalibration pot_cal;
+  PotFilterConfig pot_filter;
   float ma3_zero_deg = 0.0f;
   bool ma3_reverse = false;
   int ma3_bits = 12;

@@ -19,7 +19,7 @@ std::optional<int> ma3_decode_code(const hal::PwmPeriod& period, int bits) {
   return static_cast<int>(code);
 }
 
-PositionReading Ma3Sensor::read() {
+PositionReading Ma3Sensor::read(Millis /*now*/) {
   PositionReading r;
   const auto code = ma3_decode_code(input_.read(), bits_);
   if (!code) {

@@ -20,7 +20,7 @@ class Ma3Sensor final : public PositionSensor {
     zero_deg_ = zero_deg;
     reverse_ = reverse;
   }
-  PositionReading read() override;
+  PositionReading read(Millis now) override;
   bool single_turn() const override { return true; }
 
  private:

@@ -1,12 +1,15 @@
 #pragma once
 #include <cstdint>
 
+#include "util/time.hpp"
+
 namespace rotord {
 
 enum class SensorFault : std::uint8_t {
   kNone,
-  kNoSignal,    ///< no PWM edges (MA3 unplugged), no I2C answer
-  kOutOfRange,  ///< ADC at a rail: open or shorted wiper
+  kNoSignal,     ///< no PWM edges (MA3 unplugged), no I2C answer
+  kOutOfRange,   ///< ADC at a rail: open or shorted wiper
+  kImplausible,  ///< the reading disagrees with itself (noise burst, glitching PWM)
 };
 
 /// One decoded position sample, in the sensor's own frame (no offset).
@@ -20,7 +23,8 @@ struct PositionReading {
 class PositionSensor {
  public:
   virtual ~PositionSensor() = default;
-  virtual PositionReading read() = 0;
+  /// One reading at `now` (filters that work in real time need it).
+  virtual PositionReading read(Millis now) = 0;
   /// True for sensors that repeat every 360 deg (MA3, magnetometer); the axis
   /// unwraps them into the mechanical range.
   virtual bool single_turn() const = 0;

@@ -1,38 +1,31 @@
 #pragma once
 #include "hal/analog_in.hpp"
 #include "sensors/position_sensor.hpp"
+#include "sensors/pot_calibration.hpp"
+#include "sensors/pot_filter.hpp"
 
 namespace rotord {
 
-/// Two-point linear calibration: counts_lo read at deg_lo, counts_hi at deg_hi.
-struct PotCalibration {
-  float counts_lo = 0.0f;
-  float deg_lo = 0.0f;
-  float counts_hi = 4095.0f;
-  float deg_hi = 360.0f;
-
-  float to_deg(float counts) const {
-    return deg_lo + (counts - counts_lo) * (deg_hi - deg_lo) / (counts_hi - counts_lo);
-  }
-};
-
-/// Potentiometer wiper on an ADC. Each read takes kSamples conversions and
-/// averages the middle half (a trimmed mean: rejects single spikes like a
-/// median, averages white noise like a mean).
+/// Potentiometer wiper on an ADC. Each reading oversamples (a burst of
+/// conversions, spikes dropped, the rest averaged), then the readings pass
+/// a median-of-three and an optional low-pass, and the calibration table
+/// turns counts into degrees.
 class PotSensor final : public PositionSensor {
  public:
-  static constexpr int kSamples = 8;
   /// Codes this close to either rail mean an open or shorted pot.
   static constexpr int kRailMarginCounts = 8;
 
   explicit PotSensor(hal::AnalogIn& adc) : adc_(adc) {}
+  void configure(const PotCalibration& cal, const PotFilterConfig& filter);
   void set_calibration(const PotCalibration& cal) { cal_ = cal; }
-  PositionReading read() override;
+  PositionReading read(Millis now) override;
   bool single_turn() const override { return false; }
 
  private:
   hal::AnalogIn& adc_;
   PotCalibration cal_;
+  PotFilterConfig filter_config_;
+  PotFilter filter_;
 };
 
 }  // namespace rotord

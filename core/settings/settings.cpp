@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "settings/pin_rules.hpp"
+#include "settings/pot_table.hpp"
 #include "util/text.hpp"
 
 namespace rotord::settings {
@@ -110,6 +111,17 @@ Rejection Settings::check_consistency() const {
   if (get(Id::kElPotCalLoCounts) == get(Id::kElPotCalHiCounts) ||
       get(Id::kElPotCalLoDeg) == get(Id::kElPotCalHiDeg))
     return {Error::kOutOfRange, "the two elevation calibration points must differ"};
+  for (const AxisId axis : {AxisId::kAz, AxisId::kEl}) {
+    const PotCalibration cal = pot_calibration_from(*this, axis);
+    const int bad = cal.first_bad_point();
+    if (bad < 0) continue;
+    std::snprintf(detail_, sizeof detail_,
+                  "%s: counts and degrees must rise or fall together from %s through the extra "
+                  "points to %s",
+                  pot_point_key(axis, bad, cal.count), pot_point_key(axis, 0, cal.count),
+                  pot_point_key(axis, cal.count - 1, cal.count));
+    return {Error::kOutOfRange, detail_};
+  }
   if (get(Id::kAzPwmSlowDuty) > get(Id::kAzPwmFastDuty) ||
       get(Id::kElPwmSlowDuty) > get(Id::kElPwmFastDuty))
     return {Error::kOutOfRange, "the slow PWM duty must not exceed the fast duty"};

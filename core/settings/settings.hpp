@@ -83,7 +83,7 @@ class Settings {
   std::uint32_t revision_ = 0;
   // The text of the last rule that names keys and values, e.g. "pins.btn_cw
   // and pins.az_ma3 both use GPIO 2" (the core has no mutable globals).
-  mutable char detail_[96] = {};
+  mutable char detail_[160] = {};
 };
 
 /// Checks a value against a row without storing it.
