@@ -82,7 +82,9 @@ bool Daemon::start_controller() {
     return false;
   }
   const auto max_clients = static_cast<std::size_t>(settings_.i(settings::Id::kNetMaxClients));
-  for (auto& service : make_services(options_, *controller_, *api_, max_clients)) {
+  std::vector<ServiceConfig> services = make_services(options_, *controller_, *api_, max_clients);
+  if (!attach_serial_lines(services)) return false;
+  for (auto& service : services) {
     if (service.port == 0) continue;
     try {
       servers_.push_back(std::make_unique<TcpServer>(io_, bind, std::move(service)));
@@ -93,6 +95,61 @@ bool Daemon::start_controller() {
     }
     std::printf("rotord: %s listening on %s:%u\n", servers_.back()->name().c_str(),
                 options_.bind.c_str(), static_cast<unsigned>(servers_.back()->port()));
+  }
+  return true;
+}
+
+bool Daemon::attach_serial_lines(const std::vector<ServiceConfig>& services) {
+  auto find = [&](const std::string& key) -> const ServiceConfig* {
+    for (const auto& s : services) {
+      if (!s.key.empty() && s.key == key) return &s;
+    }
+    return nullptr;
+  };
+  if (!serial_lines_.empty()) {
+    for (auto& line : serial_lines_) {
+      if (const ServiceConfig* service = find(line->spec().personality))
+        line->set_session_factory(service->make_session);
+    }
+    return true;
+  }
+  std::vector<SerialSpec> specs;
+  std::string error;
+  for (const auto& [texts, pty] : {std::pair{&options_.ptys, true}, {&options_.serials, false}}) {
+    for (const auto& text : *texts) {
+      auto spec = parse_serial_spec(text, pty, error);
+      if (!spec) {
+        std::fprintf(stderr, "rotord: %s %s\n", pty ? "--pty" : "--serial", error.c_str());
+        return false;
+      }
+      specs.push_back(*spec);
+    }
+  }
+  for (const auto& spec : specs) {
+    const ServiceConfig* service = find(spec.personality);
+    if (service == nullptr) {
+      std::string known;
+      for (const auto& s : services) {
+        if (!s.key.empty()) known += (known.empty() ? "" : ", ") + s.key;
+      }
+      std::fprintf(stderr, "rotord: unknown personality '%s' (known: %s)\n",
+                   spec.personality.c_str(), known.c_str());
+      return false;
+    }
+    auto line = std::make_unique<SerialTransport>(io_, service->name, spec, service->serial_baud,
+                                                  service->make_session);
+    if (!line->open(error)) {
+      std::fprintf(stderr, "rotord: %s: %s\n", service->name.c_str(), error.c_str());
+      return false;
+    }
+    if (spec.pty) {
+      std::printf("rotord: %s on pty %s%s%s\n", service->name.c_str(), line->path().c_str(),
+                  spec.path.empty() ? "" : " linked from ", spec.path.c_str());
+    } else {
+      std::printf("rotord: %s on serial %s at %d baud\n", service->name.c_str(),
+                  line->path().c_str(), line->baud());
+    }
+    serial_lines_.push_back(std::move(line));
   }
   return true;
 }
@@ -143,6 +200,7 @@ void Daemon::stop() {
   controller_->shutdown();
   timer_.cancel();
   servers_.clear();
+  serial_lines_.clear();
   io_.stop();
 }
 
@@ -171,6 +229,7 @@ void Daemon::on_tick() {
     controller_->tick(now_ms_);
   }
   for (auto& server : servers_) server->poll(now_ms_);
+  for (auto& line : serial_lines_) line->poll(now_ms_);
   if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();
 }
 

@@ -6,6 +6,7 @@
 #include "file_storage.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
+#include "serial_transport.hpp"
 #include "settings/settings.hpp"
 #include "sim/sim_rotator.hpp"
 #include "tcp_server.hpp"
@@ -35,6 +36,9 @@ class Daemon final : private web::RebootHook {
   bool request_reboot() override;
   void reboot();
   void add_service(ServiceConfig config);
+  /// Opens every --pty and --serial line the first time; after a controller
+  /// restart only gives them sessions on the new controller (paths stay).
+  bool attach_serial_lines(const std::vector<ServiceConfig>& services);
   void schedule_tick();
   void on_tick();
   void stop();
@@ -52,6 +56,7 @@ class Daemon final : private web::RebootHook {
   bool reboot_pending_ = false;
   std::chrono::steady_clock::time_point reboot_at_;
   std::vector<std::unique_ptr<TcpServer>> servers_;
+  std::vector<std::unique_ptr<SerialTransport>> serial_lines_;
   std::chrono::steady_clock::time_point wall_start_;
   Millis now_ms_ = 0;
 };

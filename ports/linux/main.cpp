@@ -29,6 +29,19 @@ int main(int argc, char** argv) {
   app.add_option("--easycomm-port", o.easycomm_port, "Easycomm II/III port (0 disables)")
       ->check(port)
       ->capture_default_str();
+  app.add_option("--seed-port", o.seed_port, "Seed $cmd,arg protocol port (0 disables)")
+      ->check(port)
+      ->capture_default_str();
+  app.add_option("--pty", o.ptys,
+                 "Serve a protocol on a new pseudo-terminal, PERSONALITY[:LINK] (easycomm, seed, "
+                 "...); rotord prints its path and makes LINK a symlink to it. Repeatable")
+      ->take_all()
+      ->allow_extra_args(false);
+  app.add_option("--serial", o.serials,
+                 "Serve a protocol on a serial device, PERSONALITY:DEVICE[:BAUD], e.g. "
+                 "easycomm:/dev/ttyUSB0:19200. Repeatable")
+      ->take_all()
+      ->allow_extra_args(false);
   CLI11_PARSE(app, argc, argv);
   rotord::linux_port::Daemon daemon(o);
   return daemon.run();

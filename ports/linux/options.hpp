@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace rotord::linux_port {
 
@@ -16,6 +17,9 @@ struct Options {
   int wrc_port = 1234;
   int gs232_port = 4601;
   int easycomm_port = 4602;
+  int seed_port = 0;
+  std::vector<std::string> ptys;     ///< --pty PERSONALITY[:LINK]
+  std::vector<std::string> serials;  ///< --serial PERSONALITY:DEVICE[:BAUD]
 };
 
 }  // namespace rotord::linux_port

@@ -1,5 +1,8 @@
 #include "services.hpp"
 
+#include "protocol/easycomm_session.hpp"
+#include "protocol/gs232_session.hpp"
+#include "protocol/seed_session.hpp"
 #include "protocol/wrc_session.hpp"
 #include "web/http_session.hpp"
 
@@ -16,6 +19,23 @@ std::vector<ServiceConfig> make_services(const Options& options, Controller& con
                       [&controller] {
                         return std::make_unique<protocol::WrcSession>(controller, ROTORD_VERSION);
                       }});
+  // Yaesu GS-232A/B; which one follows gs232.variant, read per command.
+  services.push_back({"Yaesu GS-232", static_cast<std::uint16_t>(options.gs232_port), max_clients,
+                      std::string(protocol::Gs232Session::kTooManyConnections), [&controller] {
+                        return std::make_unique<protocol::Gs232Session>(controller);
+                      }});
+  // Hamlib's Easycomm backends default to 19200 baud.
+  services.push_back({"Easycomm II/III", static_cast<std::uint16_t>(options.easycomm_port),
+                      max_clients, std::string(protocol::EasycommSession::kTooManyConnections),
+                      [&controller] {
+                        return std::make_unique<protocol::EasycommSession>(controller,
+                                                                           ROTORD_VERSION);
+                      },
+                      "easycomm", 19200});
+  services.push_back({"seed $cmd protocol", static_cast<std::uint16_t>(options.seed_port),
+                      max_clients, std::string(protocol::SeedSession::kTooManyConnections),
+                      [&controller] { return std::make_unique<protocol::SeedSession>(controller); },
+                      "seed", 9600});
   return services;
 }
 

@@ -18,6 +18,10 @@ struct ServiceConfig {
   std::size_t max_clients = 8;  ///< one more is refused
   std::string reject_message;   ///< sent to a refused client before the close
   SessionFactory make_session;
+  /// Short name for --pty / --serial (docs/serial.md), e.g. "easycomm";
+  /// empty: TCP only. A service with port 0 can still be served on a pty.
+  std::string key{};
+  int serial_baud = 9600;  ///< default baud rate of --serial for this protocol
 };
 
 /// Serves one protocol on one TCP port: a byte session per connection, all in
