@@ -19,11 +19,13 @@ std::vector<ServiceConfig> make_services(const Options& options, Controller& con
                       [&controller] {
                         return std::make_unique<protocol::WrcSession>(controller, ROTORD_VERSION);
                       }});
-  // Yaesu GS-232A/B; which one follows gs232.variant, read per command.
-  services.push_back({"Yaesu GS-232", static_cast<std::uint16_t>(options.gs232_port), max_clients,
-                      std::string(protocol::Gs232Session::kTooManyConnections), [&controller] {
-                        return std::make_unique<protocol::Gs232Session>(controller);
-                      }});
+  // Yaesu GS-232A/B; which one follows gs232.variant, read per command. The
+  // real controllers and Hamlib's backends run at 9600 baud.
+  services.push_back(
+      {"Yaesu GS-232", static_cast<std::uint16_t>(options.gs232_port), max_clients,
+       std::string(protocol::Gs232Session::kTooManyConnections),
+       [&controller] { return std::make_unique<protocol::Gs232Session>(controller); }, "gs232",
+       9600});
   // Hamlib's Easycomm backends default to 19200 baud.
   services.push_back({"Easycomm II/III", static_cast<std::uint16_t>(options.easycomm_port),
                       max_clients, std::string(protocol::EasycommSession::kTooManyConnections),
