@@ -22,6 +22,11 @@ void send(ByteSink& out, const char* fmt, auto... args) {
   out.write(std::string_view(buf, len));
 }
 
+/// A fixed reply goes out as it is (never used as a format).
+void send(ByteSink& out, const char* line) {
+  send(out, "%s", line);
+}
+
 void error(ByteSink& out, const char* reason) {
   send(out, "$ERR,%s", reason);
 }
