@@ -12,11 +12,6 @@ namespace {
 
 using settings::Id;
 
-/// The acknowledgement of a command without data: the real controller sends
-/// a CR after every command. Hamlib never reads it (it flushes the input
-/// before its next command), so it must go out at once, which it does.
-constexpr std::string_view kDone = "\r";
-
 constexpr int kMaxStepS = 999;
 constexpr int kMaxElDeg = 180;
 
@@ -48,6 +43,19 @@ void send(ByteSink& out, const char* fmt, Args... args) {
 }
 
 }  // namespace
+
+void Gs232Session::done(ByteSink& out) {
+  // The real controllers send a CR after every command. Hamlib's GS-232A/B
+  // backends never read it (they flush the input before the next command, 50
+  // ms later); the generic ones (602, 607, 608) write the next command at once
+  // and can take it for the position reply, hence gs232.ack_writes.
+  if (controller_.settings().b(Id::kGs232AckWrites)) out.write("\r");
+}
+
+void Gs232Session::reply(Error e, ByteSink& out) {
+  if (e != Error::kOk) return out.write(kError);
+  done(out);
+}
 
 bool Gs232Session::is_b() const {
   return controller_.settings().i(Id::kGs232Variant) == 1;
@@ -126,7 +134,7 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
         stop_list();
         const AxisId axis = cmd == 'R' || cmd == 'L' ? AxisId::kAz : AxisId::kEl;
         const Direction dir = cmd == 'R' || cmd == 'U' ? Direction::kCw : Direction::kCcw;
-        return out.write(controller_.move(axis, dir) == Error::kOk ? kDone : kError);
+        return reply(controller_.move(axis, dir), out);
       }
       break;
     case 'A':
@@ -136,7 +144,7 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
         const AxisId axis = cmd == 'A' ? AxisId::kAz : AxisId::kEl;
         if (axis == AxisId::kEl && !controller_.has_el()) return out.write(kError);
         controller_.move(axis, Direction::kNone);  // a faulted axis is stopped anyway
-        return out.write(kDone);
+        return done(out);
       }
       break;
     case 'S':
@@ -145,7 +153,7 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
         // stays stored for another T, as on the real controller.
         stop_list();
         controller_.stop();
-        return out.write(kDone);
+        return done(out);
       }
       break;
     case 'X':
@@ -153,7 +161,7 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
         // Four steps over the speed range: X1 and X2 are the slow half of a
         // two-speed drive, X3 and X4 the fast half. Takes effect while turning.
         controller_.set_speed_pct((arg[0] - '0') * 25);
-        return out.write(kDone);
+        return done(out);
       }
       break;
     case 'T':
@@ -163,7 +171,7 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
         list_index_ = 0;
         next_step_at_ = controller_.now() + step_ms_;
         running_ = go_to_point(0) == Error::kOk;
-        return out.write(running_ ? kDone : kError);
+        return running_ ? done(out) : out.write(kError);
       }
       break;
     case 'N':
@@ -185,14 +193,14 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
         // The GS-232B keeps the mode over power cycles; here it is a setting
         // (saved with the others when the web page saves).
         controller_.settings().set(Id::kGs232AzRange, arg == "36" ? 1 : 2);
-        return out.write(kDone);
+        return done(out);
       }
       break;
     case 'Z':
       if (b && bare) {
         // Ignored in 450 mode, as on the GS-232B.
         if (range() == gs232::AzRange::k360) south_centre_ = !south_centre_;
-        return out.write(kDone);
+        return done(out);
       }
       break;
     default:
@@ -240,7 +248,7 @@ void Gs232Session::position_command(bool with_el, std::string_view args, ByteSin
   if ((!with_el && count == 1) || (with_el && count == 2)) {
     if (fields[0] > full_scale || (with_el && fields[1] > kMaxElDeg)) return out.write(kError);
     const Error e = go(fields[0], with_el ? std::optional<int>(fields[1]) : std::nullopt);
-    return out.write(e == Error::kOk ? kDone : kError);
+    return reply(e, out);
   }
   // Long forms: Msss aaa aaa ... (at least two angles), Wsss aaa eee ... (pairs).
   const std::size_t points = with_el ? (count - 1) / 2 : count - 1;
@@ -252,7 +260,7 @@ void Gs232Session::position_command(bool with_el, std::string_view args, ByteSin
     list_size_ = 0;
     return out.write(kError);
   }
-  out.write(kDone);
+  done(out);
 }
 
 Error Gs232Session::go(int az_deg, std::optional<int> el_deg) {
@@ -319,7 +327,7 @@ void Gs232Session::calibration(AxisId axis, bool full_scale, ByteSink& out) {
 void Gs232Session::confirm(std::string_view answer, ByteSink& out) {
   const AxisId axis = pending_ == Pending::kAzOffset ? AxisId::kAz : AxisId::kEl;
   pending_ = Pending::kNone;
-  if (answer.size() != 1 || upper(answer[0]) != 'Y') return out.write(kDone);  // not confirmed
+  if (answer.size() != 1 || upper(answer[0]) != 'Y') return done(out);  // not confirmed
   const Error e = gs232::calibrate(controller_, axis, gs232::CalPoint::kOffset);
   out.write(e == Error::kOk ? std::string_view("Completed\r\n") : kError);
 }

@@ -11,7 +11,8 @@ namespace rotord::protocol {
 
 /// The Yaesu GS-232A / GS-232B computer interface (docs/protocols/gs232.md).
 /// Commands end in CR (LF and CR LF work too) and are not echoed. Commands
-/// without data answer a bare CR, data replies end in CR LF, errors answer
+/// without data answer a bare CR (gs232.ack_writes), data replies end in CR LF,
+/// errors answer
 /// `?>` CR LF. The variant (gs232.variant) is read for every command, so a
 /// change on the web page takes effect at once.
 class Gs232Session final : public Session {
@@ -45,6 +46,10 @@ class Gs232Session final : public Session {
     std::int16_t el_deg;  ///< -1 in an azimuth-only (M) list
   };
 
+  /// The end of a command without data: a bare CR (gs232.ack_writes).
+  void done(ByteSink& out);
+  /// done() when `e` is kOk, else the error prompt.
+  void reply(Error e, ByteSink& out);
   bool is_b() const;
   gs232::AzRange range() const;
   void position_command(bool with_el, std::string_view args, ByteSink& out);

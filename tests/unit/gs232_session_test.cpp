@@ -125,6 +125,15 @@ TEST_F(Gs232Test, EmptyCommandsAreIgnoredLikeHamlib603sExtraCr) {
   EXPECT_EQ(ask("X4\r\rR\r\r"), "\r\r");
 }
 
+TEST_F(Gs232Test, WithoutAcknowledgementsOnlyDataAndErrorsAreSent) {
+  // Hamlib 602 writes W and then C2 at once and would read a CR as the reply.
+  variant('A');
+  r.settings.set(Id::kGs232AckWrites, 0);
+  EXPECT_EQ(ask("W200 030\rS\rX2\rR\rA\rC2\r"), "+0100+0020\r\n");
+  EXPECT_EQ(ask("W999 000\r"), kErr);
+  EXPECT_EQ(ask("M001 100 200\rT\rN\r"), "+0001+0002\r\n");
+}
+
 TEST(Gs232Angles, ReportsOnTheScaleOrAsCompassBearing) {
   using gs232::AzRange;
   using gs232::report_az_deg;
