@@ -16,6 +16,8 @@ struct AxisIo {
   hal::DigitalIn* t1 = nullptr;         ///< threshold: azimuth is in the CW overlap (> 360)
   hal::DigitalIn* t2 = nullptr;         ///< threshold: azimuth is in the CCW overlap (< 0)
   DriveSink* drive = nullptr;
+  hal::DigitalIn* button_fwd = nullptr;  ///< manual push button CW / UP
+  hal::DigitalIn* button_rev = nullptr;  ///< manual push button CCW / DOWN
 };
 
 }  // namespace rotord

@@ -24,7 +24,8 @@ Controller::Controller(settings::Settings& settings, const AxisIo& az_io, const 
     : settings_(settings),
       az_(AxisId::kAz, az_io),
       el_(AxisId::kEl, el_io),
-      has_el_(settings.b(Id::kElEnabled)) {
+      has_el_(settings.b(Id::kElEnabled)),
+      buttons_({az_io.button_fwd, az_io.button_rev}, {el_io.button_fwd, el_io.button_rev}) {
   apply_settings();
   speed_pct_ = settings_.i(Id::kSpeedPct);
   az_.set_speed_pct(speed_pct_);
@@ -34,6 +35,7 @@ Controller::Controller(settings::Settings& settings, const AxisIo& az_io, const 
 void Controller::apply_settings() {
   az_.configure(axis_config_from(settings_, AxisId::kAz));
   if (has_el_) el_.configure(axis_config_from(settings_, AxisId::kEl));
+  buttons_.configure(settings_.b(Id::kButtonsEnabled), settings_.i(Id::kButtonsDebounceMs));
   applied_revision_ = settings_.revision();
 }
 
@@ -46,12 +48,33 @@ void Controller::begin(Millis now) {
 void Controller::tick(Millis now) {
   now_ = now;
   if (settings_.revision() != applied_revision_) apply_settings();
+  apply_buttons(now);
   az_.tick(now);
   if (has_el_) el_.tick(now);
   const RotatorStatus s = status();
   if (mode_ != Mode::kIdle && !s.moving() && !s.az.has_target && !s.az.jogging &&
       !(has_el_ && (s.el.has_target || s.el.jogging)))
     mode_ = Mode::kIdle;
+}
+
+void Controller::apply_buttons(Millis now) {
+  const auto commands = buttons_.poll(now);
+  for (const AxisId axis : {AxisId::kAz, AxisId::kEl}) {
+    const ManualButtons::Command& c = commands[static_cast<std::size_t>(axis_index(axis))];
+    if (!c.changed) continue;
+    bool& mine = button_jog_[static_cast<std::size_t>(axis_index(axis))];
+    if (c.dir != Direction::kNone) {
+      // Refused moves (fault, limit, no elevation) simply do nothing; the
+      // status already shows why.
+      mine = move(axis, c.dir) == Error::kOk;
+      continue;
+    }
+    // Released: stop the jog the button started, but not a go-to or a jog
+    // that a client commanded since.
+    Axis& a = axis == AxisId::kAz ? az_ : el_;
+    if (mine && a.status().jogging) a.stop();
+    mine = false;
+  }
 }
 
 void Controller::shutdown() {

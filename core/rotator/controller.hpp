@@ -2,6 +2,7 @@
 #include <optional>
 
 #include "axis/axis.hpp"
+#include "input/manual_buttons.hpp"
 #include "settings/settings.hpp"
 
 namespace rotord {
@@ -78,11 +79,14 @@ class Controller {
 
  private:
   void apply_settings();
+  void apply_buttons(Millis now);
 
   settings::Settings& settings_;
   Axis az_;
   Axis el_;
   bool has_el_;
+  ManualButtons buttons_;
+  std::array<bool, kMaxAxes> button_jog_{};  // the jog on this axis came from a button
   std::uint32_t applied_revision_ = 0;
   Mode mode_ = Mode::kIdle;
   int speed_pct_ = 50;

@@ -126,6 +126,8 @@ Rejection Settings::check_consistency() const {
       get(Id::kElPwmSlowDuty) > get(Id::kElPwmFastDuty))
     return {Error::kOutOfRange, "the slow PWM duty must not exceed the fast duty"};
   if (const auto pins = check_pins(*this, detail_, sizeof detail_)) return {*pins, detail_};
+  if (b(Id::kButtonsEnabled) && (i(Id::kPinBtnCw) == kNoPin || i(Id::kPinBtnCcw) == kNoPin))
+    return {Error::kOutOfRange, "buttons.enabled needs pins.btn_cw and pins.btn_ccw"};
   return {};
 }
 

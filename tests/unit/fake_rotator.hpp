@@ -51,10 +51,13 @@ struct FakeAxisHardware {
   FakeAdc adc;
   FakePwmIn ma3;
   FakeSwitch limit_cw, limit_ccw, t1, t2;
+  FakeSwitch button_fwd, button_rev;
   RecordingDrive drive;
 
   void set_deg(float deg) { adc.counts = static_cast<std::uint16_t>(deg * 10.0f + 0.5f); }
-  AxisIo io() { return {&adc, &ma3, &limit_cw, &limit_ccw, &t1, &t2, &drive}; }
+  AxisIo io() {
+    return {&adc, &ma3, &limit_cw, &limit_ccw, &t1, &t2, &drive, &button_fwd, &button_rev};
+  }
 };
 
 /// A controller on fake hardware: az 0..450 (pot 0.1 deg/count), optional el
