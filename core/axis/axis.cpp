@@ -25,6 +25,7 @@ bool active(hal::DigitalIn* in) {
 Axis::Axis(AxisId id, const AxisIo& io) : id_(id), io_(io) {
   if (io_.pot) pot_.emplace(*io_.pot);
   if (io_.ma3) ma3_.emplace(*io_.ma3);
+  if (io_.i2c) mag_.emplace(*io_.i2c);
 }
 
 void Axis::configure(const AxisConfig& cfg) {
@@ -35,9 +36,11 @@ void Axis::configure(const AxisConfig& cfg) {
     pot_->configure(cfg.pot_cal, cfg.pot_filter);
   }
   if (ma3_) ma3_->configure(cfg.ma3_bits, cfg.ma3_zero_deg, cfg.ma3_reverse);
+  if (mag_) mag_->configure(cfg.mag_chip, cfg.mag_cal, cfg.mag_lowpass_ms);
   PositionSensor* chosen = nullptr;
   if (cfg.sensor == SensorType::kPot && pot_) chosen = &*pot_;
   if (cfg.sensor == SensorType::kMa3 && ma3_) chosen = &*ma3_;
+  if (cfg.sensor == SensorType::kMag && mag_) chosen = &*mag_;
   if (chosen != sensor_) have_pos_ = false;  // another sensor: start afresh
   sensor_ = chosen;
   if (first) coast_s_ = cfg.coast_s;

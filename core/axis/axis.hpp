@@ -8,6 +8,7 @@
 #include "axis/axis_status.hpp"
 #include "axis/sequencer.hpp"
 #include "sensors/ma3_sensor.hpp"
+#include "sensors/mag_sensor.hpp"
 #include "sensors/pot_sensor.hpp"
 #include "util/error.hpp"
 #include "util/time.hpp"
@@ -84,6 +85,7 @@ class Axis {
   AxisConfig cfg_;
   std::optional<PotSensor> pot_;
   std::optional<Ma3Sensor> ma3_;
+  std::optional<MagSensor> mag_;
   PositionSensor* sensor_ = nullptr;
 
   AxisState state_ = AxisState::kIdle;

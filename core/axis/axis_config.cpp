@@ -31,6 +31,10 @@ AxisConfig axis_config_from(const settings::Settings& s, AxisId axis) {
     c.ma3_zero_deg = s.f(Id::kAzMa3ZeroDeg);
     c.ma3_reverse = s.b(Id::kAzMa3Reverse);
     c.ma3_bits = s.i(Id::kAzMa3Bits) == 0 ? 10 : 12;
+    c.mag_chip = static_cast<MagChip>(s.i(Id::kMagChip));
+    c.mag_cal = {s.f(Id::kMagXMin), s.f(Id::kMagXMax),           s.f(Id::kMagYMin),
+                 s.f(Id::kMagYMax), s.f(Id::kMagDeclinationDeg), s.b(Id::kMagReverse)};
+    c.mag_lowpass_ms = s.i(Id::kMagLowpassMs);
     c.stall_deg = s.f(Id::kAzStallDeg);
     c.stall_ms = s.i(Id::kAzStallMs);
     c.jump_deg = s.f(Id::kAzJumpDeg);

@@ -2,6 +2,7 @@
 #include <cstdint>
 
 #include "axis/axis_id.hpp"
+#include "sensors/magnetometer.hpp"
 #include "sensors/pot_calibration.hpp"
 #include "sensors/pot_filter.hpp"
 #include "settings/settings.hpp"
@@ -9,7 +10,7 @@
 namespace rotord {
 
 enum class DriveType : std::uint8_t { kRelay, kRelayTwoSpeed, kRelayVoltageSelect, kHBridge };
-enum class SensorType : std::uint8_t { kPot, kMa3 };
+enum class SensorType : std::uint8_t { kPot, kMa3, kMag };
 
 /// Everything one axis needs, derived from the settings table whenever it
 /// changes. Plain data: the axis never looks settings up by key in the tick.
@@ -38,6 +39,9 @@ struct AxisConfig {
   float ma3_zero_deg = 0.0f;
   bool ma3_reverse = false;
   int ma3_bits = 12;
+  MagChip mag_chip = MagChip::kQmc5883l;
+  MagCalibration mag_cal;
+  int mag_lowpass_ms = 0;
 
   float stall_deg = 2.0f;
   int stall_ms = 3000;

@@ -2,6 +2,7 @@
 #include "axis/drive_outputs.hpp"
 #include "hal/analog_in.hpp"
 #include "hal/digital_in.hpp"
+#include "hal/i2c.hpp"
 #include "hal/pwm_in.hpp"
 
 namespace rotord {
@@ -18,6 +19,7 @@ struct AxisIo {
   DriveSink* drive = nullptr;
   hal::DigitalIn* button_fwd = nullptr;  ///< manual push button CW / UP
   hal::DigitalIn* button_rev = nullptr;  ///< manual push button CCW / DOWN
+  hal::I2c* i2c = nullptr;               ///< magnetometer bus (azimuth)
 };
 
 }  // namespace rotord

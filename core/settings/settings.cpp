@@ -126,6 +126,10 @@ Rejection Settings::check_consistency() const {
       get(Id::kElPwmSlowDuty) > get(Id::kElPwmFastDuty))
     return {Error::kOutOfRange, "the slow PWM duty must not exceed the fast duty"};
   if (const auto pins = check_pins(*this, detail_, sizeof detail_)) return {*pins, detail_};
+  if (get(Id::kMagXMin) >= get(Id::kMagXMax) || get(Id::kMagYMin) >= get(Id::kMagYMax))
+    return {Error::kOutOfRange, "mag.x_min and mag.y_min must be below mag.x_max and mag.y_max"};
+  if (i(Id::kAzSensor) == 2 && (i(Id::kPinI2cSda) == kNoPin || i(Id::kPinI2cScl) == kNoPin))
+    return {Error::kOutOfRange, "az.sensor = mag needs pins.i2c_sda and pins.i2c_scl"};
   if (b(Id::kButtonsEnabled) && (i(Id::kPinBtnCw) == kNoPin || i(Id::kPinBtnCcw) == kNoPin))
     return {Error::kOutOfRange, "buttons.enabled needs pins.btn_cw and pins.btn_ccw"};
   return {};
