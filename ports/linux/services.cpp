@@ -2,6 +2,7 @@
 
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
+#include "protocol/rotctld_session.hpp"
 #include "protocol/seed_session.hpp"
 #include "protocol/wrc_session.hpp"
 #include "web/http_session.hpp"
@@ -19,6 +20,14 @@ std::vector<ServiceConfig> make_services(const Options& options, Controller& con
                       [&controller] {
                         return std::make_unique<protocol::WrcSession>(controller, ROTORD_VERSION);
                       }});
+  // Hamlib rotctld (Gpredict, SatNOGS, rotctl -m 2): no greeting, one write per reply.
+  services.push_back({"Hamlib rotctld", static_cast<std::uint16_t>(options.rotctld_port),
+                      max_clients, std::string(protocol::RotctldSession::kTooManyConnections),
+                      [&controller] {
+                        return std::make_unique<protocol::RotctldSession>(controller,
+                                                                          ROTORD_VERSION);
+                      },
+                      "rotctld"});
   // Yaesu GS-232A/B; which one follows gs232.variant, read per command. The
   // real controllers and Hamlib's backends run at 9600 baud.
   services.push_back(
