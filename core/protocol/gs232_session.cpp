@@ -327,7 +327,10 @@ void Gs232Session::calibration(AxisId axis, bool full_scale, ByteSink& out) {
 void Gs232Session::confirm(std::string_view answer, ByteSink& out) {
   const AxisId axis = pending_ == Pending::kAzOffset ? AxisId::kAz : AxisId::kEl;
   pending_ = Pending::kNone;
-  if (answer.size() != 1 || upper(answer[0]) != 'Y') return done(out);  // not confirmed
+  if (answer.size() == 1 && upper(answer[0]) == 'N') return done(out);  // declined
+  // Anything but Y or N is the next command, not an answer: a stop sent
+  // instead of an answer must still stop.
+  if (answer.size() != 1 || upper(answer[0]) != 'Y') return handle_line(answer, out);
   const Error e = gs232::calibrate(controller_, axis, gs232::CalPoint::kOffset);
   out.write(e == Error::kOk ? std::string_view("Completed\r\n") : kError);
 }

@@ -481,6 +481,13 @@ TEST_F(Gs232Test, GS232BOffsetCalibrationAsksFirst) {
   EXPECT_EQ(ask("n\r"), "\r");
   EXPECT_EQ(r.settings.get(Id::kAzPotCalLoCounts), before);
   EXPECT_EQ(ask("C\r"), "AZ=100\r\n");  // back to commands
+  // Another command instead of an answer is that command, and cancels.
+  EXPECT_EQ(ask("R\r"), "\r");
+  EXPECT_EQ(ask("O\r"), "are you sure?\r\n");
+  EXPECT_EQ(ask("S\r"), "\r");
+  expect_still();
+  EXPECT_EQ(ask("C\r"), "AZ=100\r\n");
+  EXPECT_EQ(r.settings.get(Id::kAzPotCalLoCounts), before);
   EXPECT_EQ(ask("O\r"), "are you sure?\r\n");
   EXPECT_EQ(ask("y\r"), "Completed\r\n");
   EXPECT_FLOAT_EQ(r.settings.f(Id::kAzPotCalLoCounts), az().raw);
