@@ -8,18 +8,24 @@
 // is scheduled by absolute deadline and the loop sleeps only until the next
 // deadline, so network traffic delays a tick by at most one poll.
 #include <cstdio>
+#include <optional>
 
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
 #include "lwip_transport.hpp"
+#include "ma3_pio.hpp"
 #include "pico/binary_info.h"
 #include "pico/cyw43_arch.h"
 #include "pico/stdlib.h"
+#include "pico_flash.hpp"
 #include "pico_hal.hpp"
 #include "protocol/wrc_session.hpp"
 #include "rotator/controller.hpp"
+#include "settings/pin_rules.hpp"
 #include "settings/settings.hpp"
+#include "storage/flash_slots.hpp"
 #include "web/http_session.hpp"
+#include "web/settings_json.hpp"
 #include "web/web_api.hpp"
 #include "wifi.hpp"
 #include "wifi_secrets.h"
@@ -42,21 +48,8 @@ constexpr std::size_t kHttpSlots = 4;
 // POST /api/reboot answers first, then the watchdog resets the chip.
 constexpr Millis kRebootDelayMs = 300;
 
-// Pin map. Azimuth: the defaults of issue 6 (relays CW/CCW 5/6, speed 7,
-// T1/T2 9/10, L1/L2 11/12, pot on GPIO 26, MA3 on GPIO 2). The elevation
-// and H-bridge pins are chosen not to collide with them. GPIO 23..25 and 29
-// belong to the Wi-Fi chip on the Pico W.
-// TODO(pin settings): read these from the settings table once it has pin rows.
-namespace pin {
-constexpr int kAzPot = 26, kElPot = 27;
-constexpr int kAzMa3 = 2, kElMa3 = 3;
-constexpr int kAzRelayCw = 5, kAzRelayCcw = 6, kAzSpeed = 7, kAzBrake = 8;
-constexpr int kAzT1 = 9, kAzT2 = 10, kAzLimitCcw = 11 /* L1 */, kAzLimitCw = 12 /* L2 */;
-constexpr int kAzPwmCw = 14, kAzPwmCcw = 15;
-constexpr int kElRelayUp = 16, kElRelayDown = 17, kElSpeed = 18;
-constexpr int kElLimitUp = 19, kElLimitDown = 22;
-constexpr int kElPwmUp = 20, kElPwmDown = 21;
-}  // namespace pin
+using settings::Id;
+using settings::kNoPin;
 
 /// The drive type's second output shares one pin: the fast/slow relay of a
 /// two-speed drive, or the voltage-select relay. Which one the axis writes
@@ -97,83 +90,146 @@ class Reboot final : public web::RebootHook {
   bool requested_ = false;
 };
 
-// Hardware objects: static storage, constructors touch nothing.
+// Hardware objects: static storage, built once the settings (and so the
+// pins) are known; an unwired pin (-1) leaves its object empty and the core
+// sees nullptr ("not fitted").
 settings::Settings g_settings;
+settings::Settings g_scratch;         // load_settings' working copy
 const settings::Settings g_defaults;  // the table's defaults, for the web's reset
+char g_boot_document[web::Api::kMaxDocumentBytes];
 Reboot g_reboot;
-PicoAdc g_az_pot(pin::kAzPot), g_el_pot(pin::kElPot);
-Ma3EdgeInput g_az_ma3(pin::kAzMa3), g_el_ma3(pin::kElMa3);
-PicoSwitch g_az_t1(pin::kAzT1), g_az_t2(pin::kAzT2);
-PicoSwitch g_az_limit_cw(pin::kAzLimitCw), g_az_limit_ccw(pin::kAzLimitCcw);
-PicoSwitch g_el_limit_up(pin::kElLimitUp), g_el_limit_down(pin::kElLimitDown);
-PicoDriveSink g_az_drive(drive_pins(0, pin::kAzRelayCw, pin::kAzRelayCcw, pin::kAzSpeed,
-                                    pin::kAzBrake, pin::kAzPwmCw, pin::kAzPwmCcw));
-PicoDriveSink g_el_drive(drive_pins(0, pin::kElRelayUp, pin::kElRelayDown, pin::kElSpeed, kNoPin,
-                                    pin::kElPwmUp, pin::kElPwmDown));
+PicoFlash g_flash;
+FlashSlots g_storage(g_flash);
+std::optional<PicoAdc> g_az_pot, g_el_pot;
+std::optional<Ma3PioInput> g_az_ma3_pio, g_el_ma3_pio;
+std::optional<Ma3EdgeInput> g_az_ma3_irq, g_el_ma3_irq;
+std::optional<PicoSwitch> g_az_t1, g_az_t2, g_az_limit_cw, g_az_limit_ccw;
+std::optional<PicoSwitch> g_el_limit_up, g_el_limit_down;
+std::optional<PicoSwitch> g_btn_cw, g_btn_ccw, g_btn_up, g_btn_down;
+std::optional<PicoI2c> g_i2c;
+std::optional<PicoDriveSink> g_az_drive, g_el_drive;
 
-// The wiring, readable from the .uf2 or the board with `picotool info -a`.
-void declare_pins() {
-  // clang-format off
-  bi_decl(bi_1pin_with_name(pin::kAzRelayCw, "az relay CW"));
-  bi_decl(bi_1pin_with_name(pin::kAzRelayCcw, "az relay CCW"));
-  bi_decl(bi_1pin_with_name(pin::kAzSpeed, "az speed / voltage select"));
-  bi_decl(bi_1pin_with_name(pin::kAzBrake, "az brake"));
-  bi_decl(bi_1pin_with_name(pin::kAzT1, "az T1 (pull-up, active low)"));
-  bi_decl(bi_1pin_with_name(pin::kAzT2, "az T2 (pull-up, active low)"));
-  bi_decl(bi_1pin_with_name(pin::kAzLimitCcw, "az L1 CCW limit (pull-up, active low)"));
-  bi_decl(bi_1pin_with_name(pin::kAzLimitCw, "az L2 CW limit (pull-up, active low)"));
-  bi_decl(bi_1pin_with_name(pin::kAzPot, "az pot (ADC0)"));
-  bi_decl(bi_1pin_with_name(pin::kAzMa3, "az MA3 PWM (az.sensor=ma3)"));
-  bi_decl(bi_2pins_with_names(pin::kAzPwmCw, "az H-bridge CW", pin::kAzPwmCcw, "az H-bridge CCW"));
-  bi_decl(bi_1pin_with_name(pin::kElPot, "el pot (ADC1)"));
-  bi_decl(bi_1pin_with_name(pin::kElMa3, "el MA3 PWM (el.sensor=ma3)"));
-  bi_decl(bi_2pins_with_names(pin::kElRelayUp, "el relay UP", pin::kElRelayDown, "el relay DOWN"));
-  bi_decl(bi_1pin_with_name(pin::kElSpeed, "el speed / voltage select"));
-  bi_decl(bi_2pins_with_names(pin::kElLimitUp, "el UP limit", pin::kElLimitDown, "el DOWN limit"));
-  bi_decl(bi_2pins_with_names(pin::kElPwmUp, "el H-bridge UP", pin::kElPwmDown, "el H-bridge DOWN"));
-  // clang-format on
+/// Builds the object for a wired pin and returns it, or nullptr.
+template <class T, class... Args>
+T* fit(std::optional<T>& slot, int gpio, Args&&... args) {
+  if (gpio == kNoPin) return nullptr;
+  slot.emplace(gpio, args...);
+  return &*slot;
+}
+
+PicoSwitch* fit_switch(std::optional<PicoSwitch>& slot, int gpio) {
+  PicoSwitch* s = fit(slot, gpio);
+  if (s != nullptr) s->begin();
+  return s;
+}
+
+/// The MA3 input of one axis: a PIO state machine, or the GPIO edge
+/// interrupt when none is free. Only for an axis that uses the MA3, so an
+/// unwired pin can never load the CPU.
+hal::PwmIn* fit_ma3(std::optional<Ma3PioInput>& pio, std::optional<Ma3EdgeInput>& irq, int gpio,
+                    const char* axis) {
+  if (gpio == kNoPin) return nullptr;
+  if (fit(pio, gpio)->begin()) {
+    std::printf("rotord: %s MA3 on GPIO %d (PIO)\n", axis, gpio);
+    return &*pio;
+  }
+  fit(irq, gpio)->begin();
+  std::printf("rotord: %s MA3 on GPIO %d (edge interrupt: no free PIO state machine)\n", axis,
+              gpio);
+  return &*irq;
+}
+
+/// Settings from the flash slots over the table's defaults. Invalid stored
+/// settings (a pin conflict, a value a newer firmware refuses) leave the
+/// defaults in place; the stored copy stays in flash, and the next save goes
+/// to the other slot.
+web::LoadOutcome load_stored_settings() {
+  if (!g_flash.region_free()) return {};
+  return web::load_settings(g_storage, g_settings, g_scratch, g_boot_document,
+                            sizeof g_boot_document);
+}
+
+void report_settings(const web::LoadOutcome& r) {
+  if (!g_flash.region_free()) {
+    std::printf("rotord: the program overlaps the settings flash; settings are not saved\n");
+    return;
+  }
+  switch (r.status) {
+    case web::LoadOutcome::kNothingStored:
+      std::printf("rotord: no settings in flash yet, using the defaults\n");
+      break;
+    case web::LoadOutcome::kLoaded:
+      std::printf("rotord: settings loaded from flash (slot %d, save #%lu)\n",
+                  g_storage.newest()->slot,
+                  static_cast<unsigned long>(g_storage.newest()->sequence));
+      break;
+    case web::LoadOutcome::kCorrupt:
+      std::printf("rotord: the settings in flash are invalid (%s%s%s); running on the defaults\n",
+                  r.key, r.key[0] != '\0' ? ": " : "", r.reason);
+      break;
+  }
 }
 
 [[noreturn]] void run() {
-  // 1. Outputs off before anything that can take time or fail.
-  g_az_drive.begin();
-  g_el_drive.begin();
-  declare_pins();
+  // 1. Outputs off. Until the pins are known every GPIO is still an input
+  // with its reset pull-down (relays off); the settings come first because
+  // they say which pins are outputs, and reading them takes milliseconds.
+  settings::Settings& settings = g_settings;
+  const web::LoadOutcome loaded = load_stored_settings();
+  const auto p = [&settings](Id id) { return settings.i(id); };
+  g_az_drive.emplace(drive_pins(p(Id::kAzDrive), p(Id::kPinAzCw), p(Id::kPinAzCcw),
+                                p(Id::kPinAzSpeed), p(Id::kPinAzBrake), p(Id::kPinAzPwmCw),
+                                p(Id::kPinAzPwmCcw)));
+  g_el_drive.emplace(drive_pins(p(Id::kElDrive), p(Id::kPinElUp), p(Id::kPinElDown),
+                                p(Id::kPinElSpeed), kNoPin, p(Id::kPinElPwmUp),
+                                p(Id::kPinElPwmDown)));
+  g_az_drive->begin();
+  const bool has_el = settings.b(Id::kElEnabled);
+  if (has_el) g_el_drive->begin();
 
   stdio_init_all();
   std::printf("rotord %s (Pico W)%s\n", ROTORD_VERSION,
               watchdog_caused_reboot() ? ": restarted by the watchdog" : "");
+  report_settings(loaded);
 
-  // 2. Settings. TODO(flash settings): load them from the two flash slots
-  // (core/storage/flash_slots, not there yet); until then the table's
-  // defaults apply at every boot.
-  settings::Settings& settings = g_settings;
-  const int az_drive = settings.i(settings::Id::kAzDrive);
-  const int el_drive = settings.i(settings::Id::kElDrive);
-  g_az_drive.configure(drive_pins(az_drive, pin::kAzRelayCw, pin::kAzRelayCcw, pin::kAzSpeed,
-                                  pin::kAzBrake, pin::kAzPwmCw, pin::kAzPwmCcw));
-  g_el_drive.configure(drive_pins(el_drive, pin::kElRelayUp, pin::kElRelayDown, pin::kElSpeed,
-                                  kNoPin, pin::kElPwmUp, pin::kElPwmDown));
-
-  // 3. Inputs. The MA3 interrupt is only enabled for an axis that uses it,
-  // so an unwired pin can never load the CPU.
-  const bool has_el = settings.b(settings::Id::kElEnabled);
-  g_az_pot.begin();
-  g_az_t1.begin();
-  g_az_t2.begin();
-  g_az_limit_cw.begin();
-  g_az_limit_ccw.begin();
-  if (settings.i(settings::Id::kAzSensor) == 1) g_az_ma3.begin();
-  if (has_el) {
-    g_el_pot.begin();
-    g_el_limit_up.begin();
-    g_el_limit_down.begin();
-    if (settings.i(settings::Id::kElSensor) == 1) g_el_ma3.begin();
+  // 2. Inputs, from the pins.* settings.
+  AxisIo az_io, el_io;
+  az_io.drive = &*g_az_drive;
+  if (PicoAdc* adc = fit(g_az_pot, p(Id::kPinAzPot))) {
+    adc->begin();
+    az_io.pot = adc;
   }
-  const AxisIo az_io{&g_az_pot, &g_az_ma3, &g_az_limit_cw, &g_az_limit_ccw,
-                     &g_az_t1,  &g_az_t2,  &g_az_drive};
-  const AxisIo el_io{&g_el_pot, &g_el_ma3, &g_el_limit_up, &g_el_limit_down,
-                     nullptr,   nullptr,   &g_el_drive};
+  az_io.t1 = fit_switch(g_az_t1, p(Id::kPinAzT1));
+  az_io.t2 = fit_switch(g_az_t2, p(Id::kPinAzT2));
+  az_io.limit_ccw = fit_switch(g_az_limit_ccw, p(Id::kPinAzL1));
+  az_io.limit_cw = fit_switch(g_az_limit_cw, p(Id::kPinAzL2));
+  if (settings.i(Id::kAzSensor) == static_cast<int>(SensorType::kMa3))
+    az_io.ma3 = fit_ma3(g_az_ma3_pio, g_az_ma3_irq, p(Id::kPinAzMa3), "az");
+  if (settings.i(Id::kAzSensor) == static_cast<int>(SensorType::kMag)) {
+    if (PicoI2c* bus = fit(g_i2c, p(Id::kPinI2cSda), p(Id::kPinI2cScl))) {
+      bus->begin();
+      az_io.i2c = bus;
+    }
+  }
+  if (settings.b(Id::kButtonsEnabled)) {
+    az_io.button_fwd = fit_switch(g_btn_cw, p(Id::kPinBtnCw));
+    az_io.button_rev = fit_switch(g_btn_ccw, p(Id::kPinBtnCcw));
+  }
+  if (has_el) {
+    el_io.drive = &*g_el_drive;
+    if (PicoAdc* adc = fit(g_el_pot, p(Id::kPinElPot))) {
+      adc->begin();
+      el_io.pot = adc;
+    }
+    el_io.limit_cw = fit_switch(g_el_limit_up, p(Id::kPinElLimitUp));
+    el_io.limit_ccw = fit_switch(g_el_limit_down, p(Id::kPinElLimitDown));
+    if (settings.i(Id::kElSensor) == static_cast<int>(SensorType::kMa3))
+      el_io.ma3 = fit_ma3(g_el_ma3_pio, g_el_ma3_irq, p(Id::kPinElMa3), "el");
+    if (settings.b(Id::kButtonsEnabled)) {
+      el_io.button_fwd = fit_switch(g_btn_up, p(Id::kPinBtnUp));
+      el_io.button_rev = fit_switch(g_btn_down, p(Id::kPinBtnDown));
+    }
+  }
   static Controller controller(settings, az_io, el_io);
   controller.begin(now_ms());
 
@@ -186,13 +242,13 @@ void declare_pins() {
                     ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000}});
   auto make_wrc = [] { return protocol::WrcSession(controller, ROTORD_VERSION); };
   static lwip_port::StaticService<protocol::WrcSession, kWrcSlots, decltype(make_wrc)> wrc(
-      {"WRC text protocol", kWrcPort,
-       static_cast<std::size_t>(settings.i(settings::Id::kNetMaxClients)),
+      {"WRC text protocol", kWrcPort, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
        protocol::WrcSession::kTooManyConnections},
       make_wrc);
-  // TODO(flash settings): give the API the flash storage so that POST
-  // /api/settings persists; with nullptr it changes the settings in RAM only.
-  static web::Api api(web::ApiContext{controller, nullptr, &g_defaults, &g_reboot, ROTORD_VERSION});
+  // POST /api/settings persists to the flash slots (RAM only when the
+  // program image would overlap them).
+  hal::Storage* const storage = g_flash.region_free() ? &g_storage : nullptr;
+  static web::Api api(web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION});
   auto make_http = [] { return web::HttpSession(api); };
   lwip_port::ServerConfig http_config;
   http_config.name = "web UI and REST API";

@@ -5,6 +5,7 @@
 #include "hardware/adc.h"
 #include "hardware/clocks.h"
 #include "hardware/gpio.h"
+#include "hardware/i2c.h"
 #include "hardware/pwm.h"
 #include "hardware/sync.h"
 #include "pico/time.h"
@@ -109,6 +110,37 @@ hal::PwmPeriod Ma3EdgeInput::read() {
   restore_interrupts(saved);
   if (time_us_32() - last_edge > kTimeoutUs) period.valid = false;
   return period;
+}
+
+// --- I2C -----------------------------------------------------------------------------
+
+namespace {
+i2c_inst_t* i2c_block(int sda) {
+  return (sda / 2) % 2 == 0 ? i2c0 : i2c1;  // RP2040 pin mux
+}
+}  // namespace
+
+void PicoI2c::begin() {
+  i2c_init(i2c_block(sda_), kBaudHz);
+  for (const int gpio : {sda_, scl_}) {
+    gpio_set_function(pin(gpio), GPIO_FUNC_I2C);
+    gpio_pull_up(pin(gpio));
+  }
+}
+
+bool PicoI2c::write(std::uint8_t address, const std::uint8_t* data, std::size_t length) {
+  return i2c_write_timeout_us(i2c_block(sda_), address, data, length, false, kTimeoutUs) ==
+         static_cast<int>(length);
+}
+
+bool PicoI2c::write_read(std::uint8_t address, const std::uint8_t* wdata, std::size_t wlength,
+                         std::uint8_t* rdata, std::size_t rlength) {
+  i2c_inst_t* bus = i2c_block(sda_);
+  if (i2c_write_timeout_us(bus, address, wdata, wlength, true /* repeated start */, kTimeoutUs) !=
+      static_cast<int>(wlength))
+    return false;
+  return i2c_read_timeout_us(bus, address, rdata, rlength, false, kTimeoutUs) ==
+         static_cast<int>(rlength);
 }
 
 // --- Outputs -------------------------------------------------------------------------

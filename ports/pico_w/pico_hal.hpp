@@ -8,6 +8,7 @@
 #include "axis/drive_outputs.hpp"
 #include "hal/analog_in.hpp"
 #include "hal/digital_in.hpp"
+#include "hal/i2c.hpp"
 #include "hal/pwm_in.hpp"
 
 namespace rotord::pico_w {
@@ -44,7 +45,7 @@ class PicoSwitch final : public hal::DigitalIn {
 /// The MA3's PWM output timed from GPIO edge interrupts: each rising edge
 /// closes a period (high time = fall - previous rise, low time = rise - fall).
 /// The core decodes the duty ratio, so the encoder's +-10 % clock drift does
-/// not matter. Used until the PIO decoder (ma3_pwm.pio, drivers work) exists.
+/// not matter. The fallback when no PIO state machine is free (ma3_pio.hpp).
 class Ma3EdgeInput final : public hal::PwmIn {
  public:
   /// No edge for this long means the encoder is unplugged (a 10-bit MA3's
@@ -70,6 +71,25 @@ class Ma3EdgeInput final : public hal::PwmIn {
   volatile bool have_period_ = false;
   volatile bool seen_rise_ = false;
   volatile bool seen_fall_ = false;
+};
+
+/// An I2C bus on an SDA/SCL pin pair (the settings check that they belong to
+/// one RP2040 I2C block). 100 kHz, internal pull-ups as a fallback for
+/// breakout boards without their own; every transfer has a timeout, so a
+/// stuck bus costs one tick, never a hang.
+class PicoI2c final : public hal::I2c {
+ public:
+  static constexpr unsigned kBaudHz = 100'000;
+  static constexpr unsigned kTimeoutUs = 2'000;
+
+  PicoI2c(int sda, int scl) : sda_(sda), scl_(scl) {}
+  void begin();
+  bool write(std::uint8_t address, const std::uint8_t* data, std::size_t length) override;
+  bool write_read(std::uint8_t address, const std::uint8_t* wdata, std::size_t wlength,
+                  std::uint8_t* rdata, std::size_t rlength) override;
+
+ private:
+  int sda_, scl_;
 };
 
 /// Which pin each logical output of one axis drives; kNoPin = not wired.

@@ -1,0 +1,30 @@
+#pragma once
+// hal::Flash over the last sectors of the Pico W's 2 MB flash, for the
+// settings slots (core/storage/flash_slots). Erase and program run through
+// the SDK's flash_safe_execute, which keeps interrupts (and the other core,
+// if it ever runs) away from the flash while XIP is off.
+#include <cstddef>
+
+#include "hal/flash.hpp"
+
+namespace rotord::pico_w {
+
+class PicoFlash final : public hal::Flash {
+ public:
+  /// Two 8 KB slots: the settings document is ~4 KB today and grows with the
+  /// settings table; 4 KB slots would leave no headroom.
+  static constexpr std::size_t kRegionBytes = 16 * 1024;
+
+  /// True when the region lies after the program image (a larger image
+  /// would be overwritten by the first save).
+  bool region_free() const;
+
+  std::size_t size() const override { return kRegionBytes; }
+  std::size_t erase_size() const override;
+  std::size_t program_size() const override;
+  bool read(std::size_t offset, void* out, std::size_t length) override;
+  bool erase(std::size_t offset, std::size_t length) override;
+  bool program(std::size_t offset, const void* data, std::size_t length) override;
+};
+
+}  // namespace rotord::pico_w
