@@ -239,11 +239,15 @@ void RotctldSession::status_flags() {
   add(s.az.limit_ccw, "LIMIT_LEFT");
   add(s.az.limit_cw, "LIMIT_RIGHT");
   // Overlap: elevation past the zenith (a flip) or below the horizon,
-  // azimuth below 0 or beyond 360 (the unwrapped overlap zones).
-  add(s.el.present && s.el.position_deg > 90.0f, "OVERLAP_UP");
-  add(s.el.present && s.el.position_deg < 0.0f, "OVERLAP_DOWN");
-  add(!s.limits.az_continuous && s.az.position_deg < 0.0f, "OVERLAP_LEFT");
-  add(!s.limits.az_continuous && s.az.position_deg > 360.0f, "OVERLAP_RIGHT");
+  // azimuth below 0 or beyond 360 (the unwrapped overlap zones). Within the
+  // go-to tolerance of 0/90/360 counts as there, so sensor noise at a park
+  // position does not make the flags flicker.
+  const float az_tol = controller_.settings().f(Id::kAzToleranceDeg);
+  const float el_tol = controller_.settings().f(Id::kElToleranceDeg);
+  add(s.el.present && s.el.position_deg > 90.0f + el_tol, "OVERLAP_UP");
+  add(s.el.present && s.el.position_deg < -el_tol, "OVERLAP_DOWN");
+  add(!s.limits.az_continuous && s.az.position_deg < -az_tol, "OVERLAP_LEFT");
+  add(!s.limits.az_continuous && s.az.position_deg > 360.0f + az_tol, "OVERLAP_RIGHT");
   value("Status flags", "%.*s", static_cast<int>(n), flags);
 }
 
