@@ -19,6 +19,7 @@
 #include "pico/stdlib.h"
 #include "pico_flash.hpp"
 #include "pico_hal.hpp"
+#include "protocol/gs232_session.hpp"
 #include "protocol/wrc_session.hpp"
 #include "rotator/controller.hpp"
 #include "settings/pin_rules.hpp"
@@ -41,6 +42,8 @@ constexpr Millis kTickMs = 10;  // 100 Hz, as on Linux
 constexpr std::uint32_t kWatchdogMs = 2000;
 constexpr std::uint16_t kWrcPort = 1234;
 constexpr std::size_t kWrcSlots = 4;  // net.max_clients is clamped to this
+constexpr std::uint16_t kGs232Port = 4601;
+constexpr std::size_t kGs232Slots = 2;  // under 1 KB each; PstRotator or N1MM plus one
 constexpr std::uint16_t kHttpPort = 80;
 // A browser holds a page connection and the event stream, plus short API
 // requests; each HTTP session is ~6 KB of RAM (request head and body buffers).
@@ -245,6 +248,12 @@ void report_settings(const web::LoadOutcome& r) {
       {"WRC text protocol", kWrcPort, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
        protocol::WrcSession::kTooManyConnections},
       make_wrc);
+  // Yaesu GS-232A/B (gs232.variant) for PstRotator, N1MM+, HRD, Hamlib 601/603.
+  auto make_gs232 = [] { return protocol::Gs232Session(controller); };
+  static lwip_port::StaticService<protocol::Gs232Session, kGs232Slots, decltype(make_gs232)> gs232(
+      {"Yaesu GS-232", kGs232Port, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
+       protocol::Gs232Session::kTooManyConnections},
+      make_gs232);
   // POST /api/settings persists to the flash slots (RAM only when the
   // program image would overlap them).
   hal::Storage* const storage = g_flash.region_free() ? &g_storage : nullptr;
@@ -258,9 +267,9 @@ void report_settings(const web::LoadOutcome& r) {
   http_config.is_immutable = &in_program_flash;
   static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
       http_config, make_http);
-  // TODO(protocols): rotctld on 4533 and GS-232/Easycomm join here as
+  // TODO(protocols): rotctld on 4533 and Easycomm join here as
   // StaticServices once their sessions are in the core.
-  lwip_port::TcpServer* const servers[] = {&wrc.server(), &http.server()};
+  lwip_port::TcpServer* const servers[] = {&wrc.server(), &gs232.server(), &http.server()};
   if (network) {
     wifi.begin(now_ms());
     // lwIP listens on every address, so the servers work on the station and
