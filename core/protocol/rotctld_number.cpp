@@ -36,11 +36,11 @@ std::size_t number_prefix(std::string_view s) {
 
 }  // namespace
 
-bool scan_float(std::string_view token, double& out) {
+bool scan_float(std::string_view token, double& out, bool comma_is_point) {
   constexpr std::size_t kMaxChars = 48;
   std::array<char, kMaxChars> buf{};
   const std::size_t n = token.size() < kMaxChars ? token.size() : kMaxChars;
-  bool comma_done = false;
+  bool comma_done = !comma_is_point;
   for (std::size_t i = 0; i < n; ++i) {
     char c = token[i];
     if (c == ',' && !comma_done) {

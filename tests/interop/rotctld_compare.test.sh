@@ -87,6 +87,15 @@ STEPS = [
     (b"+V SPEED 2\n", True), (b"+v SPEED\n", True), (b"+\\set_conf min_az -180\n", True),
     (b"+C foo 1\n", True), (b"+w XYZ\n", True), (b"++S\n", True), (b"+;S\n", True),
     (b"+p\n", False), (b";p\n", False), (b"+_\n", False), (b"+s\n", False),
+    # locator helpers, edge cases included
+] + [(c.encode() + b"\n", True) for c in [
+    "L 2.0 51.0 6", "l JO01aa", "B 0 51 2 52", "A 10", "a 100", "D 51 30 0 0", "d 51.5",
+    "E 51 30.5 0", "e 51.5", "+L 2 51 6", ";l JO01aa", "+B 0 51 2 52", "+d -96.8333",
+    "d 270", "d -270", "d 180", "d -180", "e -0.5", "A 0", "A 180", "A 270", "A 400", "A -5",
+    "B 0 91 0 0", "B 0 0 0 0", "B 0 0 180 0", "B -74.0060 40.7128 139.6917 35.6895",
+    "L 2 51 12", "L 2 51 14", "L 2 51 1", "L -180 -90 6", "L 179.99 89.99 6", "l JO",
+    "l jo01AA55bb", "l ZZ", "l J", "l JO01AA55bb77xx", "D -51 -30 -15.5 1", "E 51 30,5 0",
+    "L 2,5 51 6", "\\qrb 0 51 2 52", "\\a_sp2a_lp 90", "\\d_sp2d_lp 1000"]
 ] + [((sep + "S\n").encode(), True) for sep in SEPARATORS] + [
     (b"1\n", False), (b"v ?\n", False),
 ]

@@ -271,6 +271,29 @@ TEST_F(RotctldTest, LimitFlagsAtTheEnds) {
   EXPECT_EQ(ask("s\n"), "LIMIT_UP LIMIT_RIGHT OVERLAP_UP OVERLAP_RIGHT \n");
 }
 
+TEST_F(RotctldTest, LocatorHelpersAsRotctl) {
+  EXPECT_EQ(ask("L 2.0 51.0 6\n"), "JO11AA\n");
+  EXPECT_EQ(ask("l JO01aa\n"), "0.041667\n51.020833\n");
+  EXPECT_EQ(ask("B 0 51 2 52\n"), "177.564346\n50.000000\n");
+  EXPECT_EQ(ask("A 10\n"), "190.000000\n");
+  EXPECT_EQ(ask("a 100\n"), "39932.000000\n");
+  EXPECT_EQ(ask("D 51 30 0 0\n"), "51.500000\n");
+  EXPECT_EQ(ask("d 51.5\n"), "51\n30\n0.000000\n0\n");
+  EXPECT_EQ(ask("d -96.8333\n"), "96\n49\n59.880000\n1\n");
+  EXPECT_EQ(ask("d 270\n"), "90\n0\n0.000000\n1\n");
+  EXPECT_EQ(ask("E 51 30.5 0\n"), "51.508333\n");
+  EXPECT_EQ(ask("e 51.5\n"), "51\n30.000000\n0\n");
+  EXPECT_EQ(ask("+L 2 51 6\n"), "lonlat2loc: 2 51 6\nLocator: JO11AA\nRPRT 0\n");
+  EXPECT_EQ(ask(";l JO01aa\n"),
+            "loc2lonlat: JO01aa;Longitude: 0.041667;Latitude: 51.020833;RPRT 0\n");
+  EXPECT_EQ(ask("B 0 0 180 0\n"), "20016.000000\n0.000000\n");  // antipodes
+  EXPECT_EQ(ask("L 2 51 12\n"), "JO11AA00AA00\n");
+  for (const char* bad : {"L 2 51 1\n", "L 2 51 14\n", "l ZZ\n", "l J\n", "A 400\n", "A -5\n",
+                          "B 0 91 0 0\n", "D x 1 1 0\n"}) {
+    EXPECT_EQ(ask(bad), "RPRT -1\n") << bad;
+  }
+}
+
 // ---- Extended Response Protocol ---------------------------------------------
 
 TEST_F(RotctldTest, ExtendedResponses) {
