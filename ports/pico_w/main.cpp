@@ -20,6 +20,7 @@
 #include "pico_flash.hpp"
 #include "pico_hal.hpp"
 #include "protocol/gs232_session.hpp"
+#include "protocol/rotctld_session.hpp"
 #include "protocol/wrc_session.hpp"
 #include "rotator/controller.hpp"
 #include "settings/pin_rules.hpp"
@@ -44,6 +45,10 @@ constexpr std::uint16_t kWrcPort = 1234;
 constexpr std::size_t kWrcSlots = 4;  // net.max_clients is clamped to this
 constexpr std::uint16_t kGs232Port = 4601;
 constexpr std::size_t kGs232Slots = 2;  // under 1 KB each; PstRotator or N1MM plus one
+constexpr std::uint16_t kRotctldPort = 4533;
+// ~2.6 KB each (a whole reply, the arguments, input held by \pause): Gpredict
+// or SatNOGS, a logger and a rotctl at once.
+constexpr std::size_t kRotctldSlots = 3;
 constexpr std::uint16_t kHttpPort = 80;
 // A browser holds a page connection and the event stream, plus short API
 // requests; each HTTP session is ~6 KB of RAM (request head and body buffers).
@@ -254,6 +259,13 @@ void report_settings(const web::LoadOutcome& r) {
       {"Yaesu GS-232", kGs232Port, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
        protocol::Gs232Session::kTooManyConnections},
       make_gs232);
+  // Hamlib rotctld for Gpredict, SatNOGS, rotctl -m 2 (docs/protocols/rotctld.md).
+  auto make_rotctld = [] { return protocol::RotctldSession(controller, ROTORD_VERSION); };
+  static lwip_port::StaticService<protocol::RotctldSession, kRotctldSlots, decltype(make_rotctld)>
+      rotctld(
+          {"Hamlib rotctld", kRotctldPort, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
+           protocol::RotctldSession::kTooManyConnections},
+          make_rotctld);
   // POST /api/settings persists to the flash slots (RAM only when the
   // program image would overlap them).
   hal::Storage* const storage = g_flash.region_free() ? &g_storage : nullptr;
@@ -267,9 +279,9 @@ void report_settings(const web::LoadOutcome& r) {
   http_config.is_immutable = &in_program_flash;
   static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
       http_config, make_http);
-  // TODO(protocols): rotctld on 4533 and Easycomm join here as
-  // StaticServices once their sessions are in the core.
-  lwip_port::TcpServer* const servers[] = {&wrc.server(), &gs232.server(), &http.server()};
+  // TODO(protocols): Easycomm joins here as a StaticService.
+  lwip_port::TcpServer* const servers[] = {&wrc.server(), &gs232.server(), &rotctld.server(),
+                                           &http.server()};
   if (network) {
     wifi.begin(now_ms());
     // lwIP listens on every address, so the servers work on the station and
