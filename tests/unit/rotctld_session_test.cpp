@@ -435,7 +435,11 @@ TEST_F(RotctldTest, FaultsAreRejected) {
   ASSERT_TRUE(status().any_fault());
   EXPECT_EQ(ask("P 200 20\n"), "RPRT -9\n");  // RIG_ERJCTED
   EXPECT_EQ(ask("K\n"), "RPRT -9\n");
+  EXPECT_EQ(ask("M CW 50\n"), "RPRT -9\n");
   EXPECT_FALSE(status().az.has_target);
+  // The last good reading is still reported (Gpredict keeps its display);
+  // the fault shows in the refused commands.
+  EXPECT_EQ(ask("p\n"), "100.00\n20.00\n");
   r.az.set_deg(100);
   r.run_ms(100);
   EXPECT_EQ(ask("R 1\n"), "RPRT 0\n");
