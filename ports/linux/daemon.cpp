@@ -30,7 +30,7 @@ bool Daemon::setup() {
   }
   defaults_ = settings_;
   load_settings();
-  sim_ = std::make_unique<sim::SimRotator>(*profile, options_.seed);
+  sim_ = std::make_unique<sim::SimRotator>(*profile, options_.sim_seed);
   std::printf("rotord %s: simulated rotator '%s' (%s), speedup %g\n", ROTORD_VERSION, profile->name,
               profile->description, options_.speedup);
   if (!start_controller()) return false;

@@ -11,7 +11,8 @@ int main(int argc, char** argv) {
   app.add_option("--speedup", o.speedup, "Run simulated time N times faster than the wall clock")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
-  app.add_option("--seed", o.seed, "Seed of the simulator's noise")->capture_default_str();
+  app.add_option("--sim-seed", o.sim_seed, "Seed of the simulator's noise (same seed, same run)")
+      ->capture_default_str();
   app.add_option("--bind", o.bind, "Address to listen on")->capture_default_str();
   const auto port = CLI::Range(0, 65535);
   app.add_option("--web-port", o.web_port, "Web UI and REST API port (0 disables)")

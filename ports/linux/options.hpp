@@ -10,7 +10,7 @@ struct Options {
   std::string config_path;
   std::string sim_profile = "g5500";
   double speedup = 1.0;
-  std::uint32_t seed = 1;
+  std::uint32_t sim_seed = 1;
   std::string bind = "0.0.0.0";
   int web_port = 8080;
   int rotctld_port = 4533;
