@@ -13,12 +13,25 @@ core_sources=$(find "$src/core" -name '*.cpp' | sort)
 cmake -DGZIP="$(command -v gzip)" -DWEB_DIR="$src/web" -DOUT="$out/web_assets.cpp" \
   -P "$src/core/web/embed_assets.cmake"
 core_sources="$core_sources $out/web_assets.cpp"
-flags=(-std=c++20 -O1 -g -fno-exceptions -fno-rtti -fsanitize=fuzzer,address,undefined
-       -fno-sanitize-recover=undefined -I"$src/core" -I"$src/tests/unit" -DROTORD_VERSION='"fuzz"')
+common=(-std=c++20 -O1 -g -fno-exceptions -fno-rtti -fno-sanitize-recover=undefined
+        -I"$src/core" -I"$src/tests/unit" -DROTORD_VERSION='"fuzz"')
+# The core is compiled once (instrumented for coverage, not linked with the
+# fuzzer's main) and archived; each target then compiles only itself.
+objdir="$out/core-objects"
+rm -rf "$objdir"
+mkdir -p "$objdir"
+echo "== core: build"
+printf '%s\n' $core_sources | xargs -P "$(nproc)" -I{} sh -c '
+  source="$1"; shift
+  clang++ "$@" -c "$source" -o "$0/$(echo "$source" | md5sum | cut -c1-16).o"' "$objdir" {} \
+  "${common[@]}" -fsanitize=fuzzer-no-link,address,undefined
+rm -f "$out/libcore_fuzz.a"
+ar rcs "$out/libcore_fuzz.a" "$objdir"/*.o
 for target in "$src"/tests/fuzz/fuzz_*.cpp; do
   name=$(basename "$target" .cpp)
   echo "== $name: build"
-  clang++ "${flags[@]}" "$target" $core_sources -o "$out/$name"
+  clang++ "${common[@]}" -fsanitize=fuzzer,address,undefined "$target" "$out/libcore_fuzz.a" \
+    -o "$out/$name"
   echo "== $name: $runs runs"
   mkdir -p "$out/$name.corpus"
   "$out/$name" -runs="$runs" -max_len=4096 -len_control=0 -seed=1 "$out/$name.corpus" 2>&1 | tail -n 3
