@@ -19,47 +19,13 @@
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "shell.hpp"
 
 namespace rotord::testing {
 namespace {
 
-struct Output {
-  int rc = -1;
-  std::string out;
-};
-
-/// Runs a shell command, returns its exit code and stdout+stderr.
-Output run(const std::string& command) {
-  Output r;
-  FILE* p = ::popen((command + " 2>&1").c_str(), "r");
-  if (p == nullptr) return r;
-  std::array<char, 512> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(p);
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::vector<double> numbers(const std::string& text) {
-  std::vector<double> v;
-  std::istringstream in(text);
-  std::string word;
-  while (in >> word) {
-    char* end = nullptr;
-    const double d = std::strtod(word.c_str(), &end);
-    if (end != word.c_str() && *end == '\0') v.push_back(d);
-  }
-  return v;
-}
-
 double angle_error(double a, double b) {
   return std::fabs(std::remainder(a - b, 360.0));
-}
-
-std::string temp_dir() {
-  char dir[] = "/tmp/rotord-ec-XXXXXX";
-  return ::mkdtemp(dir) != nullptr ? dir : "/tmp";
 }
 
 class EasycommHamlib : public ::testing::Test {
@@ -73,14 +39,15 @@ class EasycommHamlib : public ::testing::Test {
     tcp = "127.0.0.1:" + std::to_string(daemon->ports().easycomm);
   }
 
-  Output rotctl(int model, const std::string& where, const std::string& commands) {
-    return run("timeout 20 rotctl -m " + std::to_string(model) + " -r " + where + " " + commands);
+  CommandOutput rotctl(int model, const std::string& where, const std::string& commands) {
+    return run_command("timeout 20 rotctl -m " + std::to_string(model) + " -r " + where + " " +
+                       commands);
   }
 
   /// Reads the position through Hamlib: {az, el}, or empty on failure.
   std::vector<double> position(int model, const std::string& where) {
-    const Output r = rotctl(model, where, "p");
-    const std::vector<double> v = numbers(r.out);
+    const CommandOutput r = rotctl(model, where, "p");
+    const std::vector<double> v = numbers_in(r.out);
     if (r.rc != 0 || v.size() != 2) return {};
     return v;
   }
@@ -232,14 +199,15 @@ TEST_F(EasycommHamlib, BadInputOverTcpGetsAlarmsAndMovesNothing) {
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   EXPECT_TRUE(wait_until_still());
   // The same place, give or take the simulated pot's noise.
-  const std::vector<double> a = numbers(before.substr(2)), b = numbers(c.ask("AZ\n").substr(2));
+  const std::vector<double> a = numbers_in(before.substr(2)),
+                            b = numbers_in(c.ask("AZ\n").substr(2));
   ASSERT_FALSE(a.empty());
   ASSERT_FALSE(b.empty());
   EXPECT_NEAR(a[0], b[0], 0.5);
 }
 
 TEST_F(EasycommHamlib, PtyServesRotctlAcrossReopensAndSocat) {
-  const std::string dir = temp_dir();
+  const std::string dir = make_temp_dir("rotord-ec");
   const std::string link = dir + "/easycomm";
   start({"--pty", "easycomm:" + link});
   EXPECT_NE(daemon->output().find("Easycomm II/III on pty /dev/pts/"), std::string::npos)
@@ -254,7 +222,8 @@ TEST_F(EasycommHamlib, PtyServesRotctlAcrossReopensAndSocat) {
   EXPECT_NEAR(p[0], 100, 1.5);
   EXPECT_NEAR(p[1], 20, 1.5);
   // A plain program that opens the path like a COM port.
-  const Output s = run("printf 'AZ EL \\nVE\\n' | timeout 5 socat -t1 - " + link + ",raw,echo=0");
+  const CommandOutput s =
+      run_command("printf 'AZ EL \\nVE\\n' | timeout 5 socat -t1 - " + link + ",raw,echo=0");
   EXPECT_EQ(s.out.rfind("AZ", 0), 0u) << s.out;
   EXPECT_NE(s.out.find(" EL"), std::string::npos) << s.out;
   EXPECT_NE(s.out.find("\nVErotord-"), std::string::npos) << s.out;
@@ -293,7 +262,7 @@ class NullModem {
 };
 
 TEST_F(EasycommHamlib, SerialDeviceWithBaudRate) {
-  const std::string dir = temp_dir();
+  const std::string dir = make_temp_dir("rotord-ec");
   NullModem cable(dir);
   ASSERT_TRUE(std::filesystem::exists(cable.a));
   start({"--serial", "easycomm:" + cable.a + ":19200"});
@@ -321,7 +290,7 @@ TEST_F(EasycommHamlib, BadSerialOptionsStopTheDaemonWithAMessage) {
 }
 
 TEST_F(EasycommHamlib, SeedProtocolOverTcpAndPty) {
-  const std::string dir = temp_dir();
+  const std::string dir = make_temp_dir("rotord-ec");
   start({"--pty", "seed:" + dir + "/seed"});
   TcpClient c(seed_port);
   ASSERT_TRUE(c.connected());
@@ -335,8 +304,8 @@ TEST_F(EasycommHamlib, SeedProtocolOverTcpAndPty) {
   EXPECT_TRUE(wait_until_still());
   EXPECT_EQ(c.ask("$X,1\n"), "$ERR,UNKNOWN");
   EXPECT_EQ(c.ask("hello\n"), "$ERR,SYNTAX");
-  const Output s =
-      run("printf '$Q\\n$E\\n$R,ccw\\n$D\\n' | timeout 5 socat -t1 - " + dir + "/seed,raw,echo=0");
+  const CommandOutput s = run_command("printf '$Q\\n$E\\n$R,ccw\\n$D\\n' | timeout 5 socat -t1 - " +
+                                      dir + "/seed,raw,echo=0");
   EXPECT_EQ(s.out.rfind("$Q,", 0), 0u) << s.out;
   EXPECT_NE(s.out.find("$OK,E\r\n$OK,R,CCW\r\n$OK,D\r\n"), std::string::npos) << s.out;
   daemon->terminate();

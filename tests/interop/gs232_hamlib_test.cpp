@@ -20,51 +20,16 @@
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "shell.hpp"
 
 namespace rotord::testing {
 namespace {
-
-struct Output {
-  int rc = -1;
-  std::string out;
-};
-
-/// Runs a shell command, returns its exit code and stdout+stderr.
-Output run(const std::string& command) {
-  Output r;
-  FILE* p = ::popen((command + " 2>&1").c_str(), "r");
-  if (p == nullptr) return r;
-  std::array<char, 512> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(p);
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-/// The numbers rotctl printed, one per line.
-std::vector<double> numbers(const std::string& text) {
-  std::vector<double> v;
-  std::istringstream in(text);
-  std::string word;
-  while (in >> word) {
-    char* end = nullptr;
-    const double d = std::strtod(word.c_str(), &end);
-    if (end != word.c_str() && *end == '\0') v.push_back(d);
-  }
-  return v;
-}
-
-std::string temp_dir() {
-  char dir[] = "/tmp/rotord-gs232-XXXXXX";
-  return ::mkdtemp(dir) != nullptr ? dir : "/tmp";
-}
 
 class Gs232Hamlib : public ::testing::Test {
  protected:
   /// Starts rotord with gs232.variant and gs232.ack_writes from a settings file.
   void start(char variant, bool ack_writes = true, std::vector<std::string> extra = {}) {
-    dir = temp_dir();
+    dir = make_temp_dir("rotord-gs232");
     const std::string config = dir + "/settings.json";
     std::ofstream(config) << "{\"gs232.variant\": \"" << variant
                           << "\", \"gs232.ack_writes\": " << (ack_writes ? "true" : "false")
@@ -80,15 +45,15 @@ class Gs232Hamlib : public ::testing::Test {
     if (!dir.empty()) std::filesystem::remove_all(dir);
   }
 
-  Output rotctl(int model, const std::string& commands, const std::string& where = "") {
-    return run("timeout 20 rotctl -m " + std::to_string(model) + " -r " +
-               (where.empty() ? tcp : where) + " " + commands);
+  CommandOutput rotctl(int model, const std::string& commands, const std::string& where = "") {
+    return run_command("timeout 20 rotctl -m " + std::to_string(model) + " -r " +
+                       (where.empty() ? tcp : where) + " " + commands);
   }
 
   /// Reads the position through Hamlib: {az, el}, or empty on failure.
   std::vector<double> position(int model, const std::string& where = "") {
-    const Output r = rotctl(model, "p", where);
-    const std::vector<double> v = numbers(r.out);
+    const CommandOutput r = rotctl(model, "p", where);
+    const std::vector<double> v = numbers_in(r.out);
     if (r.rc != 0 || v.size() != 2) return {};
     return v;
   }
@@ -228,7 +193,7 @@ TEST_F(Gs232Hamlib, ParkAndResetAreNotOfferedByTheGs232Backends) {
   ASSERT_TRUE(wait_until_still());
   const double az = wrc_field("AZ");
   for (int model : {601, 603}) {
-    const Output k = rotctl(model, "K");
+    const CommandOutput k = rotctl(model, "K");
     EXPECT_NE(k.rc, 0);
     EXPECT_NE(k.out.find("Feature not available"), std::string::npos) << k.out;
   }
@@ -251,8 +216,8 @@ TEST_F(Gs232Hamlib, Model602GenericNeedsNoAcknowledgements) {
   // off, every C2 read gets the position, never a stray CR.
   start('A', false);
   for (int n = 0; n < 10; ++n) {
-    const Output r = rotctl(602, "P 200 20 p S p");
-    const std::vector<double> v = numbers(r.out);
+    const CommandOutput r = rotctl(602, "P 200 20 p S p");
+    const std::vector<double> v = numbers_in(r.out);
     ASSERT_EQ(v.size(), 4u) << r.out;
     EXPECT_GT(v[0], 1.0) << r.out;  // a misread reply leaves 0.00
     EXPECT_GT(v[2], 1.0) << r.out;
@@ -322,7 +287,7 @@ TEST_F(Gs232Hamlib, TimedListOverTcp) {
 }
 
 TEST_F(Gs232Hamlib, PtyServesRotctlAndAPlainTerminalProgram) {
-  const std::string pty_dir = temp_dir();
+  const std::string pty_dir = make_temp_dir("rotord-gs232");
   const std::string link = pty_dir + "/gs232";
   start('B', true, {"--pty", "gs232:" + link});
   ASSERT_TRUE(std::filesystem::is_symlink(link)) << daemon->output();
@@ -333,7 +298,8 @@ TEST_F(Gs232Hamlib, PtyServesRotctlAndAPlainTerminalProgram) {
   EXPECT_NEAR(p[0], 100, 1.5);
   EXPECT_NEAR(p[1], 20, 1.5);
   // A terminal program typing commands, as the manual's installer does.
-  const Output s = run("printf 'C2\\rX9\\rH3\\r' | timeout 5 socat -t1 - " + link + ",raw,echo=0");
+  const CommandOutput s =
+      run_command("printf 'C2\\rX9\\rH3\\r' | timeout 5 socat -t1 - " + link + ",raw,echo=0");
   // (After a leftover CR: rotctl exits without reading the one for its W.)
   EXPECT_EQ(s.out.find_first_not_of("\r\n"), s.out.find("AZ=")) << s.out;
   EXPECT_NE(s.out.find("\r\n?>\r\n---------- COMMAND LIST 3"), std::string::npos) << s.out;

@@ -20,39 +20,10 @@
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "shell.hpp"
 
 namespace rotord::testing {
 namespace {
-
-struct Output {
-  int rc = -1;
-  std::string out;
-};
-
-/// Runs a shell command, returns its exit code and stdout+stderr.
-Output run(const std::string& command) {
-  Output r;
-  FILE* p = ::popen((command + " 2>&1").c_str(), "r");
-  if (p == nullptr) return r;
-  std::array<char, 512> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(p);
-  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::vector<double> numbers(const std::string& text) {
-  std::vector<double> v;
-  std::istringstream in(text);
-  std::string word;
-  while (in >> word) {
-    char* end = nullptr;
-    const double d = std::strtod(word.c_str(), &end);
-    if (end != word.c_str() && *end == '\0') v.push_back(d);
-  }
-  return v;
-}
 
 void sleep_ms(int ms) {
   std::this_thread::sleep_for(std::chrono::milliseconds(ms));
@@ -66,13 +37,13 @@ class RotctldHamlib : public ::testing::Test {
     ASSERT_TRUE(daemon->ready()) << daemon->output();
     where = "127.0.0.1:" + std::to_string(daemon->ports().rotctld);
   }
-  Output rotctl(const std::string& commands) {
-    return run("timeout 20 rotctl -m 2 -r " + where + " " + commands);
+  CommandOutput rotctl(const std::string& commands) {
+    return run_command("timeout 20 rotctl -m 2 -r " + where + " " + commands);
   }
   /// Position as rotctl -m 2 reads it (the client parses our two `p` lines).
   std::vector<double> position() {
-    const Output r = rotctl("p");
-    const std::vector<double> v = numbers(r.out);
+    const CommandOutput r = rotctl("p");
+    const std::vector<double> v = numbers_in(r.out);
     return r.rc == 0 && v.size() == 2 ? v : std::vector<double>{};
   }
   /// Polls until the rotator is within 1.5 deg of az/el, up to 40 s of wall time.
@@ -93,11 +64,11 @@ class RotctldHamlib : public ::testing::Test {
 TEST_F(RotctldHamlib, ModelTwoLearnsTheLimitsFromDumpState) {
   start();
   // Outside the limits we report, model 2 refuses before anything is sent.
-  const Output refused = rotctl("P 451 20");
+  const CommandOutput refused = rotctl("P 451 20");
   EXPECT_NE(refused.rc, 0);
   EXPECT_NE(refused.out.find("range problem az=451.00(min=0.00,max=450.00)"), std::string::npos)
       << refused.out;
-  const Output flip_refused = rotctl("P 10 181");
+  const CommandOutput flip_refused = rotctl("P 10 181");
   EXPECT_NE(flip_refused.rc, 0) << flip_refused.out;
   // Inside them, even beyond model 2's defaults (-180..180, 0..90), it sends.
   EXPECT_EQ(rotctl("P 440 170").rc, 0);
@@ -106,7 +77,7 @@ TEST_F(RotctldHamlib, ModelTwoLearnsTheLimitsFromDumpState) {
 
 TEST_F(RotctldHamlib, SetAndReadPositionsThroughTheOverlapAndAFlip) {
   start();
-  const Output set = rotctl("P 420 150");
+  const CommandOutput set = rotctl("P 420 150");
   ASSERT_EQ(set.rc, 0) << set.out;
   TcpClient status(daemon->ports().rotctld);
   std::string flags;
@@ -163,11 +134,11 @@ TEST_F(RotctldHamlib, StopParkMoveResetInfo) {
   EXPECT_NEAR(parked[1], 0, 1.5);
   ASSERT_EQ(rotctl("M UP 20").rc, 0);  // rotctl sends "M 2 20"
   ASSERT_EQ(rotctl("R 1").rc, 0);      // reset stops it
-  const Output info = rotctl("_");
+  const CommandOutput info = rotctl("_");
   EXPECT_EQ(info.rc, 0);
   EXPECT_EQ(info.out.rfind("rotord ", 0), 0u) << info.out;
   // Several commands in one run: model 2 sends them on one connection.
-  const Output many = rotctl("P 30 10 p S _");
+  const CommandOutput many = rotctl("P 30 10 p S _");
   EXPECT_EQ(many.rc, 0) << many.out;
 }
 
@@ -193,7 +164,7 @@ TEST_F(RotctldHamlib, GpredictStyleClientTracksAMovingTargetWithoutDesync) {
     sleep_ms(10);
     ASSERT_TRUE(gpredict.send("p\n"));
     const std::string reply = gpredict.recv_once(3000);
-    const std::vector<double> v = numbers(reply);
+    const std::vector<double> v = numbers_in(reply);
     ASSERT_EQ(v.size(), 2u) << "cycle " << i << ": " << reply;
     ASSERT_EQ(std::count(reply.begin(), reply.end(), '\n'), 2) << reply;
     last_az = v[0];

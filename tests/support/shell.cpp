@@ -1,0 +1,42 @@
+#include "shell.hpp"
+
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+namespace rotord::testing {
+
+CommandOutput run_command(const std::string& command) {
+  CommandOutput r;
+  FILE* p = ::popen((command + " 2>&1").c_str(), "r");
+  if (p == nullptr) return r;
+  std::array<char, 512> buf{};
+  std::size_t n = 0;
+  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int status = ::pclose(p);
+  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::vector<double> numbers_in(const std::string& text) {
+  std::vector<double> v;
+  std::istringstream in(text);
+  std::string word;
+  while (in >> word) {
+    char* end = nullptr;
+    const double d = std::strtod(word.c_str(), &end);
+    if (end != word.c_str() && *end == '\0') v.push_back(d);
+  }
+  return v;
+}
+
+std::string make_temp_dir(const std::string& prefix) {
+  std::string path = "/tmp/" + prefix + "-XXXXXX";
+  return ::mkdtemp(path.data()) != nullptr ? path : "/tmp";
+}
+
+}  // namespace rotord::testing

@@ -1,0 +1,22 @@
+#pragma once
+// Running the real client programs (rotctl, socat) from interop tests.
+#include <string>
+#include <vector>
+
+namespace rotord::testing {
+
+struct CommandOutput {
+  int rc = -1;      ///< exit status, -1 when the command could not run or was killed
+  std::string out;  ///< stdout and stderr together
+};
+
+/// Runs a shell command to completion.
+CommandOutput run_command(const std::string& command);
+
+/// The words of `text` that are whole numbers, in order ("42.5\n-3\n" -> 42.5, -3).
+std::vector<double> numbers_in(const std::string& text);
+
+/// A new private directory under /tmp (for pty links and files); the caller removes it.
+std::string make_temp_dir(const std::string& prefix);
+
+}  // namespace rotord::testing
