@@ -41,6 +41,7 @@ void Controller::apply_settings() {
 
 void Controller::begin(Millis now) {
   now_ = now;
+  last_activity_ms_ = now;
   az_.begin(now);
   if (has_el_) el_.begin(now);
 }
@@ -55,6 +56,23 @@ void Controller::tick(Millis now) {
   if (mode_ != Mode::kIdle && !s.moving() && !s.az.has_target && !s.az.jogging &&
       !(has_el_ && (s.el.has_target || s.el.jogging)))
     mode_ = Mode::kIdle;
+  if (mode_ != Mode::kIdle || s.moving()) last_activity_ms_ = now;
+  park_when_idle_long_enough(now);
+}
+
+void Controller::note_command() {
+  last_activity_ms_ = now_;
+  auto_parked_ = false;
+}
+
+void Controller::park_when_idle_long_enough(Millis now) {
+  const int after_min = settings_.i(Id::kParkAfterIdleMin);
+  if (after_min <= 0 || auto_parked_) return;
+  if (now - last_activity_ms_ < static_cast<Millis>(after_min) * 60000) return;
+  // Once per idle spell: a refused park (latched fault) is not retried every
+  // tick, and a parked rotator is not nudged again every N minutes.
+  park();
+  auto_parked_ = true;
 }
 
 void Controller::apply_buttons(Millis now) {
@@ -97,6 +115,7 @@ std::optional<float> Controller::resolve_az(float az_deg, AzTarget mode) const {
 
 Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg,
                         AzTarget az_mode) {
+  note_command();
   if (el_deg && !has_el_) return Error::kNotSupported;
   std::optional<float> az_target;
   if (az_deg) {
@@ -122,6 +141,7 @@ Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg
 }
 
 Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman_ms) {
+  note_command();
   if (axis == AxisId::kEl && !has_el_) return Error::kNotSupported;
   if (speed_pct != -1 && (speed_pct < 1 || speed_pct > 100)) return Error::kOutOfRange;
   Axis& a = axis == AxisId::kAz ? az_ : el_;
@@ -132,6 +152,7 @@ Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman
 }
 
 void Controller::stop() {
+  note_command();
   az_.stop();
   el_.stop();
   mode_ = Mode::kIdle;

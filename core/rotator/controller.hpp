@@ -80,6 +80,9 @@ class Controller {
  private:
   void apply_settings();
   void apply_buttons(Millis now);
+  /// Any command restarts the idle time park.after_idle_min counts.
+  void note_command();
+  void park_when_idle_long_enough(Millis now);
 
   settings::Settings& settings_;
   Axis az_;
@@ -91,6 +94,8 @@ class Controller {
   Mode mode_ = Mode::kIdle;
   int speed_pct_ = 50;
   Millis now_ = 0;
+  Millis last_activity_ms_ = 0;  // last command, or last tick with motion
+  bool auto_parked_ = false;     // parked for being idle; no command since
 };
 
 }  // namespace rotord

@@ -214,6 +214,23 @@ TEST_F(ControllerTest, ImplausibleJumpsAreRejectedThenLatched) {
   EXPECT_EQ(status().az.fault, AxisFault::kSensorJump);
 }
 
+TEST_F(ControllerTest, RecalibratingThePotMovesThePositionWithoutAJumpFault) {
+  run_ms(100);
+  const AxisStatus before = status().az;
+  EXPECT_EQ(before.raw_full_scale, 8191.0f);  // the fake's 13-bit converter
+  EXPECT_FLOAT_EQ(before.adc_ref_v, 3.3f);
+  // "The antenna now points at 0": the low point moves to the live reading.
+  r.settings.set(Id::kAzPotCalLoCounts, before.raw);
+  r.settings.set(Id::kAzPotCalLoDeg, 0);
+  run_ms(200);
+  EXPECT_EQ(status().az.fault, AxisFault::kNone);
+  EXPECT_NEAR(status().az.position_deg, 0.0f, 0.2f);
+  // The axis still tells real jumps from calibrations.
+  az_deg = 300.0f;
+  run_ms(100);
+  EXPECT_EQ(status().az.fault, AxisFault::kSensorJump);
+}
+
 TEST_F(ControllerTest, StopDuringBrakeReleaseNeverDrivesTheMotor) {
   r.settings.set(Id::kAzHasBrake, 1);  // needs-restart setting: rebuild
   r.settings.set(Id::kAzBrakeReleaseMs, 1000);
@@ -309,6 +326,25 @@ TEST_F(ControllerTest, ContinuousRotatorTakesTheShortWayThroughNorth) {
   EXPECT_NEAR(status().az.position_deg, 10.0f, 1.0f);  // reported as a compass angle
 }
 
+TEST(Ma3Axis, ANewZeroStaysOnTheTurnTheAxisIsOn) {
+  // 0..450 rotator at 400 (MA3 reads 40, T1 on); re-zeroing by 5 deg leaves
+  // it at 395, not at 35, and latches no jump fault.
+  testing::FakeRotator r(false);
+  r.settings.set(Id::kAzSensor, 1);
+  r.az.t1.on = true;
+  r.az.ma3.period = {40 * 4098 / 360 + 1, 4097 - (40 * 4098 / 360 + 1), true};
+  r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
+  r.controller->begin(0);
+  r.run_ms(50);
+  ASSERT_NEAR(r.controller->status().az.position_deg, 400.0f, 0.2f);
+  EXPECT_EQ(r.controller->status().az.raw_full_scale, 4096.0f);
+  r.az.t1.on = false;  // only a start-up may consult it
+  r.settings.set(Id::kAzMa3ZeroDeg, 5);
+  r.run_ms(100);
+  EXPECT_NEAR(r.controller->status().az.position_deg, 395.0f, 0.2f);
+  EXPECT_EQ(r.controller->status().az.fault, AxisFault::kNone);
+}
+
 TEST(Ma3Axis, ThresholdInputPicksTheOverlapTurnAtStartUp) {
   // An MA3 reads 30 deg; on a 0..450 rotator that is 30 or 390. T1 says "beyond 360".
   testing::FakeRotator r(false);
@@ -325,6 +361,50 @@ TEST(Ma3Axis, ThresholdInputPicksTheOverlapTurnAtStartUp) {
   r.controller->begin(0);
   r.controller->tick(10);
   EXPECT_NEAR(r.controller->status().az.position_deg, 30.0f, 0.2f);
+}
+
+}  // namespace
+}  // namespace rotord
+
+namespace rotord {
+namespace {
+
+using settings::Id;
+
+// park.after_idle_min: the rotator parks by itself once, after that many
+// minutes without a command or motion; any command restarts the count.
+class AutoParkTest : public ControllerTest {};
+
+TEST_F(AutoParkTest, ParksOnceAfterTheIdleTimeAndEveryCommandRestartsIt) {
+  r.settings.set(Id::kParkAzDeg, 180);
+  r.settings.set(Id::kParkElDeg, 10);
+  r.settings.set(Id::kParkAfterIdleMin, 2);
+  ASSERT_EQ(r.controller->go_to(120.0f, 30.0f), Error::kOk);
+  run_ms(30000);
+  ASSERT_EQ(status().mode, Mode::kIdle);
+  run_ms(60000);         // idle for well under two minutes since the motion ended
+  r.controller->stop();  // a command: the count starts again
+  run_ms(110000);
+  EXPECT_EQ(status().mode, Mode::kIdle) << "parked before two idle minutes";
+  EXPECT_NEAR(status().az.position_deg, 120.0f, 1.5f);
+  run_ms(15000);
+  EXPECT_EQ(status().mode, Mode::kPark);
+  run_ms(60000);
+  EXPECT_NEAR(status().az.position_deg, 180.0f, 1.5f);
+  EXPECT_NEAR(status().el.position_deg, 10.0f, 1.5f);
+  EXPECT_EQ(status().mode, Mode::kIdle);
+  // Parked: not sent to park again while nothing happens.
+  for (int i = 0; i < 40; ++i) {
+    run_ms(10000);
+    ASSERT_EQ(status().mode, Mode::kIdle) << "parked again after " << i * 10 << " s";
+  }
+}
+
+TEST_F(AutoParkTest, ZeroNeverParks) {
+  r.settings.set(Id::kParkAzDeg, 300);
+  run_ms(3600000);
+  EXPECT_EQ(status().mode, Mode::kIdle);
+  EXPECT_NEAR(status().az.position_deg, 100.0f, 1.5f);
 }
 
 }  // namespace
