@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "settings/gpiod_rules.hpp"
 #include "settings/pin_rules.hpp"
 #include "settings/pot_table.hpp"
 #include "util/text.hpp"
@@ -126,6 +127,8 @@ Rejection Settings::check_consistency() const {
       get(Id::kElPwmSlowDuty) > get(Id::kElPwmFastDuty))
     return {Error::kOutOfRange, "the slow PWM duty must not exceed the fast duty"};
   if (const auto pins = check_pins(*this, detail_, sizeof detail_)) return {*pins, detail_};
+  if (const auto lines = check_gpiod_lines(*this, detail_, sizeof detail_))
+    return {*lines, detail_};
   if (get(Id::kMagXMin) >= get(Id::kMagXMax) || get(Id::kMagYMin) >= get(Id::kMagYMax))
     return {Error::kOutOfRange, "mag.x_min and mag.y_min must be below mag.x_max and mag.y_max"};
   if (i(Id::kAzSensor) == 2 && (i(Id::kPinI2cSda) == kNoPin || i(Id::kPinI2cScl) == kNoPin))

@@ -15,6 +15,25 @@ Daemon::~Daemon() {
 }
 
 bool Daemon::setup() {
+  if (options_.hw == "gpiod") {
+    if (options_.speedup != 1.0) {
+      std::fprintf(stderr, "rotord: --speedup applies to the simulator only, not to --hw gpiod\n");
+      return false;
+    }
+    defaults_ = settings_;
+    load_settings();
+    if (!open_gpiod()) return false;
+    std::printf("rotord %s: %s\n", ROTORD_VERSION, gpio_->summary().c_str());
+    if (!start_controller()) return false;
+    gpio_->watch(io_);
+    std::printf("rotord: ready\n");
+    std::fflush(stdout);
+    return true;
+  }
+  if (options_.hw != "sim") {
+    std::fprintf(stderr, "rotord: unknown --hw '%s' (sim or gpiod)\n", options_.hw.c_str());
+    return false;
+  }
   const sim::Profile* profile = sim::find_profile(options_.sim_profile);
   if (profile == nullptr) {
     std::fprintf(stderr, "rotord: unknown simulator profile '%s' (try g5500, ham4, spid)\n",
@@ -37,6 +56,21 @@ bool Daemon::setup() {
   std::printf("rotord: ready\n");
   std::fflush(stdout);
   return true;
+}
+
+bool Daemon::open_gpiod() {
+  std::string error;
+  auto chip = open_gpiod_chip(settings_.i(settings::Id::kGpiodChip), error);
+  if (chip) gpio_ = GpiodRotator::open(settings_, std::move(chip), iio_root(), monotonic_ns, error);
+  if (!gpio_) {
+    std::fprintf(stderr, "rotord: --hw gpiod: %s\n", error.c_str());
+    return false;
+  }
+  return true;
+}
+
+AxisIo Daemon::axis_io(AxisId axis) {
+  return gpio_ ? gpio_->io(axis) : sim_->io(axis);
 }
 
 void Daemon::load_settings() {
@@ -70,8 +104,7 @@ void Daemon::load_settings() {
 }
 
 bool Daemon::start_controller() {
-  controller_ =
-      std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
+  controller_ = std::make_unique<Controller>(settings_, axis_io(AxisId::kAz), axis_io(AxisId::kEl));
   api_ = std::make_unique<web::Api>(
       web::ApiContext{*controller_, storage_.get(), &defaults_, this, ROTORD_VERSION});
 
@@ -169,6 +202,16 @@ void Daemon::reboot() {
   servers_.clear();
   api_.reset();
   controller_.reset();
+  if (gpio_) {
+    // Line and ADC settings take effect now: release every line, request anew.
+    gpio_.reset();
+    if (!open_gpiod()) {
+      exit_code_ = 2;
+      stop();
+      return;
+    }
+    gpio_->watch(io_);
+  }
   if (!start_controller()) {
     stop();
     return;
@@ -187,17 +230,18 @@ int Daemon::run() {
     stop();
   });
   controller_->begin(now_ms_);
-  sim_->advance_to(now_ms_);
+  if (sim_) sim_->advance_to(now_ms_);
   wall_start_ = std::chrono::steady_clock::now();
   schedule_tick();
   io_.run();
-  controller_->shutdown();
+  if (controller_) controller_->shutdown();
+  if (gpio_) gpio_->all_off();
   std::printf("rotord: stopped\n");
-  return 0;
+  return exit_code_;
 }
 
 void Daemon::stop() {
-  controller_->shutdown();
+  if (controller_) controller_->shutdown();
   timer_.cancel();
   servers_.clear();
   serial_lines_.clear();
@@ -214,6 +258,25 @@ void Daemon::schedule_tick() {
 }
 
 void Daemon::on_tick() {
+  if (gpio_) {
+    // Real hardware: one tick per wake-up on the wall clock.
+    const auto wall_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                             std::chrono::steady_clock::now() - wall_start_)
+                             .count();
+    if (wall_ms > now_ms_) {
+      now_ms_ = static_cast<Millis>(wall_ms);
+      gpio_->sample();
+      controller_->tick(now_ms_);
+    }
+  } else {
+    advance_simulation();
+  }
+  for (auto& server : servers_) server->poll(now_ms_);
+  for (auto& line : serial_lines_) line->poll(now_ms_);
+  if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();
+}
+
+void Daemon::advance_simulation() {
   // Simulated time runs `speedup` times faster than the wall clock; the
   // control tick stays at 100 Hz of simulated time whatever the speedup.
   const auto wall_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
@@ -228,9 +291,6 @@ void Daemon::on_tick() {
     sim_->advance_to(now_ms_);
     controller_->tick(now_ms_);
   }
-  for (auto& server : servers_) server->poll(now_ms_);
-  for (auto& line : serial_lines_) line->poll(now_ms_);
-  if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();
 }
 
 }  // namespace rotord::linux_port

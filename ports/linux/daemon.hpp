@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "file_storage.hpp"
+#include "gpiod_io.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
@@ -28,6 +29,10 @@ class Daemon final : private web::RebootHook {
 
  private:
   bool setup();
+  /// --hw gpiod: opens the GPIO chip, its lines and the ADCs from the
+  /// settings, or says what is missing.
+  bool open_gpiod();
+  AxisIo axis_io(AxisId axis);
   void load_settings();
   /// Creates the controller, the REST API and the protocol servers.
   bool start_controller();
@@ -41,6 +46,7 @@ class Daemon final : private web::RebootHook {
   bool attach_serial_lines(const std::vector<ServiceConfig>& services);
   void schedule_tick();
   void on_tick();
+  void advance_simulation();
   void stop();
 
   Options options_;
@@ -51,6 +57,8 @@ class Daemon final : private web::RebootHook {
   settings::Settings defaults_;  ///< table defaults + the profile: what a reset restores
   std::unique_ptr<FileStorage> storage_;
   std::unique_ptr<sim::SimRotator> sim_;
+  std::unique_ptr<GpiodRotator> gpio_;  ///< --hw gpiod, instead of sim_
+  int exit_code_ = 0;
   std::unique_ptr<Controller> controller_;
   std::unique_ptr<web::Api> api_;
   bool reboot_pending_ = false;

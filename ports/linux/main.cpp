@@ -6,6 +6,11 @@ int main(int argc, char** argv) {
   rotord::linux_port::Options o;
   CLI::App app{"rotord: antenna rotator controller (simulated rotator by default)"};
   app.add_option("--config", o.config_path, "Settings file (JSON)");
+  app.add_option("--hw", o.hw,
+                 "Hardware: sim (the simulated rotator --sim) or gpiod (Raspberry Pi GPIO lines "
+                 "and IIO ADCs from the gpiod.* and iio.* settings, see docs/gpiod.md)")
+      ->check(CLI::IsMember({"sim", "gpiod"}))
+      ->capture_default_str();
   app.add_option("--sim", o.sim_profile, "Simulated rotator: g5500, ham4 or spid")
       ->capture_default_str();
   app.add_option("--speedup", o.speedup, "Run simulated time N times faster than the wall clock")

@@ -8,6 +8,7 @@ namespace rotord::linux_port {
 /// Command-line options of rotord (see main.cpp for their help texts).
 struct Options {
   std::string config_path;
+  std::string hw = "sim";  ///< sim or gpiod
   std::string sim_profile = "g5500";
   double speedup = 1.0;
   std::uint32_t sim_seed = 1;

@@ -1,0 +1,267 @@
+#include "gpiod_io.hpp"
+
+#include <cstdio>
+#include <optional>
+
+#include "axis/axis_config.hpp"
+
+namespace rotord::linux_port {
+namespace {
+
+using settings::Id;
+
+/// The settings of one axis's wiring.
+struct AxisKeys {
+  const char* name;
+  Id drive, sensor;
+  Id relay_fwd, relay_rev, speed;
+  std::optional<Id> has_brake, brake;
+  Id limit_cw, limit_ccw;
+  std::optional<Id> t1, t2;
+  Id ma3, button_fwd, button_rev;
+  Id iio_device, iio_channel;
+};
+
+constexpr AxisKeys kAzKeys{"az",
+                           Id::kAzDrive,
+                           Id::kAzSensor,
+                           Id::kGpiodAzCw,
+                           Id::kGpiodAzCcw,
+                           Id::kGpiodAzSpeed,
+                           Id::kAzHasBrake,
+                           Id::kGpiodAzBrake,
+                           Id::kGpiodAzL2,
+                           Id::kGpiodAzL1,
+                           Id::kGpiodAzT1,
+                           Id::kGpiodAzT2,
+                           Id::kGpiodAzMa3,
+                           Id::kGpiodBtnCw,
+                           Id::kGpiodBtnCcw,
+                           Id::kIioAzDevice,
+                           Id::kIioAzChannel};
+
+constexpr AxisKeys kElKeys{"el",
+                           Id::kElDrive,
+                           Id::kElSensor,
+                           Id::kGpiodElUp,
+                           Id::kGpiodElDown,
+                           Id::kGpiodElSpeed,
+                           std::nullopt,
+                           std::nullopt,
+                           Id::kGpiodElLimitUp,
+                           Id::kGpiodElLimitDown,
+                           std::nullopt,
+                           std::nullopt,
+                           Id::kGpiodElMa3,
+                           Id::kGpiodBtnUp,
+                           Id::kGpiodBtnDown,
+                           Id::kIioElDevice,
+                           Id::kIioElChannel};
+
+const char* key(Id id) {
+  return settings::def(id).key;
+}
+
+/// Requests lines by setting, collecting the first error.
+class LineRequester {
+ public:
+  LineRequester(const settings::Settings& s, GpioChip& chip, std::string& error)
+      : s_(s), chip_(chip), error_(error) {}
+
+  bool failed() const { return !error_.empty(); }
+
+  /// nullptr for an unwired (-1) line; `needed_by` makes that an error.
+  std::unique_ptr<GpioLine> line(Id id, LineMode mode, const char* needed_by = nullptr) {
+    if (failed()) return nullptr;
+    const int offset = s_.i(id);
+    if (offset < 0) {
+      if (needed_by != nullptr) error_ = std::string(needed_by) + " needs " + key(id);
+      return nullptr;
+    }
+    const bool is_output = mode == LineMode::kOutput;
+    LineRequest r{key(id), offset, mode, false, LineBias::kAsIs};
+    if (is_output) {
+      r.active_low = s_.b(Id::kGpiodOutputsActiveLow);
+    } else if (mode == LineMode::kInput) {
+      r.active_low = s_.b(Id::kGpiodInputsActiveLow);
+      r.bias = static_cast<LineBias>(s_.i(Id::kGpiodInputBias));
+    }
+    // The MA3 drives its line push-pull and its high time is the signal:
+    // no inversion, no bias.
+    return chip_.request(r, error_);
+  }
+
+  std::unique_ptr<GpiodSwitch> input(Id id, const char* needed_by = nullptr) {
+    auto l = line(id, LineMode::kInput, needed_by);
+    return l ? std::make_unique<GpiodSwitch>(std::move(l), key(id)) : nullptr;
+  }
+
+ private:
+  const settings::Settings& s_;
+  GpioChip& chip_;
+  std::string& error_;
+};
+
+std::string choice(const settings::Settings& s, Id id) {
+  return std::string(key(id)) + " = " + std::string(settings::choice_name(id, s.i(id)));
+}
+
+}  // namespace
+
+void GpiodDriveSink::map(OutputChannel channel, std::unique_ptr<GpioLine> line) {
+  lines_[static_cast<std::size_t>(channel)] = std::move(line);
+}
+
+void GpiodDriveSink::write(std::size_t channel, bool active) {
+  if (!lines_[channel]) return;
+  if (lines_[channel]->set_active(active)) {
+    active_[channel] = active;
+  } else if (!error_reported_) {
+    error_reported_ = true;
+    std::fprintf(stderr, "rotord: gpiod: writing an output line failed\n");
+  }
+}
+
+void GpiodDriveSink::apply(const DriveOutputs& outputs) {
+  for (std::size_t ch = 0; ch < kOutputChannelCount; ++ch) {
+    const bool active = outputs.value[ch] > 0.0f;
+    if (active != active_[ch]) write(ch, active);
+  }
+}
+
+void GpiodDriveSink::all_off() {
+  for (std::size_t ch = 0; ch < kOutputChannelCount; ++ch) write(ch, false);
+}
+
+bool GpiodSwitch::active() {
+  const int v = line_->get_active();
+  if (v < 0) {
+    if (!error_reported_)
+      std::fprintf(stderr, "rotord: gpiod: reading %s failed; it reads as not active\n", key_);
+    error_reported_ = true;
+    return false;
+  }
+  error_reported_ = false;
+  return v == 1;
+}
+
+std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
+                                                 std::unique_ptr<GpioChip> chip,
+                                                 const std::string& iio_root,
+                                                 GpiodMa3Input::Clock clock, std::string& error) {
+  error.clear();
+  std::unique_ptr<GpiodRotator> hw(new GpiodRotator(std::move(chip)));
+  LineRequester req(s, *hw->chip_, error);
+  hw->summary_ = "GPIO " + hw->chip_->describe();
+  for (const AxisKeys* k : {&kAzKeys, &kElKeys}) {
+    const bool el = k == &kElKeys;
+    if (el && !s.b(Id::kElEnabled)) continue;
+    AxisHw& a = hw->axis(el ? AxisId::kEl : AxisId::kAz);
+    a.fitted = true;
+    const auto drive = static_cast<DriveType>(s.i(k->drive));
+    const std::string drive_text = choice(s, k->drive);
+    if (drive == DriveType::kHBridge) {
+      error = drive_text +
+              ": --hw gpiod has no H-bridge PWM (software PWM is not fit for a motor); use a "
+              "relay drive, or the Pico W port for H-bridges";
+      return nullptr;
+    }
+    // Outputs first, so they are driven inactive before anything can fail.
+    a.drive.map(OutputChannel::kRelayCw,
+                req.line(k->relay_fwd, LineMode::kOutput, drive_text.c_str()));
+    a.drive.map(OutputChannel::kRelayCcw,
+                req.line(k->relay_rev, LineMode::kOutput, drive_text.c_str()));
+    if (drive == DriveType::kRelayTwoSpeed || drive == DriveType::kRelayVoltageSelect)
+      a.drive.map(drive == DriveType::kRelayTwoSpeed ? OutputChannel::kSpeedFast
+                                                     : OutputChannel::kVoltageFast,
+                  req.line(k->speed, LineMode::kOutput, drive_text.c_str()));
+    if (k->has_brake && s.b(*k->has_brake))
+      a.drive.map(OutputChannel::kBrake,
+                  req.line(*k->brake, LineMode::kOutput, key(*k->has_brake)));
+
+    a.limit_cw = req.input(k->limit_cw);
+    a.limit_ccw = req.input(k->limit_ccw);
+    if (k->t1) a.t1 = req.input(*k->t1);
+    if (k->t2) a.t2 = req.input(*k->t2);
+    if (s.b(Id::kButtonsEnabled)) {
+      a.button_fwd = req.input(k->button_fwd, key(Id::kButtonsEnabled));
+      a.button_rev = req.input(k->button_rev, key(Id::kButtonsEnabled));
+    }
+    const auto sensor = static_cast<SensorType>(s.i(k->sensor));
+    const std::string sensor_text = choice(s, k->sensor);
+    if (sensor == SensorType::kMa3) {
+      if (auto l = req.line(k->ma3, LineMode::kBothEdges, sensor_text.c_str()))
+        a.ma3 = std::make_unique<GpiodMa3Input>(std::move(l), clock);
+    }
+    if (req.failed()) return nullptr;
+    if (sensor == SensorType::kMag) {
+      error = sensor_text + ": --hw gpiod has no magnetometer support yet; use pot or ma3";
+      return nullptr;
+    }
+    std::string sensor_where;
+    if (sensor == SensorType::kPot) {
+      const int device = s.i(k->iio_device);
+      if (device < 0) {
+        error = sensor_text + " needs " + key(k->iio_device);
+        return nullptr;
+      }
+      a.pot = std::make_unique<IioAdc>();
+      std::string why;
+      if (!a.pot->open(iio_root, device, s.i(k->iio_channel), s.i(Id::kIioFullScaleCounts), why)) {
+        error = std::string(key(k->iio_device)) + ", " + key(k->iio_channel) + ": " + why;
+        return nullptr;
+      }
+      sensor_where =
+          "pot " + a.pot->raw_path() + " (0.." + std::to_string(a.pot->full_scale_counts()) + ")";
+    } else {
+      sensor_where = "MA3 on line " + std::to_string(s.i(k->ma3));
+    }
+    hw->summary_ += std::string("; ") + k->name + ": " +
+                    std::string(settings::choice_name(k->drive, s.i(k->drive))) +
+                    " drive on lines " + std::to_string(s.i(k->relay_fwd)) + "/" +
+                    std::to_string(s.i(k->relay_rev)) + ", " + sensor_where;
+  }
+  return hw;
+}
+
+GpiodRotator::~GpiodRotator() {
+  all_off();
+}
+
+AxisIo GpiodRotator::io(AxisId id) {
+  AxisHw& a = axis(id);
+  AxisIo io;
+  if (!a.fitted) return io;
+  io.drive = &a.drive;
+  io.pot = a.pot.get();
+  io.ma3 = a.ma3.get();
+  io.limit_cw = a.limit_cw.get();
+  io.limit_ccw = a.limit_ccw.get();
+  io.t1 = a.t1.get();
+  io.t2 = a.t2.get();
+  io.button_fwd = a.button_fwd.get();
+  io.button_rev = a.button_rev.get();
+  return io;
+}
+
+void GpiodRotator::watch(asio::io_context& io) {
+  for (AxisHw* a : {&az_, &el_})
+    if (a->ma3) a->ma3->watch(io);
+}
+
+void GpiodRotator::sample() {
+  for (AxisHw* a : {&az_, &el_}) {
+    if (!a->pot) continue;
+    const bool ok = a->pot->sample();
+    if (!ok && !a->pot_error_reported)
+      std::fprintf(stderr, "rotord: %s\n", a->pot->last_error().c_str());
+    a->pot_error_reported = !ok;
+  }
+}
+
+void GpiodRotator::all_off() {
+  az_.drive.all_off();
+  el_.drive.all_off();
+}
+
+}  // namespace rotord::linux_port

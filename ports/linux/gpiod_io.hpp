@@ -1,0 +1,94 @@
+#pragma once
+// `rotord --hw gpiod`: the rotator's relays and switches on a Linux GPIO chip
+// (a Raspberry Pi's header), MA3 encoders timed from edge events, pots on IIO
+// ADCs. Built from the gpiod.* and iio.* settings the way SimRotator is built
+// from a profile, and handed to the Controller as one AxisIo per axis.
+#include <array>
+#include <asio.hpp>
+#include <memory>
+#include <string>
+
+#include "axis/axis_id.hpp"
+#include "axis/axis_io.hpp"
+#include "gpio_line.hpp"
+#include "iio_adc.hpp"
+#include "ma3_edge_timer.hpp"
+#include "settings/settings.hpp"
+
+namespace rotord::linux_port {
+
+/// One axis's outputs on GPIO lines. A line is written only when its value
+/// changes (one ioctl per relay change, not per tick).
+class GpiodDriveSink final : public DriveSink {
+ public:
+  void map(OutputChannel channel, std::unique_ptr<GpioLine> line);
+  void apply(const DriveOutputs& outputs) override;
+  /// Every mapped line inactive, written whatever the last value was.
+  void all_off();
+
+ private:
+  void write(std::size_t channel, bool active);
+
+  std::array<std::unique_ptr<GpioLine>, kOutputChannelCount> lines_{};
+  std::array<bool, kOutputChannelCount> active_{};
+  bool error_reported_ = false;
+};
+
+/// A switch or button input. An I/O error reads "not active" (the core's
+/// safety rules do not rely on a switch alone) and is reported once.
+class GpiodSwitch final : public hal::DigitalIn {
+ public:
+  GpiodSwitch(std::unique_ptr<GpioLine> line, const char* key)
+      : line_(std::move(line)), key_(key) {}
+  bool active() override;
+
+ private:
+  std::unique_ptr<GpioLine> line_;
+  const char* key_;
+  bool error_reported_ = false;
+};
+
+class GpiodRotator {
+ public:
+  /// Requests every line the settings call for (outputs inactive) and opens
+  /// every ADC channel, or returns nullptr with `error` naming the setting,
+  /// the line or file and what is wrong. Refuses what it cannot drive:
+  /// H-bridge PWM (no software PWM for a motor) and the magnetometer.
+  static std::unique_ptr<GpiodRotator> open(const settings::Settings& s,
+                                            std::unique_ptr<GpioChip> chip,
+                                            const std::string& iio_root, GpiodMa3Input::Clock clock,
+                                            std::string& error);
+  /// Outputs off, then the lines are released.
+  ~GpiodRotator();
+  GpiodRotator(const GpiodRotator&) = delete;
+  GpiodRotator& operator=(const GpiodRotator&) = delete;
+
+  /// Wiring for the controller; all null for an axis that is not enabled.
+  AxisIo io(AxisId axis);
+  /// Drains MA3 edges as they arrive, on the daemon's loop.
+  void watch(asio::io_context& io);
+  /// Once per control tick, before it: one conversion per pot.
+  void sample();
+  void all_off();
+  /// What was opened, one line per axis, for the start-up log.
+  const std::string& summary() const { return summary_; }
+
+ private:
+  struct AxisHw {
+    bool fitted = false;
+    GpiodDriveSink drive;
+    std::unique_ptr<GpiodSwitch> limit_cw, limit_ccw, t1, t2, button_fwd, button_rev;
+    std::unique_ptr<GpiodMa3Input> ma3;
+    std::unique_ptr<IioAdc> pot;
+    bool pot_error_reported = false;
+  };
+  explicit GpiodRotator(std::unique_ptr<GpioChip> chip) : chip_(std::move(chip)) {}
+  AxisHw& axis(AxisId id) { return id == AxisId::kEl ? el_ : az_; }
+
+  std::unique_ptr<GpioChip> chip_;  // first: released after every line
+  AxisHw az_;
+  AxisHw el_;
+  std::string summary_;
+};
+
+}  // namespace rotord::linux_port

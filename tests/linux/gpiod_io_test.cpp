@@ -1,0 +1,221 @@
+#include "gpiod_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include "fake_gpio_chip.hpp"
+#include "fake_sysfs.hpp"
+#include "rotator/controller.hpp"
+
+namespace rotord::linux_port {
+namespace {
+
+using settings::Id;
+using testing::FakeBoard;
+using testing::FakeGpioChip;
+using testing::FakeSysfs;
+
+// The defaults of the gpiod.* rows (a relay G-5500-style azimuth).
+constexpr int kAzCw = 17, kAzCcw = 27, kAzSpeed = 22, kAzBrake = 23;
+constexpr int kAzL1 = 5, kAzL2 = 6, kAzT1 = 16, kAzT2 = 26, kAzMa3 = 4;
+
+class GpiodIoTest : public ::testing::Test {
+ protected:
+  GpiodIoTest() {
+    // A pot on an ADS1115 channel 0: 1000 counts = 0 deg, 31000 = 450 deg.
+    set(Id::kAzPotCalLoCounts, 1000);
+    set(Id::kAzPotCalHiCounts, 31000);
+    set_az_deg(200.0);
+  }
+  void set(Id id, double value) {
+    ASSERT_EQ(s.set(id, value).error, Error::kOk) << settings::def(id).key;
+  }
+  void set_az_deg(double deg) { sys.add_ads1115(0, 0, static_cast<int>(1000 + deg * 30000 / 450)); }
+
+  std::unique_ptr<GpiodRotator> open() {
+    return GpiodRotator::open(
+        s, std::make_unique<FakeGpioChip>(board), sys.root(), [] { return std::uint64_t{0}; },
+        error);
+  }
+  /// The controller's ticks as the daemon runs them: sample, then tick.
+  void run_ms(Controller& c, GpiodRotator& hw, Millis ms) {
+    for (Millis end = now + ms; now < end;) {
+      now += 10;
+      hw.sample();
+      c.tick(now);
+    }
+  }
+
+  settings::Settings s;
+  FakeSysfs sys;
+  std::shared_ptr<FakeBoard> board = std::make_shared<FakeBoard>();
+  std::string error;
+  Millis now = 0;
+};
+
+TEST_F(GpiodIoTest, RequestsOnlyTheLinesTheSettingsUseOutputsInactive) {
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  for (int out : {kAzCw, kAzCcw}) {
+    ASSERT_TRUE(board->lines[out].requested) << out;
+    EXPECT_EQ(board->lines[out].request.mode, LineMode::kOutput);
+    EXPECT_FALSE(board->lines[out].request.active_low);  // gpiod.outputs_active_low = false
+    EXPECT_FALSE(board->output_active(out));
+  }
+  for (int in : {kAzL1, kAzL2, kAzT1, kAzT2}) {
+    ASSERT_TRUE(board->lines[in].requested) << in;
+    EXPECT_EQ(board->lines[in].request.mode, LineMode::kInput);
+    EXPECT_TRUE(board->lines[in].request.active_low);  // switch to ground
+    EXPECT_EQ(board->lines[in].request.bias, LineBias::kPullUp);
+  }
+  // A plain relay drive, no brake, a pot, az only: nothing else is touched.
+  for (int unused : {kAzSpeed, kAzBrake, kAzMa3, 24, 25, 20, 21})
+    EXPECT_FALSE(board->lines[unused].requested) << unused;
+  EXPECT_NE(hw->summary().find("iio:device0/in_voltage0_raw"), std::string::npos) << hw->summary();
+}
+
+TEST_F(GpiodIoTest, RelaysFollowTheAxisAndALimitStopsThatDirectionOnly) {
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  Controller c(s, hw->io(AxisId::kAz), hw->io(AxisId::kEl));
+  c.begin(now);
+  run_ms(c, *hw, 100);
+  EXPECT_NEAR(c.status().az.position_deg, 200.0f, 0.5f);
+  ASSERT_EQ(c.move(AxisId::kAz, Direction::kCw), Error::kOk);
+  run_ms(c, *hw, 500);
+  EXPECT_TRUE(board->output_active(kAzCw));
+  EXPECT_FALSE(board->output_active(kAzCcw));
+  set_az_deg(201.0);  // the rotator turns
+  run_ms(c, *hw, 100);
+
+  board->lines[kAzL2].active = true;  // CW end switch closes
+  run_ms(c, *hw, 10);
+  EXPECT_FALSE(board->output_active(kAzCw));  // cut on the first tick
+  EXPECT_TRUE(c.status().az.limit_cw);
+  EXPECT_EQ(c.move(AxisId::kAz, Direction::kCw), Error::kLimit);
+  ASSERT_EQ(c.move(AxisId::kAz, Direction::kCcw), Error::kOk);
+  run_ms(c, *hw, 2000);
+  EXPECT_TRUE(board->output_active(kAzCcw));
+  EXPECT_FALSE(board->output_active(kAzCw));
+}
+
+TEST_F(GpiodIoTest, OutputsAreOffAtShutdownAndAfterRelease) {
+  set(Id::kAzDrive, 1);  // relay_two_speed: the speed line too
+  set(Id::kAzHasBrake, 1);
+  {
+    auto hw = open();
+    ASSERT_TRUE(hw) << error;
+    ASSERT_TRUE(board->lines[kAzSpeed].requested);
+    ASSERT_TRUE(board->lines[kAzBrake].requested);
+    Controller c(s, hw->io(AxisId::kAz), hw->io(AxisId::kEl));
+    c.begin(now);
+    ASSERT_EQ(c.move(AxisId::kAz, Direction::kCcw), Error::kOk);
+    run_ms(c, *hw, 3000);
+    ASSERT_TRUE(board->output_active(kAzCcw));
+    ASSERT_TRUE(board->output_active(kAzBrake));  // released
+    c.shutdown();                                 // what SIGINT / SIGTERM do
+    for (int out : {kAzCw, kAzCcw, kAzSpeed, kAzBrake})
+      EXPECT_FALSE(board->output_active(out)) << out;
+    board->lines[kAzCcw].active = true;  // as if a write had been lost
+  }
+  for (int out : {kAzCw, kAzCcw, kAzSpeed, kAzBrake}) {
+    EXPECT_FALSE(board->output_active(out)) << out;  // written off once more before release
+    EXPECT_TRUE(board->lines[out].released) << out;
+  }
+  EXPECT_TRUE(board->closed);
+}
+
+TEST_F(GpiodIoTest, ActiveLowRelayBoardsAreRequestedInverted) {
+  set(Id::kGpiodOutputsActiveLow, 1);
+  set(Id::kGpiodInputBias, 3);  // as_is
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  EXPECT_TRUE(board->lines[kAzCw].request.active_low);
+  EXPECT_EQ(board->lines[kAzL1].request.bias, LineBias::kAsIs);
+}
+
+TEST_F(GpiodIoTest, ABusyLineRefusesToStartNamingKeyAndLine) {
+  board->busy.insert(kAzCcw);
+  EXPECT_FALSE(open());
+  EXPECT_NE(error.find("gpiod.az_ccw = 27"), std::string::npos) << error;
+  EXPECT_NE(error.find("busy"), std::string::npos) << error;
+  EXPECT_TRUE(board->lines[kAzCw].released);  // what was requested is let go
+  EXPECT_FALSE(board->output_active(kAzCw));
+}
+
+TEST_F(GpiodIoTest, AMissingLineRefusesToStart) {
+  set(Id::kGpiodAzL1, 60);
+  board->line_count = 54;
+  EXPECT_FALSE(open());
+  EXPECT_NE(error.find("gpiod.az_l1 = 60"), std::string::npos) << error;
+}
+
+TEST_F(GpiodIoTest, AnUnwiredRequiredLineIsNamed) {
+  set(Id::kGpiodAzCw, -1);
+  EXPECT_FALSE(open());
+  EXPECT_EQ(error, "az.drive = relay needs gpiod.az_cw");
+  set(Id::kGpiodAzCw, 17);
+  set(Id::kAzHasBrake, 1);
+  set(Id::kGpiodAzBrake, -1);
+  EXPECT_FALSE(open());
+  EXPECT_EQ(error, "az.has_brake needs gpiod.az_brake");
+}
+
+TEST_F(GpiodIoTest, HBridgeDrivesAreRefusedWithoutSoftwarePwm) {
+  set(Id::kAzDrive, 3);
+  EXPECT_FALSE(open());
+  EXPECT_NE(error.find("az.drive = hbridge"), std::string::npos) << error;
+  EXPECT_NE(error.find("software PWM"), std::string::npos) << error;
+  EXPECT_TRUE(board->lines.empty());  // refused before any line was requested
+}
+
+TEST_F(GpiodIoTest, TheMagnetometerIsRefused) {
+  set(Id::kAzSensor, 2);
+  EXPECT_FALSE(open());
+  EXPECT_NE(error.find("az.sensor = mag"), std::string::npos) << error;
+}
+
+TEST_F(GpiodIoTest, AMissingAdcNamesTheSettingAndTheFile) {
+  set(Id::kIioAzDevice, 3);
+  EXPECT_FALSE(open());
+  EXPECT_NE(error.find("iio.az_device"), std::string::npos) << error;
+  EXPECT_NE(error.find(sys.root() + "/iio:device3/in_voltage0_raw"), std::string::npos) << error;
+  set(Id::kIioAzDevice, -1);
+  EXPECT_FALSE(open());
+  EXPECT_EQ(error, "az.sensor = pot needs iio.az_device");
+}
+
+TEST_F(GpiodIoTest, Ma3AxisRequestsABothEdgesLineWithoutInversion) {
+  set(Id::kAzSensor, 1);
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  ASSERT_TRUE(board->lines[kAzMa3].requested);
+  EXPECT_EQ(board->lines[kAzMa3].request.mode, LineMode::kBothEdges);
+  EXPECT_FALSE(board->lines[kAzMa3].request.active_low);
+  EXPECT_NE(hw->io(AxisId::kAz).ma3, nullptr);
+  EXPECT_EQ(hw->io(AxisId::kAz).pot, nullptr);
+}
+
+TEST_F(GpiodIoTest, ElevationLinesAreRequestedWhenEnabled) {
+  set(Id::kElEnabled, 1);
+  sys.add_ads1115(0, 1, 1000);  // iio.el_channel = 1
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  for (int line : {24, 25, 20, 21}) EXPECT_TRUE(board->lines[line].requested) << line;
+  EXPECT_NE(hw->io(AxisId::kEl).drive, nullptr);
+  EXPECT_NE(hw->io(AxisId::kEl).pot, nullptr);
+}
+
+TEST(GpiodRulesTest, ConflictingLinesAreRefusedNamingBothKeys) {
+  settings::Settings s;
+  EXPECT_EQ(s.check_consistency().error, Error::kOk);
+  ASSERT_EQ(s.set(Id::kGpiodBtnCw, 5).error, Error::kOk);  // gpiod.az_l1's line
+  const settings::Rejection r = s.check_consistency();
+  EXPECT_EQ(r.error, Error::kOutOfRange);
+  EXPECT_STREQ(r.reason, "gpiod.az_l1 and gpiod.btn_cw both use line 5");
+  ASSERT_EQ(s.set(Id::kGpiodBtnCw, -1).error, Error::kOk);
+  ASSERT_EQ(s.set(Id::kGpiodBtnCcw, -1).error, Error::kOk);
+  EXPECT_EQ(s.check_consistency().error, Error::kOk);  // unwired lines never clash
+}
+
+}  // namespace
+}  // namespace rotord::linux_port
