@@ -26,6 +26,8 @@
 #include "settings/pin_rules.hpp"
 #include "settings/settings.hpp"
 #include "storage/flash_slots.hpp"
+#include "usb_cdc_port.hpp"
+#include "usb_personality.hpp"
 #include "web/http_session.hpp"
 #include "web/settings_json.hpp"
 #include "web/web_api.hpp"
@@ -195,6 +197,13 @@ void report_settings(const web::LoadOutcome& r) {
   const bool has_el = settings.b(Id::kElEnabled);
   if (has_el) g_el_drive->begin();
 
+  // USB before stdio: pico_stdio_usb logs on CDC 0 of our TinyUSB device,
+  // CDC 1 carries usb.personality (usb_device.c says why two ports).
+  const usb_port::Personality usb_personality =
+      usb_port::personality_from_setting(settings.i(Id::kUsbPersonality));
+  rotord_usb_init(usb_personality == usb_port::Personality::kOff
+                      ? nullptr
+                      : usb_port::personality_name(usb_personality));
   stdio_init_all();
   std::printf("rotord %s (Pico W)%s\n", ROTORD_VERSION,
               watchdog_caused_reboot() ? ": restarted by the watchdog" : "");
@@ -240,6 +249,17 @@ void report_settings(const web::LoadOutcome& r) {
   }
   static Controller controller(settings, az_io, el_io);
   controller.begin(now_ms());
+
+  // 3. The USB protocol port: one session, fresh whenever a program opens
+  // the port (usb_cdc_link.hpp).
+  static usb_port::PersonalitySessions usb_sessions(usb_personality, controller, ROTORD_VERSION);
+  static TinyUsbCdcPort usb_cdc(ROTORD_USB_PROTOCOL_CDC);
+  static std::optional<usb_port::UsbCdcLink> usb_link;
+  if (usb_personality != usb_port::Personality::kOff) {
+    usb_link.emplace(usb_cdc, usb_sessions);
+    std::printf("rotord: %s on USB (the second USB serial port)\n",
+                usb_port::personality_name(usb_personality));
+  }
 
   // 4. Network. Without the Wi-Fi chip the controller still runs (USB logs,
   // safety rules), it just takes no commands.
@@ -299,14 +319,19 @@ void report_settings(const web::LoadOutcome& r) {
   absolute_time_t next_tick = make_timeout_time_ms(kTickMs);
   std::uint32_t late_ticks = 0;
   std::uint32_t reported_late_ticks = 0;
+  std::uint32_t reported_usb_drops = 0;
   Millis next_report = now_ms() + 10'000;
   Millis reboot_at = 0;
   for (;;) {
     watchdog_update();
+    // USB every pass: neither TinyUSB's task nor the link waits for the host.
+    rotord_usb_task();
+    if (usb_link) usb_link->service();
     if (network) cyw43_arch_poll();
     if (time_reached(next_tick)) {
       const Millis now = now_ms();
       controller.tick(now);
+      if (usb_link) usb_link->poll(now);
       if (network) {
         for (lwip_port::TcpServer* server : servers) server->poll(now);
         wifi.step(now);
@@ -334,6 +359,11 @@ void report_settings(const web::LoadOutcome& r) {
           std::printf("rotord: %lu late control ticks so far\n",
                       static_cast<unsigned long>(late_ticks));
         reported_late_ticks = late_ticks;
+        if (usb_link && usb_link->stats().dropped_replies != reported_usb_drops) {
+          reported_usb_drops = usb_link->stats().dropped_replies;
+          std::printf("rotord: USB: %lu replies dropped so far (the program stopped reading)\n",
+                      static_cast<unsigned long>(reported_usb_drops));
+        }
         next_report = now + 10'000;
       }
     }
