@@ -16,6 +16,30 @@ Direction direction_of(float delta) {
   return delta >= 0.0f ? Direction::kCw : Direction::kCcw;
 }
 
+/// True when the active sensor's calibration differs: the same shaft position
+/// then reads as another angle, in one step.
+bool sensor_frame_changed(const AxisConfig& a, const AxisConfig& b) {
+  if (a.sensor != b.sensor) return false;  // a new sensor starts afresh anyway
+  switch (b.sensor) {
+    case SensorType::kPot:
+      if (a.pot_cal.count != b.pot_cal.count) return true;
+      for (std::size_t n = 0; n < static_cast<std::size_t>(b.pot_cal.count); ++n)
+        if (a.pot_cal.points[n].counts != b.pot_cal.points[n].counts ||
+            a.pot_cal.points[n].deg != b.pot_cal.points[n].deg)
+          return true;
+      return false;
+    case SensorType::kMa3:
+      return a.ma3_zero_deg != b.ma3_zero_deg || a.ma3_reverse != b.ma3_reverse ||
+             a.ma3_bits != b.ma3_bits;
+    case SensorType::kMag:
+      return a.mag_cal.x_min != b.mag_cal.x_min || a.mag_cal.x_max != b.mag_cal.x_max ||
+             a.mag_cal.y_min != b.mag_cal.y_min || a.mag_cal.y_max != b.mag_cal.y_max ||
+             a.mag_cal.declination_deg != b.mag_cal.declination_deg ||
+             a.mag_cal.reverse != b.mag_cal.reverse || a.mag_chip != b.mag_chip;
+  }
+  return false;
+}
+
 bool active(hal::DigitalIn* in) {
   return in != nullptr && in->active();
 }
@@ -31,6 +55,10 @@ Axis::Axis(AxisId id, const AxisIo& io) : id_(id), io_(io) {
 void Axis::configure(const AxisConfig& cfg) {
   const float offset_change = cfg.offset_deg - cfg_.offset_deg;
   const bool first = sensor_ == nullptr;
+  // A recalibration (web page, GS-232 O/F) moves the reading in one step. The
+  // next reading is taken as it comes, not rejected as an implausible jump:
+  // that fault would latch, and no reset could clear it.
+  if (!first && have_pos_ && sensor_frame_changed(cfg_, cfg)) recalibrated_ = true;
   cfg_ = cfg;
   if (pot_) {
     pot_->configure(cfg.pot_cal, cfg.pot_filter);
@@ -161,6 +189,9 @@ void Axis::update_position(Millis now) {
   if (sensor_ == nullptr) return;
   const PositionReading r = sensor_->read(now);
   raw_ = r.raw;
+  // A weak or distorted field still gives raw samples, which is what the
+  // magnetometer calibration needs; only a silent chip gives none.
+  mag_answered_ = r.ok || r.fault != SensorFault::kNoSignal;
   if (!r.ok) {
     if (bad_since_ < 0) bad_since_ = now;
     if (now - bad_since_ >= kSensorGraceMs && state_ != AxisState::kFault) {
@@ -174,11 +205,21 @@ void Axis::update_position(Millis now) {
   float sensor_deg = r.deg;
   if (sensor_->single_turn() && !cfg_.continuous) {
     sensor_deg = have_pos_ ? unwrap_near(r.deg, sensor_deg_) : initial_unwrap(r.deg);
+    // After a recalibration stay on the turn the axis was on, unless that
+    // turn is now outside the travel.
+    const float user = sensor_deg + cfg_.offset_deg;
+    if (recalibrated_ && (user < cfg_.min_deg - 5.0f || user > cfg_.max_deg + 5.0f))
+      sensor_deg = initial_unwrap(r.deg);
   } else if (sensor_->single_turn()) {
     sensor_deg = have_pos_ ? unwrap_near(r.deg, sensor_deg_) : r.deg;
   }
   const float pos = sensor_deg + cfg_.offset_deg;
-  if (have_pos_ && std::fabs(pos - pos_deg_) > cfg_.jump_deg) {
+  if (recalibrated_) {
+    recalibrated_ = false;
+    jump_rejects_ = 0;
+    history_count_ = 0;  // the old samples are in the old frame
+    if (request_.kind == RequestKind::kGoto) request_.kind = RequestKind::kNone;
+  } else if (have_pos_ && std::fabs(pos - pos_deg_) > cfg_.jump_deg) {
     // Reject the sample; a real rotator cannot move this far in one tick.
     if (++jump_rejects_ >= kJumpRejectLimit && state_ != AxisState::kFault)
       latch_fault(AxisFault::kSensorJump);
@@ -419,6 +460,28 @@ void Axis::publish() {
   status_.position_valid = have_pos_;
   status_.position_deg = cfg_.continuous ? wrap_360(pos_deg_) : pos_deg_;
   status_.raw = raw_;
+  status_.raw_full_scale = 0.0f;
+  status_.adc_ref_v = 0.0f;
+  status_.mag_valid = false;
+  if (sensor_ != nullptr) {  // the configured sensor is fitted
+    switch (cfg_.sensor) {
+      case SensorType::kPot:
+        status_.raw_full_scale = static_cast<float>(io_.pot->full_scale_counts());
+        status_.adc_ref_v = io_.pot->reference_v();
+        break;
+      case SensorType::kMa3:
+        status_.raw_full_scale = static_cast<float>(ma3_timing(cfg_.ma3_bits).counts);
+        break;
+      case SensorType::kMag: {
+        const MagSample& m = mag_->last_sample();
+        status_.mag_valid = mag_answered_;
+        status_.mag_x = m.x;
+        status_.mag_y = m.y;
+        status_.mag_z = m.z;
+        break;
+      }
+    }
+  }
   status_.has_target = request_.kind == RequestKind::kGoto;
   status_.target_deg = request_.target_deg;
   if (cfg_.continuous && status_.has_target) status_.target_deg = wrap_360(request_.target_deg);

@@ -104,6 +104,8 @@ class Axis {
   float raw_ = 0.0f;
   Millis bad_since_ = -1;
   int jump_rejects_ = 0;
+  bool recalibrated_ = false;  // the calibration changed: accept the next reading
+  bool mag_answered_ = false;  // the last read got a sample from the chip
   std::array<Sample, 32> history_{};
   int history_head_ = 0;
   int history_count_ = 0;

@@ -30,6 +30,14 @@ struct AxisStatus {
   float position_deg = 0.0f;  ///< unwrapped, offset applied
   float speed_deg_s = 0.0f;   ///< estimated from the sensor
   float raw = 0.0f;           ///< sensor raw value (ADC counts, encoder code)
+  /// What `raw` spans, for calibration pages: the ADC's highest code for a
+  /// pot, codes per turn for an MA3, 0 for a magnetometer (raw = heading).
+  float raw_full_scale = 0.0f;
+  float adc_ref_v = 0.0f;  ///< pot: ADC reference, volts = raw * adc_ref_v / raw_full_scale
+  /// Magnetometer: the last raw field sample (chip counts) for the hard-iron
+  /// calibration; mag_valid is false when the chip did not answer.
+  bool mag_valid = false;
+  std::int16_t mag_x = 0, mag_y = 0, mag_z = 0;
   bool has_target = false;
   float target_deg = 0.0f;
   bool jogging = false;

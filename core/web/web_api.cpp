@@ -23,14 +23,42 @@ const char* lower_name(const char* upper, char* buf, std::size_t cap) {
   return buf;
 }
 
-void write_axis(JsonWriter& w, const AxisStatus& a, bool ma3) {
+/// `sensor` is the *.sensor choice: 0 pot, 1 MA3, 2 magnetometer.
+void write_axis(JsonWriter& w, const AxisStatus& a, int sensor) {
+  static constexpr const char* kSensors[] = {"pot", "ma3", "mag"};
+  static constexpr const char* kRawUnits[] = {"counts", "code", "deg"};
+  const std::size_t s = sensor >= 0 && sensor <= 2 ? static_cast<std::size_t>(sensor) : 0;
   char name[24];
   w.begin_object()
       .member("position_deg", a.position_deg)
       .member("valid", a.position_valid)
       .member("speed_deg_s", a.speed_deg_s)
+      .member("sensor", kSensors[s])
       .member("raw", a.raw)
-      .member("raw_unit", ma3 ? "code" : "counts");
+      .member("raw_unit", kRawUnits[s]);
+  // For the calibration page: the pot's wiper voltage and what raw spans.
+  w.key("raw_volts");
+  if (a.raw_full_scale > 0.0f && a.adc_ref_v > 0.0f) {
+    w.number(static_cast<double>(a.raw) * a.adc_ref_v / a.raw_full_scale);
+  } else {
+    w.null();
+  }
+  w.key("raw_full_scale");
+  if (a.raw_full_scale > 0.0f) {
+    w.number(a.raw_full_scale);
+  } else {
+    w.null();
+  }
+  w.key("mag");
+  if (a.mag_valid) {
+    w.begin_object()
+        .member("x", static_cast<int>(a.mag_x))
+        .member("y", static_cast<int>(a.mag_y))
+        .member("z", static_cast<int>(a.mag_z))
+        .end_object();
+  } else {
+    w.null();
+  }
   w.key("target_deg");
   if (a.has_target) {
     w.number(a.target_deg);
@@ -169,10 +197,10 @@ void Api::write_status(JsonWriter& w) const {
       .member("el", values.get(Id::kParkElDeg))
       .end_object();
   w.key("az");
-  write_axis(w, s.az, values.i(Id::kAzSensor) == 1);
+  write_axis(w, s.az, values.i(Id::kAzSensor));
   w.key("el");
   if (s.el.present) {
-    write_axis(w, s.el, values.i(Id::kElSensor) == 1);
+    write_axis(w, s.el, values.i(Id::kElSensor));
   } else {
     w.null();
   }

@@ -283,5 +283,40 @@ TEST(MagAxis, TheAxisUnwrapsTheHeadingThroughNorth) {
   EXPECT_EQ(r.controller->status().az.fault, AxisFault::kNone);
 }
 
+TEST(MagAxis, StatusCarriesTheRawFieldForTheCalibrationAndANewOneTakesEffect) {
+  using settings::Id;
+  testing::FakeRotator r(false);
+  FakeI2c bus;
+  bus.qmc(700, -400, 55);
+  ASSERT_EQ(r.settings.set_from_text(Id::kAzSensor, "mag").error, Error::kOk);
+  r.settings.set(Id::kMagLowpassMs, 0);
+  AxisIo io = r.az.io();
+  io.i2c = &bus;
+  r.controller = std::make_unique<Controller>(r.settings, io, r.el.io());
+  r.controller->begin(0);
+  r.run_ms(50);
+  AxisStatus a = r.controller->status().az;
+  ASSERT_TRUE(a.mag_valid);
+  EXPECT_EQ(a.mag_x, 700);
+  EXPECT_EQ(a.mag_y, -400);
+  EXPECT_EQ(a.mag_z, 55);
+  EXPECT_EQ(a.raw_full_scale, 0.0f);  // raw is a heading, not a converter code
+  // The web page's spin calibration saves the extremes it saw; the heading
+  // moves in one step and that is no implausible jump.
+  const float before = a.position_deg;
+  r.settings.set(Id::kMagXMax, 2700);  // x now reads as -1 radius, y as 0: about south
+  r.settings.set(Id::kMagXMin, 700);
+  r.settings.set(Id::kMagYMin, -1400);
+  r.settings.set(Id::kMagYMax, 600);
+  r.run_ms(100);
+  a = r.controller->status().az;
+  EXPECT_EQ(a.fault, AxisFault::kNone);
+  EXPECT_TRUE(a.position_valid);
+  EXPECT_GT(std::fabs(a.position_deg - before), 90.0f);
+  bus.present = false;  // a silent chip has no raw sample to show
+  r.run_ms(20);
+  EXPECT_FALSE(r.controller->status().az.mag_valid);
+}
+
 }  // namespace
 }  // namespace rotord
