@@ -26,6 +26,7 @@
 #include "settings/pin_rules.hpp"
 #include "settings/settings.hpp"
 #include "storage/flash_slots.hpp"
+#include "storage/settings_saver.hpp"
 #include "usb_cdc_port.hpp"
 #include "usb_personality.hpp"
 #include "web/http_session.hpp"
@@ -110,6 +111,10 @@ char g_boot_document[web::Api::kMaxDocumentBytes];
 Reboot g_reboot;
 PicoFlash g_flash;
 FlashSlots g_storage(g_flash);
+// Between the web API and the flash, and the one that saves what the
+// protocols change (GS-232 calibration, WRC AZOFFSET, rotctld C). Its
+// document buffer is the start-up one, free once the settings are loaded.
+SettingsSaver g_saver(g_settings, g_storage, g_boot_document, sizeof g_boot_document);
 std::optional<PicoAdc> g_az_pot, g_el_pot;
 std::optional<Ma3PioInput> g_az_ma3_pio, g_el_ma3_pio;
 std::optional<Ma3EdgeInput> g_az_ma3_irq, g_el_ma3_irq;
@@ -155,8 +160,16 @@ hal::PwmIn* fit_ma3(std::optional<Ma3PioInput>& pio, std::optional<Ma3EdgeInput>
 /// to the other slot.
 web::LoadOutcome load_stored_settings() {
   if (!g_flash.region_free()) return {};
-  return web::load_settings(g_storage, g_settings, g_scratch, g_boot_document,
+  return web::load_settings(g_saver, g_settings, g_scratch, g_boot_document,
                             sizeof g_boot_document);
+}
+
+/// What the loop's settings saver did, on the USB console.
+void report_save(SettingsSaver::Result r) {
+  if (r == SettingsSaver::Result::kSaved) std::printf("rotord: settings saved to flash\n");
+  if (r == SettingsSaver::Result::kFailed)
+    std::printf("rotord: saving the settings to flash failed; next try in %ld s\n",
+                static_cast<long>(g_saver.retry_delay_ms() / 1000));
 }
 
 void report_settings(const web::LoadOutcome& r) {
@@ -288,7 +301,8 @@ void report_settings(const web::LoadOutcome& r) {
           make_rotctld);
   // POST /api/settings persists to the flash slots (RAM only when the
   // program image would overlap them).
-  hal::Storage* const storage = g_flash.region_free() ? &g_storage : nullptr;
+  hal::Storage* const storage = g_flash.region_free() ? &g_saver : nullptr;
+  g_saver.begin();  // what was loaded (or deliberately not overwritten) counts as saved
   static web::Api api(web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION});
   auto make_http = [] { return web::HttpSession(api); };
   lwip_port::ServerConfig http_config;
@@ -336,11 +350,15 @@ void report_settings(const web::LoadOutcome& r) {
         for (lwip_port::TcpServer* server : servers) server->poll(now);
         wifi.step(now);
       }
+      // Settings changed by a protocol: saved after a quiet time, while the
+      // rotator stands (a flash erase stalls this loop for tens of ms).
+      if (storage != nullptr) report_save(g_saver.poll(now, controller.status().moving()));
       if (g_reboot.requested()) {
         if (reboot_at == 0) reboot_at = now + kRebootDelayMs;
         if (now >= reboot_at) {
           std::printf("rotord: rebooting\n");
           controller.shutdown();
+          if (storage != nullptr) report_save(g_saver.flush(now));  // motors off first
           // watchdog_update() would postpone a delayed reboot forever, so
           // reboot now and wait for it here.
           watchdog_reboot(0, 0, 0);
