@@ -231,9 +231,8 @@ void EasycommSession::move(AxisId axis, Direction dir, std::string_view velocity
 void EasycommSession::read_config(std::string_view reg, ByteSink& out) {
   const std::optional<Id> id = find_register(reg);
   if (!id) return alarm(out, "UNKNOWN");
-  char value[48];
-  const std::size_t n =
-      settings::Settings::format(*id, controller_.settings().get(*id), value, sizeof(value));
+  char value[settings::kMaxTextBytes + 1 > 48 ? settings::kMaxTextBytes + 1 : 48];
+  const std::size_t n = controller_.settings().format_value(*id, value, sizeof(value));
   send(out, "CR%.*s,%.*s", static_cast<int>(reg.size()), reg.data(), static_cast<int>(n), value);
 }
 
@@ -242,13 +241,9 @@ void EasycommSession::write_config(std::string_view arg, ByteSink& out) {
   if (comma == std::string_view::npos) return alarm(out, "SYNTAX");
   const std::optional<Id> id = find_register(arg.substr(0, comma));
   if (!id) return alarm(out, "UNKNOWN");
-  settings::Settings& s = controller_.settings();
-  const double before = s.get(*id);
-  if (s.set_from_text(*id, arg.substr(comma + 1)).error != Error::kOk) return alarm(out, "RANGE");
-  if (s.check_consistency().error != Error::kOk) {
-    s.set(*id, before);  // e.g. a min above its max: keep the old, consistent value
+  // A value that breaks a cross-setting rule (a min above its max) is undone.
+  if (controller_.settings().update_from_text(*id, arg.substr(comma + 1)).error != Error::kOk)
     alarm(out, "RANGE");
-  }
 }
 
 void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {

@@ -333,12 +333,8 @@ HamlibError RotctldSession::set_conf(std::string_view token, std::string_view te
   // Any key of the settings table works too ("C park.az_deg 180").
   if (!id) id = settings::find(token);
   if (!id) return HamlibError::kInvalid;
-  const double before = s.get(*id);
-  if (s.set_from_text(*id, text).error != Error::kOk) return HamlibError::kInvalid;
-  if (s.check_consistency().error != Error::kOk) {
-    s.set(*id, before);  // e.g. a minimum above its maximum: keep the old value
-    return HamlibError::kInvalid;
-  }
+  // A value that breaks a cross-setting rule (a minimum above its maximum) is undone.
+  if (s.update_from_text(*id, text).error != Error::kOk) return HamlibError::kInvalid;
   return HamlibError::kOk;
 }
 
@@ -364,9 +360,8 @@ HamlibError RotctldSession::get_conf(std::string_view token) {
   }
   const std::optional<Id> id = settings::find(token);
   if (!id) return HamlibError::kInvalid;
-  char text[48];
-  const std::size_t n =
-      settings::Settings::format(*id, controller_.settings().get(*id), text, sizeof(text));
+  char text[settings::kMaxTextBytes + 1 > 48 ? settings::kMaxTextBytes + 1 : 48];
+  const std::size_t n = controller_.settings().format_value(*id, text, sizeof(text));
   reply_.format("%.*s=%.*s\n", static_cast<int>(name.size()), name.data(), static_cast<int>(n),
                 text);
   return HamlibError::kOk;

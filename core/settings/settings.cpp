@@ -35,12 +35,22 @@ std::optional<Id> find(std::string_view key) {
 }
 
 int choice_count(Id id) {
+  if (def(id).type != Type::kEnum) return 0;
   const char* choices = def(id).choices;
   if (*choices == '\0') return 0;
   int count = 1;
   for (const char* c = choices; *c; ++c)
     if (*c == '|') ++count;
   return count;
+}
+
+TextFormat text_format(Id id) {
+  const std::string_view unit = def(id).unit;
+  if (unit == "ascii") return TextFormat::kAscii;
+  if (unit == "ipv4") return TextFormat::kIpv4;
+  if (unit == "label") return TextFormat::kLabel;
+  if (unit == "hostname") return TextFormat::kHostname;
+  return TextFormat::kText;
 }
 
 std::string_view choice_name(Id id, int index) {
@@ -53,8 +63,118 @@ std::string_view choice_name(Id id, int index) {
   return rest.substr(0, rest.find('|'));
 }
 
+bool parse_ipv4(std::string_view text, std::uint32_t& out) {
+  std::uint32_t address = 0;
+  for (int part = 0; part < 4; ++part) {
+    if (part > 0) {
+      if (text.empty() || text[0] != '.') return false;
+      text.remove_prefix(1);
+    }
+    std::size_t digits = 0;
+    unsigned value = 0;
+    while (digits < text.size() && digits < 4 && text[digits] >= '0' && text[digits] <= '9')
+      value = value * 10 + static_cast<unsigned>(text[digits++] - '0');
+    // "010" is octal to inet_aton but decimal to people: refuse the ambiguity.
+    if (digits == 0 || digits > 3 || value > 255 || (digits > 1 && text[0] == '0')) return false;
+    text.remove_prefix(digits);
+    address = (address << 8) | value;
+  }
+  if (!text.empty()) return false;
+  out = address;
+  return true;
+}
+
+namespace {
+
+bool is_label_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-';
+}
+
+/// One DNS label (RFC 1123): 1-63 letters, digits or '-', not at either end.
+bool is_label(std::string_view label) {
+  if (label.empty() || label.size() > 63 || label.front() == '-' || label.back() == '-')
+    return false;
+  for (char c : label)
+    if (!is_label_char(c)) return false;
+  return true;
+}
+
+/// Well-formed UTF-8 without control characters (an SSID as phones show it).
+bool is_clean_utf8(std::string_view text) {
+  for (std::size_t n = 0; n < text.size();) {
+    const auto c = static_cast<unsigned char>(text[n]);
+    std::size_t extra = 0;
+    if (c < 0x20 || c == 0x7f) return false;
+    if (c >= 0x80) {
+      if (c >= 0xc2 && c <= 0xdf) {
+        extra = 1;
+      } else if (c >= 0xe0 && c <= 0xef) {
+        extra = 2;
+      } else if (c >= 0xf0 && c <= 0xf4) {
+        extra = 3;
+      } else {
+        return false;
+      }
+      if (n + extra >= text.size()) return false;
+      for (std::size_t k = 1; k <= extra; ++k)
+        if ((static_cast<unsigned char>(text[n + k]) & 0xc0) != 0x80) return false;
+    }
+    n += 1 + extra;
+  }
+  return true;
+}
+
+}  // namespace
+
+Rejection validate_text(Id id, std::string_view value) {
+  const Def& d = def(id);
+  if (d.type != Type::kText) return {Error::kInvalidArgument, "not a text setting"};
+  if (value.empty()) return {};  // "not set"; rules that need a value are cross-setting
+  if (value.size() > static_cast<std::size_t>(d.max))
+    return {Error::kOutOfRange, "too long (see the maximum length)"};
+  if (value.size() < static_cast<std::size_t>(d.min))
+    return {Error::kOutOfRange, "too short (see the minimum length)"};
+  switch (text_format(id)) {
+    case TextFormat::kText:
+      if (!is_clean_utf8(value))
+        return {Error::kInvalidArgument, "control characters or invalid UTF-8"};
+      break;
+    case TextFormat::kAscii:
+      for (char c : value)
+        if (c < 0x20 || c > 0x7e)
+          return {Error::kInvalidArgument, "only printable ASCII characters (space to ~)"};
+      break;
+    case TextFormat::kIpv4: {
+      std::uint32_t ignored = 0;
+      if (!parse_ipv4(value, ignored))
+        return {Error::kInvalidArgument,
+                "not an IPv4 address (four numbers 0-255 with dots, e.g. 192.168.1.20)"};
+      break;
+    }
+    case TextFormat::kLabel:
+      if (!is_label(value))
+        return {Error::kInvalidArgument, "letters, digits and '-' only, not first or last"};
+      break;
+    case TextFormat::kHostname: {
+      std::string_view rest = value;
+      for (;;) {
+        const std::size_t dot = rest.find('.');
+        if (!is_label(rest.substr(0, dot)))
+          return {
+              Error::kInvalidArgument,
+              "not a host name (labels of letters, digits and '-' joined by dots) or IPv4 address"};
+        if (dot == std::string_view::npos) break;
+        rest.remove_prefix(dot + 1);
+      }
+      break;
+    }
+  }
+  return {};
+}
+
 Rejection validate(Id id, double value) {
   const Def& d = def(id);
+  if (d.type == Type::kText) return {Error::kInvalidArgument, "a text setting takes text"};
   if (!std::isfinite(value)) return {Error::kInvalidArgument, "not a number"};
   if (d.type != Type::kFloat && value != std::floor(value))
     return {Error::kInvalidArgument, "must be a whole number"};
@@ -67,7 +187,52 @@ Settings::Settings() {
 }
 
 void Settings::reset_to_defaults() {
-  for (std::size_t n = 0; n < kCount; ++n) values_[n] = kDefs[n].default_value;
+  for (std::size_t n = 0; n < kCount; ++n) {
+    const auto id = static_cast<Id>(n);
+    values_[n] = kDefs[n].type == Type::kText ? 0.0 : kDefs[n].default_value;
+    if (kDefs[n].type != Type::kText) continue;
+    // Defaults are checked by the table test; a too-long one is cut, not overrun.
+    const std::size_t cap = detail::kTextBytesOf[n] - 1;
+    std::strncpy(text_slot(id), kDefs[n].choices, cap);
+    text_slot(id)[cap] = '\0';
+  }
+  ++revision_;
+}
+
+std::string_view Settings::text(Id id) const {
+  return is_text(id) ? std::string_view(text_slot(id)) : std::string_view();
+}
+
+std::string_view Settings::visible_text(Id id) const {
+  const std::string_view t = text(id);
+  if (is_secret(id) && !t.empty()) return kSecretMask;
+  return t;
+}
+
+Rejection Settings::set_text(Id id, std::string_view value) {
+  if (is_secret(id) && value == kSecretMask) return {};  // the mask read back: keep
+  const Rejection r = validate_text(id, value);
+  if (r.error != Error::kOk) return r;
+  if (value == text(id)) return {};
+  char* slot = text_slot(id);
+  std::memcpy(slot, value.data(), value.size());
+  slot[value.size()] = '\0';
+  ++revision_;
+  return {};
+}
+
+bool Settings::same_value(Id id, const Settings& other) const {
+  return is_text(id) ? text(id) == other.text(id) : get(id) == other.get(id);
+}
+
+void Settings::copy_value(Id id, const Settings& from) {
+  if (same_value(id, from)) return;
+  if (is_text(id)) {
+    const std::size_t n = static_cast<std::size_t>(id);
+    std::memcpy(text_slot(id), from.text_slot(id), detail::kTextBytesOf[n]);
+  } else {
+    values_[static_cast<std::size_t>(id)] = from.get(id);
+  }
   ++revision_;
 }
 
@@ -83,8 +248,9 @@ Rejection Settings::set(Id id, double value) {
 }
 
 Rejection Settings::set_from_text(Id id, std::string_view text) {
-  text = text::trim(text);
   const Def& d = def(id);
+  if (d.type == Type::kText) return set_text(id, text);
+  text = text::trim(text);
   if (d.type == Type::kBool) {
     if (text == "true" || text == "on" || text == "1") return set(id, 1);
     if (text == "false" || text == "off" || text == "0") return set(id, 0);
@@ -97,6 +263,25 @@ Rejection Settings::set_from_text(Id id, std::string_view text) {
   double value = 0;
   if (!text::parse_double(text, value)) return {Error::kInvalidArgument, "not a number"};
   return set(id, value);
+}
+
+Rejection Settings::update_from_text(Id id, std::string_view text) {
+  // The previous value, to undo a write that breaks a cross-setting rule: a
+  // number or one text slot, on the stack (not a whole Settings copy).
+  const double before = get(id);
+  char before_text[kMaxTextBytes + 1];
+  const std::string_view old = this->text(id);
+  std::memcpy(before_text, old.data(), old.size());
+  const Rejection r = set_from_text(id, text);
+  if (r.error != Error::kOk) return r;
+  const Rejection rule = check_consistency();
+  if (rule.error == Error::kOk) return {};
+  if (is_text(id)) {
+    set_text(id, std::string_view(before_text, old.size()));
+  } else {
+    set(id, before);
+  }
+  return rule;
 }
 
 Rejection Settings::check_consistency() const {
@@ -135,7 +320,45 @@ Rejection Settings::check_consistency() const {
     return {Error::kOutOfRange, "az.sensor = mag needs pins.i2c_sda and pins.i2c_scl"};
   if (b(Id::kButtonsEnabled) && (i(Id::kPinBtnCw) == kNoPin || i(Id::kPinBtnCcw) == kNoPin))
     return {Error::kOutOfRange, "buttons.enabled needs pins.btn_cw and pins.btn_ccw"};
+  if (const Rejection net = check_network(); net.error != Error::kOk) return net;
   return {};
+}
+
+Rejection Settings::check_network() const {
+  if (b(Id::kTimeSntpEnabled) && text(Id::kTimeSntpServer).empty())
+    return {Error::kOutOfRange, "time.sntp_enabled needs time.sntp_server"};
+  if (i(Id::kNetIpv4Mode) != 1) return {};  // dhcp: the static fields are ignored
+  std::uint32_t address = 0;
+  std::uint32_t mask = 0;
+  if (!parse_ipv4(text(Id::kNetIpv4Address), address))
+    return {Error::kOutOfRange, "net.ipv4_mode = static needs net.ipv4_address"};
+  if (!parse_ipv4(text(Id::kNetIpv4Netmask), mask))
+    return {Error::kOutOfRange, "net.ipv4_mode = static needs net.ipv4_netmask"};
+  // A netmask is ones then zeros: ~mask + 1 is then a power of two.
+  const std::uint32_t host_bits = ~mask;
+  if (mask == 0 || (host_bits & (host_bits + 1)) != 0 || host_bits == 0)
+    return {Error::kOutOfRange,
+            "net.ipv4_netmask must be ones then zeros, 0.0.0.0 and 255.255.255.255 excluded "
+            "(e.g. 255.255.255.0)"};
+  if ((address & host_bits) == 0 || (address & host_bits) == host_bits)
+    return {Error::kOutOfRange,
+            "net.ipv4_address is the network or broadcast address of net.ipv4_netmask"};
+  std::uint32_t gateway = 0;
+  if (parse_ipv4(text(Id::kNetIpv4Gateway), gateway) &&
+      ((gateway & mask) != (address & mask) || gateway == address))
+    return {Error::kOutOfRange,
+            "net.ipv4_gateway must be another address in the subnet of net.ipv4_address"};
+  return {};
+}
+
+std::size_t Settings::format_value(Id id, char* out, std::size_t capacity) const {
+  if (!is_text(id)) return format(id, get(id), out, capacity);
+  if (capacity == 0) return 0;
+  const std::string_view t = visible_text(id);
+  const std::size_t n = t.size() < capacity ? t.size() : capacity - 1;
+  std::memcpy(out, t.data(), n);
+  out[n] = '\0';
+  return n;
 }
 
 std::size_t Settings::format(Id id, double value, char* out, std::size_t capacity) {
@@ -155,6 +378,9 @@ std::size_t Settings::format(Id id, double value, char* out, std::size_t capacit
       break;
     case Type::kFloat:
       n = std::snprintf(out, capacity, "%.6g", value);
+      break;
+    case Type::kText:  // no number to format: format_value prints the text
+      n = std::snprintf(out, capacity, "%s", "");
       break;
   }
   if (n < 0) return 0;

@@ -36,6 +36,12 @@ const char* apply_member(Id id, const JsonValue& v, settings::Settings& candidat
   const settings::Def& d = settings::def(id);
   double value = 0.0;
   switch (d.type) {
+    case Type::kText: {
+      if (v.type != JsonType::kString) return "expected a string";
+      if (v.truncated) return "too long (see the maximum length)";
+      const settings::Rejection r = candidate.set_text(id, v.text);
+      return r.error == Error::kOk ? nullptr : r.reason;
+    }
     case Type::kFloat:
     case Type::kInt:
       if (v.type != JsonType::kNumber) return "expected a number";
@@ -84,6 +90,9 @@ void write_setting_value(Id id, double value, JsonWriter& out) {
     case Type::kInt:
       out.integer(static_cast<long long>(value));
       break;
+    case Type::kText:  // no text in a double: write_setting has it
+      out.string("");
+      break;
     case Type::kFloat: {
       // Settings::format's %.6g round-trips what a person typed (0.15, not
       // 0.1500000059604645).
@@ -95,19 +104,28 @@ void write_setting_value(Id id, double value, JsonWriter& out) {
   }
 }
 
-void write_settings(const settings::Settings& values, JsonWriter& out) {
+void write_setting(const settings::Settings& values, Id id, JsonWriter& out, Secrets secrets) {
+  if (!settings::is_text(id)) {
+    write_setting_value(id, values.get(id), out);
+  } else {
+    out.string(secrets == Secrets::kReveal ? values.text(id) : values.visible_text(id));
+  }
+}
+
+void write_settings(const settings::Settings& values, JsonWriter& out, Secrets secrets) {
   out.begin_object();
   for (std::size_t n = 0; n < settings::kCount; ++n) {
     const auto id = static_cast<Id>(n);
     out.key(settings::def(id).key);
-    write_setting_value(id, values.get(id), out);
+    write_setting(values, id, out, secrets);
   }
   out.end_object();
   out.flush();
 }
 
 void write_settings_schema(const settings::Settings& defaults, JsonWriter& out) {
-  static constexpr const char* kTypeNames[] = {"float", "int", "bool", "enum"};
+  static constexpr const char* kTypeNames[] = {"float", "int", "bool", "enum", "text"};
+  static constexpr const char* kFormatNames[] = {"text", "ascii", "ipv4", "label", "hostname"};
   out.begin_object().key("groups").begin_array();
   for (std::size_t n = 0; n < settings::kCount; ++n) {
     const char* group = settings::def(static_cast<Id>(n)).group;
@@ -120,14 +138,16 @@ void write_settings_schema(const settings::Settings& defaults, JsonWriter& out) 
   for (std::size_t n = 0; n < settings::kCount; ++n) {
     const auto id = static_cast<Id>(n);
     const settings::Def& d = settings::def(id);
+    const bool text = settings::is_text(id);
     out.begin_object()
         .member("key", d.key)
-        .member("type", kTypeNames[static_cast<int>(d.type)])
-        .member("unit", d.unit)
+        .member("type", settings::is_secret(id) ? "password" : kTypeNames[static_cast<int>(d.type)])
+        .member("unit", text ? "" : d.unit)
         .member("min", d.min)
         .member("max", d.max);
+    if (text) out.member("format", kFormatNames[static_cast<int>(settings::text_format(id))]);
     out.key("default");
-    write_setting_value(id, defaults.get(id), out);
+    write_setting(defaults, id, out);
     out.member("group", d.group).member("help", d.help);
     out.key("choices").begin_array();
     for (int c = 0; c < settings::choice_count(id); ++c) out.string(settings::choice_name(id, c));
@@ -184,9 +204,9 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
   }
   for (std::size_t n = 0; n < settings::kCount; ++n) {
     const auto id = static_cast<Id>(n);
-    if (scratch.get(id) != target.get(id)) {
+    if (!scratch.same_value(id, target)) {
       outcome.changed.set(n);
-      target.set(id, scratch.get(id));  // validated above, cannot fail
+      target.copy_value(id, scratch);  // validated above
     }
   }
   return outcome;
@@ -221,7 +241,7 @@ bool save_settings(hal::Storage& storage, const settings::Settings& values, char
   {
     JsonWriter writer(sink);
     writer.set_pretty(true);
-    write_settings(values, writer);
+    write_settings(values, writer, Secrets::kReveal);  // the device's own copy
   }
   sink.write("\n");
   if (sink.overflow()) return false;

@@ -15,14 +15,24 @@ namespace rotord::web {
 /// name. The same document is GET /api/settings, the body of POST
 /// /api/settings (partial), the web page's export file and what hal::Storage
 /// keeps, so an exported file can be imported or dropped in as the config.
-void write_settings(const settings::Settings& values, JsonWriter& out);
+///
+/// Secrets (settings::kSecret) appear as settings::kSecretMask ("" when
+/// empty) unless `secrets` is kReveal, which only the stored document uses.
+enum class Secrets : unsigned char { kMask, kReveal };
+void write_settings(const settings::Settings& values, JsonWriter& out,
+                    Secrets secrets = Secrets::kMask);
+
+/// One setting's value in its JSON form, text included (masked as above).
+void write_setting(const settings::Settings& values, settings::Id id, JsonWriter& out,
+                   Secrets secrets = Secrets::kMask);
 
 /// One value in its JSON form (number, true/false or the choice's name).
 void write_setting_value(settings::Id id, double value, JsonWriter& out);
 
 /// The settings table for forms: groups in table order, then every row with
 /// key, type, unit, min, max, default (taken from `defaults`), group, help,
-/// choices and whether it needs a restart.
+/// choices and whether it needs a restart. Text rows have type "text" or
+/// "password" (secrets), min/max as lengths and a "format" (text_format).
 void write_settings_schema(const settings::Settings& defaults, JsonWriter& out);
 
 /// Per-key reasons a document was refused, in a fixed table (no heap).

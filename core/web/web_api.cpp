@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "util/utc_time.hpp"
 #include "web/json_reader.hpp"
 
 namespace rotord::web {
@@ -177,8 +178,20 @@ void Api::write_status(JsonWriter& w) const {
   const settings::Settings& values = mutable_c.settings();
   w.begin_object()
       .member("version", ctx_.version)
-      .member("time_ms", static_cast<long long>(c.now()))
-      .member("mode", mode_name(s.mode))
+      .member("time_ms", static_cast<long long>(c.now()));
+  // Calendar time for the user (SNTP on the Pico W, the system clock on
+  // Linux); null until known. The control tick never uses it.
+  w.key("time_utc");
+  char utc[32];
+  const std::optional<std::int64_t> unix_ms =
+      ctx_.wall_clock != nullptr ? ctx_.wall_clock->unix_ms() : std::nullopt;
+  const std::size_t utc_len = unix_ms ? format_utc_iso8601(*unix_ms, utc, sizeof utc) : 0;
+  if (utc_len > 0) {
+    w.string(std::string_view(utc, utc_len));
+  } else {
+    w.null();
+  }
+  w.member("mode", mode_name(s.mode))
       .member("speed_pct", s.speed_pct)
       .member("moving", s.moving())
       .member("fault", s.any_fault());
@@ -482,7 +495,7 @@ void Api::post_settings(std::string_view body, protocol::ByteSink& out,
   }
   if (r.changed.any() && !persist(out, options)) {
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (r.changed.test(n)) values.set(static_cast<Id>(n), backup_.get(static_cast<Id>(n)));
+      if (r.changed.test(n)) values.copy_value(static_cast<Id>(n), backup_);
     return;
   }
   send_changed(out, options, r.changed);
@@ -500,14 +513,14 @@ void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options
   SettingSet changed;
   for (std::size_t n = 0; n < settings::kCount; ++n) {
     const auto id = static_cast<Id>(n);
-    if (values.get(id) != defaults.get(id)) {
+    if (!values.same_value(id, defaults)) {
       changed.set(n);
-      values.set(id, defaults.get(id));
+      values.copy_value(id, defaults);
     }
   }
   if (changed.any() && !persist(out, options)) {
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed.test(n)) values.set(static_cast<Id>(n), backup_.get(static_cast<Id>(n)));
+      if (changed.test(n)) values.copy_value(static_cast<Id>(n), backup_);
     return;
   }
   send_changed(out, options, changed);

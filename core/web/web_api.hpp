@@ -2,6 +2,7 @@
 #include <cstddef>
 
 #include "hal/storage.hpp"
+#include "hal/wall_clock.hpp"
 #include "rotator/controller.hpp"
 #include "web/http_request.hpp"
 #include "web/http_response.hpp"
@@ -27,6 +28,8 @@ struct ApiContext {
   const settings::Settings* defaults = nullptr;
   RebootHook* reboot = nullptr;  ///< nullptr: POST /api/reboot answers 501
   const char* version = "";
+  /// GET /api/status time_utc; nullptr or an unknown time: null.
+  const hal::WallClock* wall_clock = nullptr;
 };
 
 /// The REST API (docs/web_api.md) on the controller's command API. One per

@@ -14,8 +14,14 @@ TEST(SettingsTable, EveryRowIsWellFormed) {
     SCOPED_TRACE(d.key);
     EXPECT_GT(std::strlen(d.key), 0u);
     EXPECT_GT(std::strlen(d.help), 0u);
-    EXPECT_LE(d.min, d.default_value);
-    EXPECT_GE(d.max, d.default_value);
+    if (d.type == Type::kText) {
+      // min/max are lengths; the default text is in the choices column.
+      EXPECT_LE(d.min, d.max);
+      EXPECT_EQ(validate_text(static_cast<Id>(n), d.choices).error, Error::kOk);
+    } else {
+      EXPECT_LE(d.min, d.default_value);
+      EXPECT_GE(d.max, d.default_value);
+    }
     EXPECT_EQ(find(d.key), static_cast<Id>(n)) << "duplicate key";
     if (d.type == Type::kEnum) {
       EXPECT_EQ(choice_count(static_cast<Id>(n)), static_cast<int>(d.max) + 1);
