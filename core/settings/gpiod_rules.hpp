@@ -10,9 +10,10 @@ namespace rotord::settings {
 /// "gpiod.el_*", "gpiod.btn_*": the ones whose unit is "line").
 bool is_gpiod_line(Id id);
 
-/// The first pair of gpiod.* lines that share an offset of the chip, described
-/// in `detail` with both keys and the line (e.g. "gpiod.btn_cw and gpiod.az_l1
-/// both use line 5"), or nullopt. Kept apart from the Pico's pin rules: these
+/// The first pair of gpiod.* lines that share an offset of the chip, or of
+/// pwm.* H-bridge halves that share a PWM channel, described in `detail` with
+/// both keys and the number (e.g. "gpiod.az_l1 and gpiod.btn_cw both use line
+/// 5"), or nullopt. Kept apart from the Pico's pin rules: these
 /// are offsets of a Linux gpiochip, with none of the RP2040's restrictions.
 std::optional<Error> check_gpiod_lines(const Settings& s, char* detail, std::size_t capacity);
 

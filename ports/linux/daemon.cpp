@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "services.hpp"
+#include "sysfs_pwm.hpp"
 
 namespace rotord::linux_port {
 
@@ -61,7 +62,9 @@ bool Daemon::setup() {
 bool Daemon::open_gpiod() {
   std::string error;
   auto chip = open_gpiod_chip(settings_.i(settings::Id::kGpiodChip), error);
-  if (chip) gpio_ = GpiodRotator::open(settings_, std::move(chip), iio_root(), monotonic_ns, error);
+  if (chip)
+    gpio_ =
+        GpiodRotator::open(settings_, std::move(chip), iio_root(), pwm_root(), monotonic_ns, error);
   if (!gpio_) {
     std::fprintf(stderr, "rotord: --hw gpiod: %s\n", error.c_str());
     return false;

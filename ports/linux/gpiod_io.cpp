@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "axis/axis_config.hpp"
+#include "sysfs_pwm.hpp"
 
 namespace rotord::linux_port {
 namespace {
@@ -20,6 +21,7 @@ struct AxisKeys {
   std::optional<Id> t1, t2;
   Id ma3, button_fwd, button_rev;
   Id iio_device, iio_channel;
+  Id pwm_fwd, pwm_rev;
 };
 
 constexpr AxisKeys kAzKeys{"az",
@@ -38,7 +40,9 @@ constexpr AxisKeys kAzKeys{"az",
                            Id::kGpiodBtnCw,
                            Id::kGpiodBtnCcw,
                            Id::kIioAzDevice,
-                           Id::kIioAzChannel};
+                           Id::kIioAzChannel,
+                           Id::kPwmAzCw,
+                           Id::kPwmAzCcw};
 
 constexpr AxisKeys kElKeys{"el",
                            Id::kElDrive,
@@ -56,7 +60,9 @@ constexpr AxisKeys kElKeys{"el",
                            Id::kGpiodBtnUp,
                            Id::kGpiodBtnDown,
                            Id::kIioElDevice,
-                           Id::kIioElChannel};
+                           Id::kIioElChannel,
+                           Id::kPwmElUp,
+                           Id::kPwmElDown};
 
 const char* key(Id id) {
   return settings::def(id).key;
@@ -112,10 +118,19 @@ void GpiodDriveSink::map(OutputChannel channel, std::unique_ptr<GpioLine> line) 
   lines_[static_cast<std::size_t>(channel)] = std::move(line);
 }
 
-void GpiodDriveSink::write(std::size_t channel, bool active) {
+void GpiodDriveSink::map(OutputChannel channel, std::unique_ptr<hal::PwmOut> pwm) {
+  pwms_[static_cast<std::size_t>(channel)] = std::move(pwm);
+}
+
+void GpiodDriveSink::write(std::size_t channel, float value) {
+  if (pwms_[channel]) {
+    pwms_[channel]->set_duty(value);  // reports its own errors
+    written_[channel] = value;
+    return;
+  }
   if (!lines_[channel]) return;
-  if (lines_[channel]->set_active(active)) {
-    active_[channel] = active;
+  if (lines_[channel]->set_active(value > 0.0f)) {
+    written_[channel] = value > 0.0f ? 1.0f : 0.0f;
   } else if (!error_reported_) {
     error_reported_ = true;
     std::fprintf(stderr, "rotord: gpiod: writing an output line failed\n");
@@ -124,13 +139,13 @@ void GpiodDriveSink::write(std::size_t channel, bool active) {
 
 void GpiodDriveSink::apply(const DriveOutputs& outputs) {
   for (std::size_t ch = 0; ch < kOutputChannelCount; ++ch) {
-    const bool active = outputs.value[ch] > 0.0f;
-    if (active != active_[ch]) write(ch, active);
+    const float value = pwms_[ch] ? outputs.value[ch] : (outputs.value[ch] > 0.0f ? 1.0f : 0.0f);
+    if (value != written_[ch]) write(ch, value);
   }
 }
 
 void GpiodDriveSink::all_off() {
-  for (std::size_t ch = 0; ch < kOutputChannelCount; ++ch) write(ch, false);
+  for (std::size_t ch = 0; ch < kOutputChannelCount; ++ch) write(ch, 0.0f);
 }
 
 bool GpiodSwitch::active() {
@@ -148,6 +163,7 @@ bool GpiodSwitch::active() {
 std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
                                                  std::unique_ptr<GpioChip> chip,
                                                  const std::string& iio_root,
+                                                 const std::string& pwm_root,
                                                  GpiodMa3Input::Clock clock, std::string& error) {
   error.clear();
   std::unique_ptr<GpiodRotator> hw(new GpiodRotator(std::move(chip)));
@@ -160,17 +176,39 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
     a.fitted = true;
     const auto drive = static_cast<DriveType>(s.i(k->drive));
     const std::string drive_text = choice(s, k->drive);
-    if (drive == DriveType::kHBridge) {
-      error = drive_text +
-              ": --hw gpiod has no H-bridge PWM (software PWM is not fit for a motor); use a "
-              "relay drive, or the Pico W port for H-bridges";
-      return nullptr;
-    }
     // Outputs first, so they are driven inactive before anything can fail.
-    a.drive.map(OutputChannel::kRelayCw,
-                req.line(k->relay_fwd, LineMode::kOutput, drive_text.c_str()));
-    a.drive.map(OutputChannel::kRelayCcw,
-                req.line(k->relay_rev, LineMode::kOutput, drive_text.c_str()));
+    std::string drive_where;
+    if (drive == DriveType::kHBridge) {
+      const int pwm_chip = s.i(Id::kPwmChip);
+      if (pwm_chip < 0) {
+        error = drive_text +
+                " needs pwm.chip: H-bridges run on kernel PWM channels only (software PWM is not "
+                "fit for a motor)";
+        return nullptr;
+      }
+      for (const auto& [channel, id] : {std::pair{OutputChannel::kPwmCw, k->pwm_fwd},
+                                        std::pair{OutputChannel::kPwmCcw, k->pwm_rev}}) {
+        if (s.i(id) < 0) {
+          error = drive_text + " needs " + key(id);
+          return nullptr;
+        }
+        auto pwm = std::make_unique<SysfsPwm>();
+        std::string why;
+        if (!pwm->open(pwm_root, pwm_chip, s.i(id), s.i(Id::kPwmHz), why)) {
+          error = std::string(key(id)) + " = " + std::to_string(s.i(id)) + ": " + why;
+          return nullptr;
+        }
+        drive_where += (drive_where.empty() ? "PWM " : " and ") + pwm->path();
+        a.drive.map(channel, std::unique_ptr<hal::PwmOut>(std::move(pwm)));
+      }
+    } else {
+      a.drive.map(OutputChannel::kRelayCw,
+                  req.line(k->relay_fwd, LineMode::kOutput, drive_text.c_str()));
+      a.drive.map(OutputChannel::kRelayCcw,
+                  req.line(k->relay_rev, LineMode::kOutput, drive_text.c_str()));
+      drive_where =
+          "lines " + std::to_string(s.i(k->relay_fwd)) + "/" + std::to_string(s.i(k->relay_rev));
+    }
     if (drive == DriveType::kRelayTwoSpeed || drive == DriveType::kRelayVoltageSelect)
       a.drive.map(drive == DriveType::kRelayTwoSpeed ? OutputChannel::kSpeedFast
                                                      : OutputChannel::kVoltageFast,
@@ -217,9 +255,8 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
       sensor_where = "MA3 on line " + std::to_string(s.i(k->ma3));
     }
     hw->summary_ += std::string("; ") + k->name + ": " +
-                    std::string(settings::choice_name(k->drive, s.i(k->drive))) +
-                    " drive on lines " + std::to_string(s.i(k->relay_fwd)) + "/" +
-                    std::to_string(s.i(k->relay_rev)) + ", " + sensor_where;
+                    std::string(settings::choice_name(k->drive, s.i(k->drive))) + " drive on " +
+                    drive_where + ", " + sensor_where;
   }
   return hw;
 }

@@ -11,26 +11,30 @@
 #include "axis/axis_id.hpp"
 #include "axis/axis_io.hpp"
 #include "gpio_line.hpp"
+#include "hal/pwm_out.hpp"
 #include "iio_adc.hpp"
 #include "ma3_edge_timer.hpp"
 #include "settings/settings.hpp"
 
 namespace rotord::linux_port {
 
-/// One axis's outputs on GPIO lines. A line is written only when its value
-/// changes (one ioctl per relay change, not per tick).
+/// One axis's outputs: relays on GPIO lines, H-bridge halves on kernel PWM
+/// channels. A line or duty is written only when it changes (one ioctl per
+/// relay change, not per tick).
 class GpiodDriveSink final : public DriveSink {
  public:
   void map(OutputChannel channel, std::unique_ptr<GpioLine> line);
+  void map(OutputChannel channel, std::unique_ptr<hal::PwmOut> pwm);
   void apply(const DriveOutputs& outputs) override;
   /// Every mapped line inactive, written whatever the last value was.
   void all_off();
 
  private:
-  void write(std::size_t channel, bool active);
+  void write(std::size_t channel, float value);
 
   std::array<std::unique_ptr<GpioLine>, kOutputChannelCount> lines_{};
-  std::array<bool, kOutputChannelCount> active_{};
+  std::array<std::unique_ptr<hal::PwmOut>, kOutputChannelCount> pwms_{};
+  std::array<float, kOutputChannelCount> written_{};  ///< relays 0/1, PWM duty
   bool error_reported_ = false;
 };
 
@@ -52,11 +56,13 @@ class GpiodRotator {
  public:
   /// Requests every line the settings call for (outputs inactive) and opens
   /// every ADC channel, or returns nullptr with `error` naming the setting,
-  /// the line or file and what is wrong. Refuses what it cannot drive:
-  /// H-bridge PWM (no software PWM for a motor) and the magnetometer.
+  /// the line or file and what is wrong. H-bridge drives need kernel PWM
+  /// channels (pwm.*; never software PWM for a motor); the magnetometer is
+  /// refused (no Linux I2C driver here yet).
   static std::unique_ptr<GpiodRotator> open(const settings::Settings& s,
                                             std::unique_ptr<GpioChip> chip,
-                                            const std::string& iio_root, GpiodMa3Input::Clock clock,
+                                            const std::string& iio_root,
+                                            const std::string& pwm_root, GpiodMa3Input::Clock clock,
                                             std::string& error);
   /// Outputs off, then the lines are released.
   ~GpiodRotator();

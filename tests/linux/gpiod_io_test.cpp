@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "fake_gpio_chip.hpp"
 #include "fake_sysfs.hpp"
 #include "rotator/controller.hpp"
@@ -33,8 +35,8 @@ class GpiodIoTest : public ::testing::Test {
 
   std::unique_ptr<GpiodRotator> open() {
     return GpiodRotator::open(
-        s, std::make_unique<FakeGpioChip>(board), sys.root(), [] { return std::uint64_t{0}; },
-        error);
+        s, std::make_unique<FakeGpioChip>(board), sys.root(), pwm.root(),
+        [] { return std::uint64_t{0}; }, error);
   }
   /// The controller's ticks as the daemon runs them: sample, then tick.
   void run_ms(Controller& c, GpiodRotator& hw, Millis ms) {
@@ -46,7 +48,8 @@ class GpiodIoTest : public ::testing::Test {
   }
 
   settings::Settings s;
-  FakeSysfs sys;
+  FakeSysfs sys;  ///< /sys/bus/iio/devices
+  FakeSysfs pwm;  ///< /sys/class/pwm
   std::shared_ptr<FakeBoard> board = std::make_shared<FakeBoard>();
   std::string error;
   Millis now = 0;
@@ -160,12 +163,53 @@ TEST_F(GpiodIoTest, AnUnwiredRequiredLineIsNamed) {
   EXPECT_EQ(error, "az.has_brake needs gpiod.az_brake");
 }
 
-TEST_F(GpiodIoTest, HBridgeDrivesAreRefusedWithoutSoftwarePwm) {
+TEST_F(GpiodIoTest, HBridgeDrivesNeedKernelPwmNeverSoftwarePwm) {
   set(Id::kAzDrive, 3);
   EXPECT_FALSE(open());
-  EXPECT_NE(error.find("az.drive = hbridge"), std::string::npos) << error;
+  EXPECT_NE(error.find("az.drive = hbridge needs pwm.chip"), std::string::npos) << error;
   EXPECT_NE(error.find("software PWM"), std::string::npos) << error;
   EXPECT_TRUE(board->lines.empty());  // refused before any line was requested
+  set(Id::kPwmChip, 0);
+  EXPECT_FALSE(open());  // no such chip in the (empty) PWM tree
+  EXPECT_NE(error.find("pwm.az_cw = 0: no PWM chip " + pwm.root() + "/pwmchip0"), std::string::npos)
+      << error;
+}
+
+TEST_F(GpiodIoTest, HBridgeHalvesFollowTheAxisOnKernelPwmChannels) {
+  set(Id::kAzDrive, 3);
+  set(Id::kPwmChip, 0);
+  set(Id::kPwmHz, 20000);
+  for (const char* ch : {"pwm0", "pwm1"}) {  // as after dtoverlay=pwm-2chan and export
+    for (const char* f : {"period", "duty_cycle", "enable"})
+      pwm.write(std::string("pwmchip0/") + ch + "/" + f, "0\n");
+  }
+  // A regular file keeps the tail of a longer old value after a shorter
+  // write at offset 0 ("0" over "50000" reads "00000"); sysfs takes just the
+  // bytes written. Reading the number covers both.
+  const auto file = [&](const std::string& f) {
+    std::ifstream in(pwm.root() + "/pwmchip0/" + f);
+    long long v = -1;
+    in >> v;
+    return v;
+  };
+  {
+    auto hw = open();
+    ASSERT_TRUE(hw) << error;
+    EXPECT_EQ(file("pwm0/period"), 50000);  // 20 kHz
+    EXPECT_EQ(file("pwm0/enable"), 1);
+    EXPECT_EQ(file("pwm0/duty_cycle"), 0);
+    EXPECT_FALSE(board->lines[kAzCw].requested);  // no relay lines for an H-bridge
+    Controller c(s, hw->io(AxisId::kAz), hw->io(AxisId::kEl));
+    c.begin(now);
+    ASSERT_EQ(c.move(AxisId::kAz, Direction::kCw, 100), Error::kOk);
+    run_ms(c, *hw, 2000);
+    EXPECT_EQ(file("pwm0/duty_cycle"), 50000);  // pwm_fast_duty 1.0
+    EXPECT_EQ(file("pwm1/duty_cycle"), 0);
+    c.shutdown();
+    EXPECT_EQ(file("pwm0/duty_cycle"), 0);
+  }
+  EXPECT_EQ(file("pwm0/enable"), 0);  // disabled when rotord lets go
+  EXPECT_EQ(file("pwm1/enable"), 0);
 }
 
 TEST_F(GpiodIoTest, TheMagnetometerIsRefused) {
@@ -212,6 +256,10 @@ TEST(GpiodRulesTest, ConflictingLinesAreRefusedNamingBothKeys) {
   const settings::Rejection r = s.check_consistency();
   EXPECT_EQ(r.error, Error::kOutOfRange);
   EXPECT_STREQ(r.reason, "gpiod.az_l1 and gpiod.btn_cw both use line 5");
+  ASSERT_EQ(s.set(Id::kGpiodBtnCw, -1).error, Error::kOk);
+  ASSERT_EQ(s.set(Id::kPwmElUp, 1).error, Error::kOk);  // pwm.az_ccw's channel
+  EXPECT_STREQ(s.check_consistency().reason, "pwm.az_ccw and pwm.el_up both use PWM channel 1");
+  ASSERT_EQ(s.set(Id::kPwmElUp, -1).error, Error::kOk);
   ASSERT_EQ(s.set(Id::kGpiodBtnCw, -1).error, Error::kOk);
   ASSERT_EQ(s.set(Id::kGpiodBtnCcw, -1).error, Error::kOk);
   EXPECT_EQ(s.check_consistency().error, Error::kOk);  // unwired lines never clash
