@@ -190,8 +190,8 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
       break;
     case 'P':
       if (b && (arg == "36" || arg == "45")) {
-        // The GS-232B keeps the mode over power cycles; here it is a setting
-        // (saved with the others when the web page saves).
+        // The GS-232B keeps the mode over power cycles; here it is a setting,
+        // which the port's SettingsSaver writes like every protocol change.
         controller_.settings().set(Id::kGs232AzRange, arg == "36" ? 1 : 2);
         return done(out);
       }
