@@ -1,6 +1,6 @@
 // The settings page, generated from GET /api/settings/schema (the one
-// settings table): nothing here lists setting names except the calibration
-// helpers, which name the pot calibration rows they write.
+// settings table): nothing here lists setting names; the calibration cards
+// (calibration.js) name the calibration rows they write.
 'use strict';
 
 (() => {
@@ -148,49 +148,9 @@
     if (r.status === 202) { $('reboot').hidden = true; setTimeout(reload, 1500); }
   });
 
-  // --- live calibration ----------------------------------------------------------
-  const cal = {};
-  function buildCalibration(status) {
-    const box = $('calibration');
-    box.textContent = '';
-    const axes = status.el ? ['az', 'el'] : ['az'];
-    for (const axis of axes) {
-      const name = axis === 'az' ? 'Azimuth' : 'Elevation';
-      const sensor = values[axis + '.sensor'];
-      const raw = el('span', {}, '–');
-      const deg = el('span', {}, '–');
-      const card = el('div', { class: 'cal', id: 'cal-' + axis },
-        el('h2', {}, `${name} sensor (${sensor})`),
-        el('div', { class: 'live' },
-          el('span', {}, 'raw ', raw), el('span', {}, 'angle ', deg)));
-      if (sensor === 'pot') {
-        const at = el('input', { type: 'number', step: 'any', id: `cal-${axis}-deg`,
-          'aria-label': 'angle of this position' });
-        at.value = Math.round(status[axis].position_deg);
-        const point = (which) => el('button', { type: 'button', id: `cal-${axis}-${which}` },
-          `Set as ${which === 'lo' ? 'low' : 'high'} point`);
-        const lo = point('lo'), hi = point('hi');
-        const set = async (which) => {
-          const s = cal.status;
-          const angle = Number(at.value);
-          if (!s || at.value.trim() === '' || !isFinite(angle)) {
-            return rotord.message(msg, 'enter the angle the antenna points at now', false);
-          }
-          const body = {};
-          body[`${axis}.pot_cal_${which}_counts`] = Math.round(s[axis].raw * 10) / 10;
-          body[`${axis}.pot_cal_${which}_deg`] = angle;
-          const r = await rotord.post('/api/settings', body);
-          if (report(r, `${name}: ${which === 'lo' ? 'low' : 'high'} point set to ${body[Object.keys(body)[0]]} counts = ${angle}°`)) await reload();
-        };
-        lo.addEventListener('click', () => set('lo'));
-        hi.addEventListener('click', () => set('hi'));
-        card.append(el('div', { class: 'buttons' },
-          el('label', {}, 'antenna now at ', at, ' °'), lo, hi));
-      }
-      box.append(card);
-      cal[axis] = { raw, deg };
-    }
-  }
+  // --- live calibration (calibration.js) ---------------------------------------
+  const calibration = rotordCalibration.create({ box: $('calibration'), msg, report, reload,
+    values: () => values });
 
   async function start() {
     const [s, v, st] = await Promise.all([rotord.get('/api/settings/schema'),
@@ -201,15 +161,8 @@
     schema = s.body;
     build();
     show(v.body);
-    if (st.status === 200) buildCalibration(st.body);
-    rotord.live((status) => {
-      cal.status = status;
-      for (const axis of ['az', 'el']) {
-        if (!cal[axis] || !status[axis]) continue;
-        cal[axis].raw.textContent = `${rotord.fmt(status[axis].raw, 1)} ${status[axis].raw_unit}`;
-        cal[axis].deg.textContent = `${rotord.fmt(status[axis].position_deg, 1)}°`;
-      }
-    });
+    if (st.status === 200) calibration.update(st.body);
+    rotord.live((status) => calibration.update(status));
   }
   start();
 })();

@@ -1,0 +1,200 @@
+// The calibration cards of the settings page in Debian's chromium
+// (playwright-core): a pot rotator (`rotord --sim g5500`) for the volts, the
+// offset-consistent two-point calibration and the multi-point table, and an
+// MA3 rotator (`rotord --sim spid`) for the encoder zero and direction.
+import assert from 'node:assert/strict';
+import { mkdirSync } from 'node:fs';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+
+import {
+  ARTIFACTS, cleanup, launchBrowser, openPage, Rotord, tempDir, until,
+} from './harness.mjs';
+
+let browser;
+let dir;
+let pot;  // g5500: potentiometers
+let ma3;  // spid: MA3 encoders
+
+before(async () => {
+  dir = tempDir();
+  [pot, ma3, browser] = await Promise.all([
+    new Rotord({ configPath: path.join(dir, 'pot.json') }).start(),
+    new Rotord({ configPath: path.join(dir, 'ma3.json'), profile: 'spid' }).start(),
+    launchBrowser(),
+  ]);
+});
+
+after(async () => {
+  if (browser) await browser.close();
+  await Promise.all([pot && pot.stop(), ma3 && ma3.stop()]);
+  cleanup(dir);
+});
+
+const settingsOf = async (r) => (await fetch(r.url + '/api/settings')).json();
+// Chromium logs each refused POST (422) as a failed resource: those are expected.
+const unexpected = (errors) => errors.filter((e) => !/status of 422/.test(e));
+
+async function openSettings(r, options) {
+  const page = await openPage(browser, r.url + '/settings.html', options);
+  await page.waitForSelector('#cal-az');
+  await page.waitForSelector('#conn.live');
+  return page;
+}
+
+async function shoot(page, name) {
+  mkdirSync(ARTIFACTS, { recursive: true });
+  await page.locator('#calibration').screenshot({ path: path.join(ARTIFACTS, name) });
+}
+
+/** Waits until the rotator stands still and every latched fault is absent. */
+async function settled(r, axis = 'az') {
+  return until(async () => {
+    const s = await r.status();
+    return !s.moving && s[axis].fault === 'none' && s;
+  }, { timeout: 20000, what: 'standstill without fault' });
+}
+
+test('pot: raw counts are shown in volts too (12-bit ADC, 3.3 V)', async () => {
+  const page = await openSettings(pot);
+  await until(async () => /V$/.test(await page.textContent('#cal-az-volts')), { what: 'volts' });
+  const counts = parseFloat(await page.textContent('#cal-az-raw'));
+  const volts = parseFloat(await page.textContent('#cal-az-volts'));
+  assert.ok(Math.abs(volts - (counts * 3.3) / 4095) < 0.002, `${counts} counts shown as ${volts} V`);
+  const s = await pot.status();
+  assert.equal(s.az.sensor, 'pot');
+  assert.equal(s.az.raw_full_scale, 4095);
+  assert.ok(Math.abs(s.az.raw_volts - (s.az.raw * 3.3) / 4095) < 1e-4);
+  // Each table row shows its point in volts as well.
+  const row = page.locator('#cal-az-points tr[data-role="hi"] td');
+  const hiCounts = (await settingsOf(pot))['az.pot_cal_hi_counts'];
+  assert.ok(Math.abs(parseFloat(await row.nth(2).textContent()) - (hiCounts * 3.3) / 4095) < 0.002);
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
+
+test('pot: "antenna now at X" with an offset makes the display read X', async () => {
+  assert.equal((await pot.post('/api/settings', { 'az.offset_deg': 10 })).status, 200);
+  const page = await openSettings(pot);
+  await until(async () => (await page.locator('#cal-az .note').textContent()).includes('offset_deg (10°)'),
+    { what: 'the offset note' });
+  await page.fill('#cal-az-deg', '200');
+  await page.click('#cal-az-lo');
+  await until(async () => (await page.textContent('#msg')).includes('low point set'), { what: 'cal set' });
+  const v = await settingsOf(pot);
+  assert.equal(v['az.pot_cal_lo_deg'], 190, 'stored without the offset, as GS-232 O does');
+  const s = await settled(pot);
+  assert.ok(Math.abs(s.az.position_deg - 200) < 0.5, `reads ${s.az.position_deg}`);
+  await until(async () => Math.abs(parseFloat(await page.textContent('#cal-az-angle')) - 200) < 0.5,
+    { what: 'the page shows 200' });
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
+
+test('pot: multi-point table, add and remove; a refused table saves nothing', async () => {
+  // From the previous test: low point (raw at 200) = 190 + offset 10.
+  assert.equal((await pot.post('/api/goto', { az: 300 })).status, 200);
+  await until(async () => {
+    const s = await pot.status();
+    return !s.moving && Math.abs(s.az.position_deg - 300) <= 1.5;
+  }, { timeout: 30000, what: 'arrival at 300' });
+  const page = await openSettings(pot, { width: 1280, height: 1000 });
+  assert.equal(await page.locator('#cal-az-points tbody tr').count(), 2);
+  assert.equal(await page.locator('#cal-az-points .remove:enabled').count(), 0, 'two points stay');
+
+  // A non-linear pot: here the antenna really points at 305.
+  await page.fill('#cal-az-deg', '305');
+  await page.click('#cal-az-add');
+  await until(async () => (await page.textContent('#msg')).includes('point added'), { what: 'point added' });
+  let v = await settingsOf(pot);
+  assert.equal(v['az.pot_cal_mid_points'], 1);
+  assert.equal(v['az.pot_cal_m1_deg'], 295);
+  assert.ok(v['az.pot_cal_lo_counts'] < v['az.pot_cal_m1_counts'] &&
+    v['az.pot_cal_m1_counts'] < v['az.pot_cal_hi_counts'], 'kept in counts order');
+  await until(async () => (await page.locator('#cal-az-points tbody tr').count()) === 3, { what: '3 rows' });
+  const rows = await page.locator('#cal-az-points tbody tr').evaluateAll(
+    (trs) => trs.map((tr) => parseFloat(tr.children[1].textContent)));
+  assert.deepEqual(rows, [...rows].sort((a, b) => a - b), 'rows sorted by counts');
+  const s = await settled(pot);
+  assert.ok(Math.abs(s.az.position_deg - 305) < 0.5, `reads ${s.az.position_deg}`);
+  await shoot(page, 'calibration-pot-1280.png');
+
+  // The same position at 150: counts and angles no longer rise together.
+  await page.fill('#cal-az-deg', '150');
+  await page.click('#cal-az-add');
+  await until(async () => (await page.textContent('#cal-az-error')).includes('rise or fall together'),
+    { what: 'the refusal next to the table' });
+  assert.deepEqual(await settingsOf(pot), v, 'nothing saved');
+  assert.equal(await page.locator('#cal-az-points tbody tr').count(), 3);
+
+  await page.click('#cal-az-points .remove[data-role="m1"]');
+  await until(async () => (await settingsOf(pot))['az.pot_cal_mid_points'] === 0, { what: 'point removed' });
+  await until(async () => (await page.locator('#cal-az-points tbody tr').count()) === 2, { what: '2 rows' });
+  assert.equal(await page.textContent('#cal-az-error'), '');
+  v = await settingsOf(pot);
+  assert.equal(v['az.pot_cal_lo_deg'], 190, 'the end points are untouched');
+  assert.deepEqual(unexpected(page.errors), []);
+  await page.context().close();
+
+  const phone = await openSettings(pot, { width: 360, height: 780, colorScheme: 'dark' });
+  const overflow = await phone.evaluate(() => document.documentElement.scrollWidth > innerWidth);
+  assert.equal(overflow, false, 'no horizontal scroll at 360 px');
+  await shoot(phone, 'calibration-pot-360-dark.png');
+  assert.deepEqual(phone.errors, []);
+  await phone.context().close();
+});
+
+test('magnetometer card: raw field or what is missing, spin calibration controls', async () => {
+  // The simulator has no magnetometer: the card must say so, not break.
+  assert.equal((await pot.post('/api/settings', { 'az.sensor': 'mag' })).status, 200);
+  const page = await openSettings(pot);
+  await until(async () => (await page.textContent('#cal-az-mag')).includes('no sample'), { what: 'no sample' });
+  await page.click('#cal-az-spin');
+  assert.match(await page.textContent('#cal-az-spin-range'), /Recording/);
+  assert.equal(await page.isDisabled('#cal-az-spin-save'), true, 'nothing recorded, nothing to save');
+  await page.click('#cal-az-spin-cancel');
+  assert.match(await page.textContent('#cal-az-spin-range'), /Saved: x -1000/);
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+  assert.equal((await pot.post('/api/settings', { 'az.sensor': 'pot' })).status, 200);
+  assert.equal((await pot.post('/api/reset')).status, 200);
+  assert.equal((await (await pot.status()).az.mag), null);
+});
+
+test('MA3: code and duty, "set this position as N", direction keeps the angle', async () => {
+  assert.equal((await ma3.post('/api/settings', { 'az.offset_deg': 5 })).status, 200);
+  const page = await openSettings(ma3);
+  await until(async () => / of 4096$/.test(await page.textContent('#cal-az-raw')), { what: 'code' });
+  assert.match(await page.textContent('#cal-az-duty'), /%$/);
+  const s0 = await settled(ma3);
+  assert.equal(s0.az.sensor, 'ma3');
+  assert.equal(s0.az.raw_volts, null);
+  // A few degrees from where it reads now, so the turn is obvious.
+  const n = Math.round(s0.az.position_deg) + 7;
+  await page.fill('#cal-az-deg', String(n));
+  assert.equal(await page.textContent('#cal-az-zero'), `Set this position as ${n}°`);
+  await page.click('#cal-az-zero');
+  await until(async () => (await page.textContent('#msg')).includes(`now ${n}°`), { what: 'zero set' });
+  let s = await settled(ma3);
+  assert.ok(Math.abs(s.az.position_deg - n) < 0.3, `reads ${s.az.position_deg}, wanted ${n}`);
+  await until(async () => Math.abs(parseFloat(await page.textContent('#cal-az-angle')) - n) < 0.3,
+    { what: `the page shows ${n}` });
+
+  await page.check('#cal-az-reverse');
+  await until(async () => (await settingsOf(ma3))['az.ma3_reverse'] === true, { what: 'reversed' });
+  s = await settled(ma3);
+  assert.ok(Math.abs(s.az.position_deg - n) < 0.3, `reversing moved the angle to ${s.az.position_deg}`);
+  await page.uncheck('#cal-az-reverse');
+  await until(async () => (await settingsOf(ma3))['az.ma3_reverse'] === false, { what: 'normal' });
+  s = await settled(ma3);
+  assert.ok(Math.abs(s.az.position_deg - n) < 0.3);
+  await shoot(page, 'calibration-ma3-1280.png');
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+
+  const phone = await openSettings(ma3, { width: 360, height: 780 });
+  await phone.waitForSelector('#cal-el-zero');
+  await shoot(phone, 'calibration-ma3-360.png');
+  assert.deepEqual(phone.errors, []);
+  await phone.context().close();
+});
