@@ -25,6 +25,7 @@
 #include "rotator/controller.hpp"
 #include "settings/pin_rules.hpp"
 #include "settings/settings.hpp"
+#include "sntp_clock.hpp"
 #include "storage/flash_slots.hpp"
 #include "storage/settings_saver.hpp"
 #include "usb_cdc_port.hpp"
@@ -106,7 +107,9 @@ class Reboot final : public web::RebootHook {
 // sees nullptr ("not fitted").
 settings::Settings g_settings;
 settings::Settings g_scratch;         // load_settings' working copy
-const settings::Settings g_defaults;  // the table's defaults, for the web's reset
+// The table's defaults plus wifi_secrets.h, for the web's reset (which then
+// keeps a build's Wi-Fi credentials).
+settings::Settings g_defaults;
 char g_boot_document[web::Api::kMaxDocumentBytes];
 Reboot g_reboot;
 PicoFlash g_flash;
@@ -154,6 +157,24 @@ hal::PwmIn* fit_ma3(std::optional<Ma3PioInput>& pio, std::optional<Ma3EdgeInput>
   return &*irq;
 }
 
+/// The build's ROTORD_WIFI_SSID, ROTORD_WIFI_PASSWORD and ROTORD_AP_PASSWORD
+/// (wifi_secrets.h) as first-boot defaults of the Network settings: settings
+/// saved from the web page win. A value the table refuses is ignored.
+void apply_wifi_secrets(settings::Settings& s) {
+  const struct {
+    Id id;
+    const char* value;
+  } secrets[] = {{Id::kWifiSsid, ROTORD_WIFI_SSID},
+                 {Id::kWifiPassword, ROTORD_WIFI_PASSWORD},
+                 {Id::kWifiApPassword, ROTORD_AP_PASSWORD}};
+  for (const auto& secret : secrets) {
+    if (secret.value[0] == '\0') continue;
+    const settings::Rejection r = s.set_text(secret.id, secret.value);
+    if (r.error != Error::kOk)
+      std::printf("rotord: build-time %s ignored: %s\n", settings::def(secret.id).key, r.reason);
+  }
+}
+
 /// Settings from the flash slots over the table's defaults. Invalid stored
 /// settings (a pin conflict, a value a newer firmware refuses) leave the
 /// defaults in place; the stored copy stays in flash, and the next save goes
@@ -198,6 +219,8 @@ void report_settings(const web::LoadOutcome& r) {
   // with its reset pull-down (relays off); the settings come first because
   // they say which pins are outputs, and reading them takes milliseconds.
   settings::Settings& settings = g_settings;
+  apply_wifi_secrets(g_defaults);
+  apply_wifi_secrets(g_settings);
   const web::LoadOutcome loaded = load_stored_settings();
   const auto p = [&settings](Id id) { return settings.i(id); };
   g_az_drive.emplace(drive_pins(p(Id::kAzDrive), p(Id::kPinAzCw), p(Id::kPinAzCcw),
@@ -279,8 +302,8 @@ void report_settings(const web::LoadOutcome& r) {
   const bool network = cyw43_arch_init() == 0;
   if (!network) std::printf("rotord: Wi-Fi chip init failed; running without network\n");
 
-  static Wifi wifi({ROTORD_WIFI_SSID, ROTORD_WIFI_PASSWORD, ROTORD_AP_PASSWORD,
-                    ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000}});
+  // wifi.*, net.*, time.* as loaded at boot (they all need a restart).
+  static Wifi wifi(Wifi::config_from(settings, ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000}));
   auto make_wrc = [] { return protocol::WrcSession(controller, ROTORD_VERSION); };
   static lwip_port::StaticService<protocol::WrcSession, kWrcSlots, decltype(make_wrc)> wrc(
       {"WRC text protocol", kWrcPort, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
@@ -303,7 +326,9 @@ void report_settings(const web::LoadOutcome& r) {
   // program image would overlap them).
   hal::Storage* const storage = g_flash.region_free() ? &g_saver : nullptr;
   g_saver.begin();  // what was loaded (or deliberately not overwritten) counts as saved
-  static web::Api api(web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION});
+  static SntpWallClock wall_clock(&now_ms);  // time_utc once SNTP has answered
+  static web::Api api(
+      web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION, &wall_clock});
   auto make_http = [] { return web::HttpSession(api); };
   lwip_port::ServerConfig http_config;
   http_config.name = "web UI and REST API";

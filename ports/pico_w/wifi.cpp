@@ -4,13 +4,33 @@
 #include <cstring>
 
 #include "lwip/apps/mdns.h"
+#include "lwip/apps/sntp.h"
+#include "lwip/dhcp.h"
+#include "lwip/dns.h"
 #include "lwip/ip4_addr.h"
 #include "lwip/netif.h"
 #include "pico/cyw43_arch.h"
+#include "pico/time.h"
+#include "sntp_clock.hpp"
+
+// lwIP's SNTP client reports the time here (SNTP_SET_SYSTEM_TIME_US in
+// config/lwipopts.h), from the poll loop's context.
+extern "C" void rotord_sntp_set_time_us(std::uint32_t sec, std::uint32_t us) {
+  rotord::pico_w::on_sntp_time(sec, us,
+                               static_cast<rotord::Millis>(to_ms_since_boot(get_absolute_time())));
+  std::printf("rotord: time set by SNTP (%lu s since 1970)\n", static_cast<unsigned long>(sec));
+}
 
 namespace rotord::pico_w {
 
 namespace {
+
+template <std::size_t N>
+void copy_text(char (&out)[N], std::string_view text) {
+  const std::size_t n = text.size() < N - 1 ? text.size() : N - 1;
+  std::memcpy(out, text.data(), n);
+  out[n] = '\0';
+}
 
 const char* link_status_name(int status) {
   switch (status) {
@@ -35,14 +55,41 @@ const char* link_status_name(int status) {
 
 }  // namespace
 
+Wifi::Config Wifi::config_from(const settings::Settings& s, Millis join_timeout_ms) {
+  using settings::Id;
+  Config c;
+  copy_text(c.ssid, s.text(Id::kWifiSsid));
+  copy_text(c.password, s.text(Id::kWifiPassword));
+  copy_text(c.ap_password, s.text(Id::kWifiApPassword));
+  copy_text(c.hostname, s.text(Id::kNetHostname));
+  c.static_ipv4 = static_ipv4_from(s);
+  c.sntp = s.b(Id::kTimeSntpEnabled) && !s.text(Id::kTimeSntpServer).empty();
+  copy_text(c.sntp_server, s.text(Id::kTimeSntpServer));
+  c.join_timeout_ms = join_timeout_ms;
+  return c;
+}
+
 void Wifi::begin(Millis now) {
   mdns_resp_init();
   if (config_.ssid[0] == '\0') {
-    std::printf("rotord: no Wi-Fi network configured (ROTORD_WIFI_SSID)\n");
+    std::printf("rotord: no Wi-Fi network configured (wifi.ssid)\n");
     start_access_point();
     return;
   }
-  cyw43_arch_enable_sta_mode();
+  cyw43_arch_enable_sta_mode();  // adds the station netif and starts its DHCP client
+  netif* sta = &cyw43_state.netif[CYW43_ITF_STA];
+  if (config_.hostname[0] != '\0') netif_set_hostname(sta, config_.hostname);
+  if (config_.static_ipv4) {
+    // Before the link is up, so no DHCP request ever goes out.
+    dhcp_stop(sta);
+    apply_static_ipv4(*sta, *config_.static_ipv4);
+    if (config_.static_ipv4->dns != 0) {
+      ip_addr_t dns;
+      ip_addr_set_ip4_u32(&dns, lwip_htonl(config_.static_ipv4->dns));
+      dns_setserver(0, &dns);
+    }
+    log_address("static", CYW43_ITF_STA);
+  }
   start_join(now);
 }
 
@@ -65,9 +112,7 @@ void Wifi::step(Millis now) {
   }
   if (state_ == State::kJoining) {
     if (status == CYW43_LINK_UP) {
-      state_ = State::kStation;
-      log_address("station", CYW43_ITF_STA);
-      announce(CYW43_ITF_STA);
+      station_up();
       return;
     }
     // A wrong password will not fix itself; a missing network might, but
@@ -85,6 +130,20 @@ void Wifi::step(Millis now) {
   // falls back to the AP if the network stays away.
   if (status != CYW43_LINK_UP && status != CYW43_LINK_NOIP && status != CYW43_LINK_JOIN) {
     start_join(now);
+  }
+}
+
+void Wifi::station_up() {
+  state_ = State::kStation;
+  log_address("station", CYW43_ITF_STA);
+  announce(CYW43_ITF_STA);
+  if (config_.sntp && !sntp_started_) {
+    // Polls the server (a name goes through DNS) now and every hour after.
+    sntp_setoperatingmode(SNTP_OPMODE_POLL);
+    sntp_setservername(0, config_.sntp_server);
+    sntp_init();
+    sntp_started_ = true;
+    std::printf("rotord: SNTP from %s\n", config_.sntp_server);
   }
 }
 
@@ -106,13 +165,14 @@ void Wifi::announce(int itf) {
     mdns_resp_announce(n);  // a new address after a re-join
     return;
   }
-  if (mdns_resp_add_netif(n, kMdnsName) != ERR_OK) {
+  if (config_.hostname[0] == '\0') return;  // net.hostname empty: no mDNS
+  if (mdns_resp_add_netif(n, config_.hostname) != ERR_OK) {
     std::printf("rotord: mDNS not available on this interface\n");
     return;
   }
-  mdns_resp_add_service(n, kMdnsName, "_http", DNSSD_PROTO_TCP, kHttpPort, nullptr, nullptr);
+  mdns_resp_add_service(n, config_.hostname, "_http", DNSSD_PROTO_TCP, kHttpPort, nullptr, nullptr);
   mdns_on_[itf] = true;
-  std::printf("rotord: mDNS name %s.local\n", kMdnsName);
+  std::printf("rotord: mDNS name %s.local\n", config_.hostname);
 }
 
 void Wifi::log_address(const char* what, int itf) {

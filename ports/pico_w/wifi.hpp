@@ -1,13 +1,19 @@
 #pragma once
-// Wi-Fi bring-up for the Pico W: join the configured network as a station;
-// when there is no network configured, or it cannot be joined within the
-// timeout, open the access point `rotord-setup` (192.168.4.1, with a small
-// DHCP server) instead. Stepped from the main loop like everything else.
-// The AP stays until the next boot: station retries while the AP runs are
-// not implemented.
+// Wi-Fi bring-up for the Pico W, from the Network settings: join wifi.ssid as
+// a station (DHCP, or the fixed net.ipv4_* address); when no network is
+// configured, or it cannot be joined within the timeout, open the access
+// point `rotord-setup` (192.168.4.1, with a small DHCP server) instead, where
+// the web settings page takes the network's name and password (then POST
+// /api/reboot). mDNS answers for net.hostname.local on either network; once
+// the station is up, SNTP sets the calendar time (sntp_clock.hpp). Stepped
+// from the main loop like everything else. The AP stays until the next boot:
+// station retries while the AP runs are not implemented.
 #include <cstdint>
+#include <optional>
 
 #include "dhcp_server.hpp"
+#include "net_config.hpp"
+#include "settings/settings.hpp"
 #include "util/time.hpp"
 
 namespace rotord::pico_w {
@@ -17,16 +23,21 @@ class Wifi {
   enum class State : std::uint8_t { kOff, kJoining, kStation, kAccessPoint };
 
   static constexpr const char* kApSsid = "rotord-setup";
-  /// mDNS host name: the web UI is at http://rotord.local/ on either network.
-  static constexpr const char* kMdnsName = "rotord";
   static constexpr std::uint16_t kHttpPort = 80;
 
+  /// Copies of the settings (they may change at run time; the network takes
+  /// them at boot, as their restart flag says).
   struct Config {
-    const char* ssid = "";
-    const char* password = "";     ///< empty: open network
-    const char* ap_password = "";  ///< empty or < 8 characters: open AP
+    char ssid[33] = "";         ///< empty: start the setup access point
+    char password[64] = "";     ///< empty: open network
+    char ap_password[64] = "";  ///< empty (or under 8 characters): open AP
+    char hostname[33] = "";     ///< mDNS and DHCP name; empty: no mDNS
+    std::optional<StaticIpv4> static_ipv4;
+    bool sntp = false;
+    char sntp_server[64] = "";
     Millis join_timeout_ms = 30'000;
   };
+  static Config config_from(const settings::Settings& s, Millis join_timeout_ms);
 
   explicit Wifi(const Config& config) : config_(config) {}
   /// cyw43_arch_init() must have succeeded.
@@ -37,6 +48,7 @@ class Wifi {
  private:
   void start_join(Millis now);
   void start_access_point();
+  void station_up();
   static void log_address(const char* what, int itf);
   void announce(int itf);
 
@@ -46,6 +58,7 @@ class Wifi {
   Millis join_started_ = 0;
   int last_status_ = 0;
   bool mdns_on_[2] = {false, false};  ///< per cyw43 interface (STA, AP)
+  bool sntp_started_ = false;
 };
 
 }  // namespace rotord::pico_w

@@ -42,6 +42,19 @@
 #define LWIP_IGMP 1
 #define LWIP_NUM_NETIF_CLIENT_DATA 1
 #define MDNS_MAX_SERVICES 1
+// SNTP (apps/sntp, time.sntp_server): one server, by name through DNS. The
+// time goes to sntp_clock.cpp, kept as an offset to the monotonic clock; no
+// RTC is set (GET /api/status time_utc reads it).
+#include <stdint.h>
+#ifdef __cplusplus
+extern "C" {
+#endif
+void rotord_sntp_set_time_us(uint32_t sec, uint32_t us);
+#ifdef __cplusplus
+}
+#endif
+#define SNTP_SERVER_DNS 1
+#define SNTP_SET_SYSTEM_TIME_US(sec, us) rotord_sntp_set_time_us((uint32_t)(sec), (uint32_t)(us))
 #define MEMP_NUM_SYS_TIMEOUT (LWIP_NUM_SYS_TIMEOUT_INTERNAL + 8)
 #define TCP_MSS 1460
 #define TCP_WND (8 * TCP_MSS)
