@@ -106,7 +106,7 @@ class Reboot final : public web::RebootHook {
 // pins) are known; an unwired pin (-1) leaves its object empty and the core
 // sees nullptr ("not fitted").
 settings::Settings g_settings;
-settings::Settings g_scratch;         // load_settings' working copy
+settings::Settings g_scratch;  // load_settings' working copy
 // The table's defaults plus wifi_secrets.h, for the web's reset (which then
 // keeps a build's Wi-Fi credentials).
 settings::Settings g_defaults;
