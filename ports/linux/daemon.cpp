@@ -108,8 +108,8 @@ void Daemon::load_settings() {
 
 bool Daemon::start_controller() {
   controller_ = std::make_unique<Controller>(settings_, axis_io(AxisId::kAz), axis_io(AxisId::kEl));
-  api_ = std::make_unique<web::Api>(
-      web::ApiContext{*controller_, storage_.get(), &defaults_, this, ROTORD_VERSION});
+  api_ = std::make_unique<web::Api>(web::ApiContext{*controller_, storage_.get(), &defaults_, this,
+                                                    ROTORD_VERSION, &wall_clock_});
 
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);

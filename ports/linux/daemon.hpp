@@ -10,6 +10,7 @@
 #include "serial_transport.hpp"
 #include "settings/settings.hpp"
 #include "sim/sim_rotator.hpp"
+#include "system_wall_clock.hpp"
 #include "tcp_server.hpp"
 #include "web/web_api.hpp"
 
@@ -54,6 +55,7 @@ class Daemon final : private web::RebootHook {
   asio::steady_timer timer_;
   asio::signal_set signals_;
   settings::Settings settings_;
+  SystemWallClock wall_clock_;   ///< GET /api/status time_utc
   settings::Settings defaults_;  ///< table defaults + the profile: what a reset restores
   std::unique_ptr<FileStorage> storage_;
   std::unique_ptr<sim::SimRotator> sim_;
