@@ -32,6 +32,13 @@
           input = el('input', { type: 'checkbox', id });
         } else if (d.type === 'enum') {
           input = el('select', { id }, ...d.choices.map((c) => el('option', { value: c }, c)));
+        } else if (d.type === 'text' || d.type === 'password') {
+          // A password comes back as "********" when one is stored; sending
+          // that back keeps it, so an untouched field changes nothing.
+          input = el('input', { type: d.type, id, maxlength: d.max, spellcheck: 'false',
+            autocomplete: d.type === 'password' ? 'new-password' : 'off', autocapitalize: 'none',
+            inputmode: d.format === 'ipv4' ? 'decimal' : undefined,
+            placeholder: d.format === 'ipv4' ? '192.168.1.20' : d.type === 'password' ? '(not set)' : undefined });
         } else {
           input = el('input', { type: 'number', id, min: d.min, max: d.max,
             step: d.type === 'int' ? 1 : 'any', inputmode: 'decimal' });
@@ -39,11 +46,14 @@
         input.dataset.key = d.key;
         const error = el('div', { class: 'error', role: 'alert' });
         const range = d.type === 'float' || d.type === 'int' ? `${d.min} … ${d.max}` : null;
+        const length = d.type === 'text' ? `(up to ${d.max} characters${d.default ? `, default ${d.default}` : ''})`
+          : d.type === 'password' ? `(${d.min}-${d.max} characters or empty)` : null;
         const row = el('div', { class: 'field' },
           el('label', { for: id }, d.key),
           el('div', { class: 'input' }, input,
             d.unit ? el('span', { class: 'unit' }, d.unit) : null,
             range ? el('span', { class: 'range' }, `(${range}, default ${d.default})`) : null,
+            length ? el('span', { class: 'range' }, length) : null,
             d.restart ? el('span', { class: 'badge', title: 'takes effect after a restart' }, 'restart') : null),
           el('div', { class: 'help' }, d.help),
           error);
@@ -66,6 +76,7 @@
   function read(f) {
     if (f.def.type === 'bool') return f.input.checked;
     if (f.def.type === 'enum') return f.input.value;
+    if (f.def.type === 'text' || f.def.type === 'password') return f.input.value;  // as typed: spaces count
     const t = f.input.value.trim();
     return t === '' || isNaN(Number(t)) ? t : Number(t);  // text goes through: the server explains
   }
