@@ -455,6 +455,22 @@ TEST_F(Gs232Test, GS232AOffsetAndFullScaleStoreThePotCalibration) {
   EXPECT_FLOAT_EQ(r.settings.f(Id::kElPotCalHiDeg), 180.0f);
 }
 
+TEST_F(Gs232Test, OffsetCalibrationFarFromTheReadingLatchesNoFault) {
+  // At 100 deg, "this is the CCW stop": the reading moves 100 deg in one step,
+  // far beyond az.jump_deg. The axis follows the new calibration instead of
+  // latching sensor_jump, and still turns.
+  variant('A');
+  ASSERT_LT(r.settings.f(Id::kAzJumpDeg), 100.0f);
+  EXPECT_EQ(ask("O\r"), "+0000\r\n");
+  r.run_ms(200);
+  EXPECT_EQ(az().fault, AxisFault::kNone);
+  EXPECT_NEAR(az().position_deg, 0.0f, 0.5f);
+  EXPECT_EQ(ask("C\r"), "+0000\r\n");
+  EXPECT_EQ(ask("M010\r"), "\r");
+  EXPECT_TRUE(az().has_target);
+  EXPECT_EQ(ask("S\r"), "\r");
+}
+
 TEST_F(Gs232Test, CalibrationSubtractsTheAxisOffset) {
   variant('A');
   r.settings.set(Id::kElOffsetDeg, 2.0);

@@ -63,6 +63,22 @@ TEST_F(WrcTest, CommandsActOnTheController) {
   EXPECT_EQ(r.controller->status().speed_pct, 100);
 }
 
+TEST_F(WrcTest, AnOffsetFarBeyondTheJumpThresholdLatchesNoFault) {
+  r.run_ms(50);
+  ASSERT_LT(r.settings.f(settings::Id::kAzJumpDeg), 90.0f);
+  EXPECT_EQ(ask("AZOFFSET 90\n"), "OK AZOFFSET 90.00\r\n");
+  r.run_ms(200);
+  EXPECT_EQ(ask("FAULT?\n"), "OK FAULT AZ=NONE EL=NONE\r\n");
+  EXPECT_EQ(ask("AZ?\n"), "OK AZ 190.0\r\n");  // the position follows the offset
+  r.az.set_deg(101.0f);                        // and the sensor
+  r.run_ms(100);
+  EXPECT_EQ(ask("AZ?\n"), "OK AZ 191.0\r\n");
+  EXPECT_EQ(ask("AZOFFSET -90\n"), "OK AZOFFSET -90.00\r\n");  // 180 the other way
+  r.run_ms(200);
+  EXPECT_EQ(ask("FAULT?\n"), "OK FAULT AZ=NONE EL=NONE\r\n");
+  EXPECT_EQ(ask("AZ?\n"), "OK AZ 11.0\r\n");
+}
+
 TEST_F(WrcTest, ErrorsChangeNothing) {
   EXPECT_EQ(ask("AZ abc\n"), "ERROR INVALID AZIMUTH\r\n");
   EXPECT_EQ(ask("AZ 451\n"), "ERROR INVALID AZIMUTH\r\n");
