@@ -80,10 +80,15 @@ void Daemon::load_settings() {
   storage_ = std::make_unique<FileStorage>(
       options_.config_path.empty() ? FileStorage::default_path() : options_.config_path);
   // Heap is fine here (start-up, Linux); the Pico keeps this buffer static.
+  saver_buf_.resize(web::Api::kMaxDocumentBytes);
+  saver_ =
+      std::make_unique<SettingsSaver>(settings_, *storage_, saver_buf_.data(), saver_buf_.size());
   std::vector<char> buf(web::Api::kMaxDocumentBytes);
   auto scratch = std::make_unique<settings::Settings>();
+  // Through the saver, so it knows what the file holds.
   const web::LoadOutcome r =
-      web::load_settings(*storage_, settings_, *scratch, buf.data(), buf.size());
+      web::load_settings(*saver_, settings_, *scratch, buf.data(), buf.size());
+  saver_->begin();  // only later changes are saved; a damaged file stays as it is
   switch (r.status) {
     case web::LoadOutcome::kNothingStored:
       std::printf("rotord: no settings file at %s yet, using the defaults\n",
@@ -108,8 +113,8 @@ void Daemon::load_settings() {
 
 bool Daemon::start_controller() {
   controller_ = std::make_unique<Controller>(settings_, axis_io(AxisId::kAz), axis_io(AxisId::kEl));
-  api_ = std::make_unique<web::Api>(web::ApiContext{*controller_, storage_.get(), &defaults_, this,
-                                                    ROTORD_VERSION, &wall_clock_});
+  api_ = std::make_unique<web::Api>(
+      web::ApiContext{*controller_, saver_.get(), &defaults_, this, ROTORD_VERSION, &wall_clock_});
 
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);
@@ -245,6 +250,7 @@ int Daemon::run() {
 
 void Daemon::stop() {
   if (controller_) controller_->shutdown();
+  save_changed_settings(true);  // a change still in its quiet time
   timer_.cancel();
   servers_.clear();
   serial_lines_.clear();
@@ -276,6 +282,7 @@ void Daemon::on_tick() {
   }
   for (auto& server : servers_) server->poll(now_ms_);
   for (auto& line : serial_lines_) line->poll(now_ms_);
+  save_changed_settings(false);
   if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();
 }
 
@@ -293,6 +300,20 @@ void Daemon::advance_simulation() {
     now_ms_ += kTickMs;
     sim_->advance_to(now_ms_);
     controller_->tick(now_ms_);
+  }
+}
+
+void Daemon::save_changed_settings(bool now) {
+  if (!saver_) return;
+  // Linux writes a small file: no need to wait for the rotator to stand.
+  const SettingsSaver::Result r = now ? saver_->flush(now_ms_) : saver_->poll(now_ms_);
+  if (r == SettingsSaver::Result::kSaved) {
+    std::printf("rotord: settings saved to %s\n", storage_->path().c_str());
+    std::fflush(stdout);
+  } else if (r == SettingsSaver::Result::kFailed) {
+    std::fprintf(stderr, "rotord: saving the settings to %s failed (%s); next try in %ld s\n",
+                 storage_->path().c_str(), storage_->last_error().c_str(),
+                 static_cast<long>(saver_->retry_delay_ms() / 1000));
   }
 }
 

@@ -10,6 +10,7 @@
 #include "serial_transport.hpp"
 #include "settings/settings.hpp"
 #include "sim/sim_rotator.hpp"
+#include "storage/settings_saver.hpp"
 #include "system_wall_clock.hpp"
 #include "tcp_server.hpp"
 #include "web/web_api.hpp"
@@ -49,6 +50,9 @@ class Daemon final : private web::RebootHook {
   void on_tick();
   void advance_simulation();
   void stop();
+  /// Saves what the protocols changed (after the saver's quiet time, or at
+  /// once when `now`), and says so.
+  void save_changed_settings(bool now);
 
   Options options_;
   asio::io_context io_;
@@ -58,6 +62,9 @@ class Daemon final : private web::RebootHook {
   SystemWallClock wall_clock_;   ///< GET /api/status time_utc
   settings::Settings defaults_;  ///< table defaults + the profile: what a reset restores
   std::unique_ptr<FileStorage> storage_;
+  std::vector<char> saver_buf_;
+  /// Between the REST API and storage_; saves settings changed by protocols.
+  std::unique_ptr<SettingsSaver> saver_;
   std::unique_ptr<sim::SimRotator> sim_;
   std::unique_ptr<GpiodRotator> gpio_;  ///< --hw gpiod, instead of sim_
   int exit_code_ = 0;
