@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -80,9 +81,9 @@ class WebApi : public ::testing::Test {
     daemon.reset();
     fs::remove_all(dir);
   }
-  void start() {
+  void start(const std::string& profile = "g5500") {
     daemon = std::make_unique<DaemonProcess>(
-        std::vector<std::string>{"--sim", "g5500", "--speedup", "10", "--config", config.string()});
+        std::vector<std::string>{"--sim", profile, "--speedup", "10", "--config", config.string()});
     ASSERT_TRUE(daemon->ready()) << daemon->output();
     port = daemon->ports().web;
   }
@@ -211,6 +212,73 @@ TEST_F(WebApi, SettingsArePersistedAndSurviveARestart) {
   EXPECT_NE(read_file(config).find("\"park.az_deg\": 0,"), std::string::npos);
 }
 
+TEST_F(WebApi, TextSettingsSecretsAreNeverReadBackAndTheMaskKeepsThem) {
+  start();
+  Response r = http(port, "POST", "/api/settings",
+                    R"({"wifi.ssid": "Shack Net", "wifi.password": "hunter2-wpa2-pass"})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.body.find("\"restart_required\":[\"wifi.ssid\",\"wifi.password\"]"),
+            std::string::npos)
+      << r.body;
+  // The stored file has the password (the device needs it); no reader sees it.
+  EXPECT_NE(read_file(config).find("\"wifi.password\": \"hunter2-wpa2-pass\""), std::string::npos);
+  std::string doc = http(port, "GET", "/api/settings").body;
+  EXPECT_EQ(doc.find("hunter2"), std::string::npos) << doc;
+  EXPECT_NE(doc.find("\"wifi.password\":\"********\""), std::string::npos) << doc;
+  EXPECT_NE(doc.find("\"wifi.ssid\":\"Shack Net\""), std::string::npos) << doc;
+  EXPECT_NE(doc.find("\"wifi.ap_password\":\"\""), std::string::npos) << "nothing stored";
+  EXPECT_EQ(http(port, "GET", "/api/settings/schema").body.find("hunter2"), std::string::npos);
+  {
+    TcpClient rotctl(daemon->ports().rotctld);
+    ASSERT_TRUE(rotctl.connected());
+    EXPECT_EQ(rotctl.ask("\\get_conf wifi.password\n"), "wifi.password=********");
+  }
+
+  // The whole document as read (an export imported again) keeps the password.
+  r = http(port, "POST", "/api/settings", doc);
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.body.find("\"changed\":[]"), std::string::npos) << r.body;
+  EXPECT_NE(read_file(config).find("\"wifi.password\": \"hunter2-wpa2-pass\""), std::string::npos);
+
+  // A bad address is refused with the reason, and nothing is saved.
+  r = http(port, "POST", "/api/settings",
+           R"({"net.ipv4_mode": "static", "net.ipv4_address": "192.168.1.256"})");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_NE(r.body.find("\"net.ipv4_address\":\"not an IPv4 address"), std::string::npos) << r.body;
+  r = http(port, "POST", "/api/settings", R"({"net.ipv4_mode": "static"})");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_NE(r.body.find("needs net.ipv4_address"), std::string::npos) << r.body;
+  r = http(port, "POST", "/api/settings", R"({"wifi.password": "short"})");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_NE(read_file(config).find("\"net.ipv4_mode\": \"dhcp\""), std::string::npos);
+  EXPECT_NE(read_file(config).find("hunter2-wpa2-pass"), std::string::npos);
+
+  // After a restart the stored password is still there and still hidden.
+  daemon.reset();
+  start();
+  doc = http(port, "GET", "/api/settings").body;
+  EXPECT_NE(doc.find("\"wifi.password\":\"********\""), std::string::npos) << doc;
+  // Clearing it (an open network) is a change like any other.
+  r = http(port, "POST", "/api/settings", R"({"wifi.password": ""})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(read_file(config).find("hunter2"), std::string::npos);
+  EXPECT_NE(http(port, "GET", "/api/settings").body.find("\"wifi.password\":\"\""),
+            std::string::npos);
+}
+
+TEST_F(WebApi, StatusHasTheUtcTimeFromTheSystemClock) {
+  start();
+  const std::string s = status();
+  const auto pos = s.find("\"time_utc\":\"");
+  ASSERT_NE(pos, std::string::npos) << s;
+  const std::string utc = s.substr(pos + 12, 24);  // 2026-11-23T17:40:11.250Z
+  EXPECT_EQ(utc.size(), 24u);
+  EXPECT_EQ(utc[4], '-');
+  EXPECT_EQ(utc[10], 'T');
+  EXPECT_EQ(utc[23], 'Z');
+  EXPECT_GE(std::atoi(utc.c_str()), 2024) << utc;
+}
+
 TEST_F(WebApi, ACorruptFileIsReportedKeptAndTheDefaultsRun) {
   fs::create_directories(config.parent_path());
   const std::string garbage = "{\"park.az_deg\": 45, \"az.max_deg\": ";  // torn by hand
@@ -266,6 +334,69 @@ TEST_F(WebApi, RebootRestartsTheControllerWithRestartOnlySettings) {
   }
   EXPECT_NE(s.find("\"has_el\":false"), std::string::npos) << s;
   EXPECT_NE(s.find("\"el\":null"), std::string::npos);
+}
+
+/// Polls the status until the azimuth stands still; returns the last status.
+std::string settled_status(int port) {
+  std::string s;
+  for (int n = 0; n < 100; ++n) {
+    s = http(port, "GET", "/api/status").body;
+    if (s.find("\"moving\":false") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return s;
+}
+
+TEST_F(WebApi, StatusCarriesThePotReadingInVoltsForTheCalibrationPage) {
+  start();
+  const std::string s = status();
+  for (const char* axis : {"\"az\":{", "\"el\":{"}) {
+    const std::size_t at = s.find(axis);
+    ASSERT_NE(at, std::string::npos) << s;
+    EXPECT_EQ(s.find("\"sensor\":\"pot\"", at), s.find("\"sensor\"", at)) << s;
+    const double raw = number(s, "raw", at);
+    EXPECT_GT(raw, 0);
+    // The simulator's ADC is the Pico's: 12 bits at 3.3 V.
+    EXPECT_EQ(number(s, "raw_full_scale", at), 4095);
+    EXPECT_NEAR(number(s, "raw_volts", at), raw * 3.3 / 4095, 1e-4);
+    EXPECT_EQ(s.find("\"mag\":null", at), s.find("\"mag\":", at)) << s;
+  }
+}
+
+TEST_F(WebApi, ACalibrationWithAnOffsetReadsTheEnteredAngleAndLatchesNoFault) {
+  start();
+  ASSERT_EQ(http(port, "POST", "/api/settings", R"({"az.offset_deg": 10})").status, 200);
+  const std::string before = settled_status(port);
+  const double raw = number(before, "raw", before.find("\"az\":{"));
+  // "The antenna points at 200 now": the calibration angle excludes the offset.
+  const std::string body =
+      "{\"az.pot_cal_lo_counts\": " + std::to_string(raw) + ", \"az.pot_cal_lo_deg\": 190}";
+  ASSERT_EQ(http(port, "POST", "/api/settings", body).status, 200);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const std::string s = settled_status(port);
+  EXPECT_NEAR(az_of(s), 200, 0.5) << s;
+  EXPECT_NE(s.find("\"fault\":false"), std::string::npos) << s;
+}
+
+TEST_F(WebApi, Ma3StatusGivesTheCodeRangeAndANewZeroTakesEffectWithoutAFault) {
+  start("spid");
+  const std::string s0 = settled_status(port);
+  const std::size_t az = s0.find("\"az\":{");
+  EXPECT_NE(s0.find("\"sensor\":\"ma3\"", az), std::string::npos) << s0;
+  EXPECT_NE(s0.find("\"raw_unit\":\"code\"", az), std::string::npos) << s0;
+  EXPECT_EQ(number(s0, "raw_full_scale", az), 4096);
+  EXPECT_EQ(s0.find("\"raw_volts\":null", az), s0.find("\"raw_volts\":", az)) << s0;
+  // Zero the encoder so that this position reads 7 deg more: what the web
+  // page's "set this position as N" computes.
+  const double code_deg = number(s0, "raw", az) * 360.0 / 4096.0;
+  const double want = az_of(s0) + 7;
+  double zero = std::fmod(code_deg - want + 720.0, 360.0);
+  const std::string body = "{\"az.ma3_zero_deg\": " + std::to_string(zero) + "}";
+  ASSERT_EQ(http(port, "POST", "/api/settings", body).status, 200);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const std::string s = settled_status(port);
+  EXPECT_NEAR(az_of(s), want, 0.3) << s;
+  EXPECT_NE(s.find("\"fault\":false"), std::string::npos) << s;
 }
 
 }  // namespace
