@@ -212,6 +212,73 @@ TEST_F(WebApi, SettingsArePersistedAndSurviveARestart) {
   EXPECT_NE(read_file(config).find("\"park.az_deg\": 0,"), std::string::npos);
 }
 
+TEST_F(WebApi, TextSettingsSecretsAreNeverReadBackAndTheMaskKeepsThem) {
+  start();
+  Response r = http(port, "POST", "/api/settings",
+                    R"({"wifi.ssid": "Shack Net", "wifi.password": "hunter2-wpa2-pass"})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_NE(r.body.find("\"restart_required\":[\"wifi.ssid\",\"wifi.password\"]"),
+            std::string::npos)
+      << r.body;
+  // The stored file has the password (the device needs it); no reader sees it.
+  EXPECT_NE(read_file(config).find("\"wifi.password\": \"hunter2-wpa2-pass\""), std::string::npos);
+  std::string doc = http(port, "GET", "/api/settings").body;
+  EXPECT_EQ(doc.find("hunter2"), std::string::npos) << doc;
+  EXPECT_NE(doc.find("\"wifi.password\":\"********\""), std::string::npos) << doc;
+  EXPECT_NE(doc.find("\"wifi.ssid\":\"Shack Net\""), std::string::npos) << doc;
+  EXPECT_NE(doc.find("\"wifi.ap_password\":\"\""), std::string::npos) << "nothing stored";
+  EXPECT_EQ(http(port, "GET", "/api/settings/schema").body.find("hunter2"), std::string::npos);
+  {
+    TcpClient rotctl(daemon->ports().rotctld);
+    ASSERT_TRUE(rotctl.connected());
+    EXPECT_EQ(rotctl.ask("\\get_conf wifi.password\n"), "wifi.password=********");
+  }
+
+  // The whole document as read (an export imported again) keeps the password.
+  r = http(port, "POST", "/api/settings", doc);
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.body.find("wifi."), std::string::npos) << "nothing Wi-Fi changed: " << r.body;
+  EXPECT_NE(read_file(config).find("\"wifi.password\": \"hunter2-wpa2-pass\""), std::string::npos);
+
+  // A bad address is refused with the reason, and nothing is saved.
+  r = http(port, "POST", "/api/settings",
+           R"({"net.ipv4_mode": "static", "net.ipv4_address": "192.168.1.256"})");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_NE(r.body.find("\"net.ipv4_address\":\"not an IPv4 address"), std::string::npos) << r.body;
+  r = http(port, "POST", "/api/settings", R"({"net.ipv4_mode": "static"})");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_NE(r.body.find("needs net.ipv4_address"), std::string::npos) << r.body;
+  r = http(port, "POST", "/api/settings", R"({"wifi.password": "short"})");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_NE(read_file(config).find("\"net.ipv4_mode\": \"dhcp\""), std::string::npos);
+  EXPECT_NE(read_file(config).find("hunter2-wpa2-pass"), std::string::npos);
+
+  // After a restart the stored password is still there and still hidden.
+  daemon.reset();
+  start();
+  doc = http(port, "GET", "/api/settings").body;
+  EXPECT_NE(doc.find("\"wifi.password\":\"********\""), std::string::npos) << doc;
+  // Clearing it (an open network) is a change like any other.
+  r = http(port, "POST", "/api/settings", R"({"wifi.password": ""})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(read_file(config).find("hunter2"), std::string::npos);
+  EXPECT_NE(http(port, "GET", "/api/settings").body.find("\"wifi.password\":\"\""),
+            std::string::npos);
+}
+
+TEST_F(WebApi, StatusHasTheUtcTimeFromTheSystemClock) {
+  start();
+  const std::string s = status();
+  const auto pos = s.find("\"time_utc\":\"");
+  ASSERT_NE(pos, std::string::npos) << s;
+  const std::string utc = s.substr(pos + 12, 24);  // 2026-11-23T17:40:11.250Z
+  EXPECT_EQ(utc.size(), 24u);
+  EXPECT_EQ(utc[4], '-');
+  EXPECT_EQ(utc[10], 'T');
+  EXPECT_EQ(utc[23], 'Z');
+  EXPECT_GE(std::atoi(utc.c_str()), 2024) << utc;
+}
+
 TEST_F(WebApi, ACorruptFileIsReportedKeptAndTheDefaultsRun) {
   fs::create_directories(config.parent_path());
   const std::string garbage = "{\"park.az_deg\": 45, \"az.max_deg\": ";  // torn by hand
