@@ -88,8 +88,10 @@
         $('el-target').setAttribute('transform', `rotate(${-et} 100 0)`);
         targets.push('el ' + rotord.fmt(et));
       }
-      const lo = Math.max(0, l.el_max), hi = 180;
-      $('el-blocked').setAttribute('d', lo < hi ? elevSector(lo, hi) : '');
+      // Outside the travel: above el_max and below el_min (on the 0..180 arc).
+      const above = Math.max(0, l.el_max), below = Math.min(180, l.el_min);
+      $('el-blocked').setAttribute('d', (above < 180 ? elevSector(above, 180) : '') +
+        (below > 0 ? elevSector(0, below) : ''));
     }
     $('tgt').textContent = targets.length ? targets.join(', ') : '–';
     const axes = s.el ? [['az', s.az], ['el', s.el]] : [['az', s.az]];

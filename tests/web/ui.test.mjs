@@ -40,6 +40,20 @@ test('control page loads without console errors, phone and desktop, light and da
   }
 });
 
+test('small phone: STOP stays in reach; the elevation arc shows both travel limits', async () => {
+  assert.equal((await rotord.post('/api/settings', { 'el.min_deg': 10, 'el.max_deg': 170 })).status, 200);
+  const page = await openPage(browser, rotord.url + '/', { width: 360, height: 640 });
+  await page.waitForSelector('#conn.live');
+  const stop = await page.locator('#stop').boundingBox();
+  assert.ok(stop.y >= 0 && stop.y + stop.height <= 640, `STOP at ${stop.y}..${stop.y + stop.height}`);
+  // Two blocked wedges: below 10 and above 170.
+  await until(async () => ((await page.getAttribute('#el-blocked', 'd')) || '').split('M').length === 3,
+    { what: 'two blocked wedges' });
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+  assert.equal((await rotord.post('/api/settings', { 'el.min_deg': 0, 'el.max_deg': 180 })).status, 200);
+});
+
 test('clicking the rose moves the rotator and the displayed azimuth follows', async () => {
   const page = await openPage(browser, rotord.url + '/');
   await page.waitForSelector('#conn.live');
