@@ -307,9 +307,9 @@ TEST(UtcTime, TimeBaseFollowsTheMonotonicClock) {
   TimeBase base;
   EXPECT_FALSE(base.unix_ms(5000).has_value());
   // SNTP: 2026-11-23T17:40:11.250 at monotonic 5 s.
-  base.set(unix_ms_from_sntp(1'795'369'211u, 250'999u), 5000);
-  EXPECT_EQ(*base.unix_ms(5000), 1'795'369'211'250);
-  EXPECT_EQ(*base.unix_ms(65'000), 1'795'369'271'250);
+  base.set(unix_ms_from_sntp(1'795'455'611u, 250'999u), 5000);
+  EXPECT_EQ(*base.unix_ms(5000), 1'795'455'611'250);
+  EXPECT_EQ(*base.unix_ms(65'000), 1'795'455'671'250);
 }
 
 }  // namespace
