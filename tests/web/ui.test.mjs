@@ -166,3 +166,23 @@ test('calibration: "set as low point" writes the live raw reading', async () => 
   assert.deepEqual(page.errors, []);
   await page.context().close();
 });
+
+test('settings: a stored Wi-Fi password shows masked and an untouched save keeps it', async () => {
+  const post = (doc) => fetch(rotord.url + '/api/settings', {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(doc) });
+  assert.equal((await post({ 'wifi.password': 'hunter2-wpa2-pass' })).status, 200);
+  const page = await openPage(browser, rotord.url + '/settings.html');
+  const field = '#f-wifi\\.password';
+  await page.waitForSelector(field);
+  assert.equal(await page.getAttribute(field, 'type'), 'password');
+  await until(async () => (await page.inputValue(field)) === '********', { what: 'masked password' });
+  assert.ok(!(await page.content()).includes('hunter2'));
+  await page.fill('#f-wifi\\.ssid', 'Shack Net');
+  await page.click('#save');
+  await until(async () => (await page.textContent('#msg')).includes('saved'), { what: 'saved' });
+  const s = await (await fetch(rotord.url + '/api/settings')).json();
+  assert.equal(s['wifi.ssid'], 'Shack Net');
+  assert.equal(s['wifi.password'], '********', 'still stored, still hidden');
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
