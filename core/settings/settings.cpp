@@ -215,7 +215,7 @@ Rejection Settings::set_text(Id id, std::string_view value) {
   if (r.error != Error::kOk) return r;
   if (value == text(id)) return {};
   char* slot = text_slot(id);
-  std::memcpy(slot, value.data(), value.size());
+  if (!value.empty()) std::memcpy(slot, value.data(), value.size());  // data() may be null
   slot[value.size()] = '\0';
   ++revision_;
   return {};
@@ -271,7 +271,7 @@ Rejection Settings::update_from_text(Id id, std::string_view text) {
   const double before = get(id);
   char before_text[kMaxTextBytes + 1];
   const std::string_view old = this->text(id);
-  std::memcpy(before_text, old.data(), old.size());
+  if (!old.empty()) std::memcpy(before_text, old.data(), old.size());  // data() may be null
   const Rejection r = set_from_text(id, text);
   if (r.error != Error::kOk) return r;
   const Rejection rule = check_consistency();
@@ -356,7 +356,7 @@ std::size_t Settings::format_value(Id id, char* out, std::size_t capacity) const
   if (capacity == 0) return 0;
   const std::string_view t = visible_text(id);
   const std::size_t n = t.size() < capacity ? t.size() : capacity - 1;
-  std::memcpy(out, t.data(), n);
+  if (n > 0) std::memcpy(out, t.data(), n);
   out[n] = '\0';
   return n;
 }

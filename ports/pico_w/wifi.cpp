@@ -28,7 +28,7 @@ namespace {
 template <std::size_t N>
 void copy_text(char (&out)[N], std::string_view text) {
   const std::size_t n = text.size() < N - 1 ? text.size() : N - 1;
-  std::memcpy(out, text.data(), n);
+  if (n > 0) std::memcpy(out, text.data(), n);  // an empty view's data() may be null
   out[n] = '\0';
 }
 

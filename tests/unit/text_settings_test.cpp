@@ -285,6 +285,13 @@ TEST(TextSettings, ProtocolWritesUndoARuleBreak) {
   ASSERT_EQ(s.update_from_text(Id::kNetIpv4Mode, "static").error, Error::kOk);
   EXPECT_NE(s.update_from_text(Id::kNetIpv4Address, "").error, Error::kOk);
   EXPECT_EQ(s.text(Id::kNetIpv4Address), "10.1.2.3") << "undone";
+  // Numbers go through the same path (fuzz_rotctld found a memcpy from the
+  // null data() of a number's empty text view here).
+  ASSERT_EQ(s.update_from_text(Id::kParkAzDeg, "12.5").error, Error::kOk);
+  EXPECT_EQ(s.get(Id::kParkAzDeg), 12.5);
+  ASSERT_EQ(s.set_text(Id::kWifiSsid, std::string_view()).error, Error::kOk);
+  char out[8];
+  EXPECT_EQ(s.format_value(Id::kWifiApPassword, out, sizeof out), 0u);
   // Text is taken as is: spaces belong to an SSID.
   ASSERT_EQ(s.update_from_text(Id::kWifiSsid, " My Net ").error, Error::kOk);
   EXPECT_EQ(s.text(Id::kWifiSsid), " My Net ");
