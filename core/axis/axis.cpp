@@ -69,7 +69,10 @@ void Axis::configure(const AxisConfig& cfg) {
   if (cfg.sensor == SensorType::kPot && pot_) chosen = &*pot_;
   if (cfg.sensor == SensorType::kMa3 && ma3_) chosen = &*ma3_;
   if (cfg.sensor == SensorType::kMag && mag_) chosen = &*mag_;
-  if (chosen != sensor_) have_pos_ = false;  // another sensor: start afresh
+  if (chosen != sensor_) {  // another sensor: start afresh
+    have_pos_ = false;
+    if (chosen != nullptr) chosen->restart();
+  }
   sensor_ = chosen;
   if (first) coast_s_ = cfg.coast_s;
   // A new offset moves the reported position; shift the history with it so the

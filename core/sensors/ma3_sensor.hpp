@@ -51,6 +51,7 @@ class Ma3Sensor final : public PositionSensor {
   void configure(int bits, float zero_deg, bool reverse);
   PositionReading read(Millis now) override;
   bool single_turn() const override { return true; }
+  void restart() override { have_code_ = have_candidate_ = false; }
   Ma3Reject last_reject() const { return last_reject_; }
 
  private:

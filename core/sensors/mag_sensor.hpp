@@ -14,6 +14,7 @@ class MagSensor final : public PositionSensor {
   void configure(MagChip chip, const MagCalibration& cal, int lowpass_ms);
   PositionReading read(Millis now) override;
   bool single_turn() const override { return true; }
+  void restart() override { filter_.reset(); }
   /// The last raw sample, for the calibration procedure (min/max per axis).
   const MagSample& last_sample() const { return sample_; }
 

@@ -28,6 +28,10 @@ class PositionSensor {
   /// True for sensors that repeat every 360 deg (MA3, magnetometer); the axis
   /// unwraps them into the mechanical range.
   virtual bool single_turn() const = 0;
+  /// Forgets filter history. The axis calls it when this sensor becomes its
+  /// sensor again (a settings change), so readings kept from the last time
+  /// it was read do not surface as an implausible jump.
+  virtual void restart() {}
 };
 
 }  // namespace rotord

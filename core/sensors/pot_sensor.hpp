@@ -20,6 +20,7 @@ class PotSensor final : public PositionSensor {
   void set_calibration(const PotCalibration& cal) { cal_ = cal; }
   PositionReading read(Millis now) override;
   bool single_turn() const override { return false; }
+  void restart() override { filter_.reset(); }
 
  private:
   hal::AnalogIn& adc_;

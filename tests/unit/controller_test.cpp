@@ -231,6 +231,17 @@ TEST_F(ControllerTest, RecalibratingThePotMovesThePositionWithoutAJumpFault) {
   EXPECT_EQ(status().az.fault, AxisFault::kSensorJump);
 }
 
+TEST_F(ControllerTest, SwitchingBackToThePotForgetsItsOldReadings) {
+  run_ms(100);
+  r.settings.set(Id::kAzSensor, 1);  // MA3 for a while; the pot is not read
+  run_ms(100);
+  az_deg = 150.0f;  // the rotator turned meanwhile
+  r.settings.set(Id::kAzSensor, 0);
+  run_ms(200);
+  EXPECT_EQ(status().az.fault, AxisFault::kNone);
+  EXPECT_NEAR(status().az.position_deg, 150.0f, 0.2f);
+}
+
 TEST_F(ControllerTest, StopDuringBrakeReleaseNeverDrivesTheMotor) {
   r.settings.set(Id::kAzHasBrake, 1);  // needs-restart setting: rebuild
   r.settings.set(Id::kAzBrakeReleaseMs, 1000);
