@@ -94,4 +94,30 @@ bool SimSwitch::active() {
   return sense_ == Sense::kAtOrAbove ? theta_deg >= threshold_deg_ : theta_deg <= threshold_deg_;
 }
 
+bool SimMag::write(std::uint8_t address, const std::uint8_t* /*data*/, std::size_t length) {
+  return address == kAddress && length >= 1;  // control writes: always continuous mode here
+}
+
+bool SimMag::write_read(std::uint8_t address, const std::uint8_t* wdata, std::size_t wlength,
+                        std::uint8_t* rdata, std::size_t rlength) {
+  if (address != kAddress || wlength != 1) return false;
+  std::uint8_t regs[14] = {};
+  const double rad = plant_.theta_deg() * (3.14159265358979 / 180.0);
+  const auto put = [&](int reg, double value) {
+    const auto v = static_cast<std::int16_t>(std::lround(value + rng_.normal(sigma_counts_)));
+    regs[reg] = static_cast<std::uint8_t>(static_cast<std::uint16_t>(v) & 0xFF);
+    regs[reg + 1] = static_cast<std::uint8_t>(static_cast<std::uint16_t>(v) >> 8);
+  };
+  put(0x00, kOffsetX + kGainX * std::cos(rad));
+  put(0x02, kOffsetY + kGainY * std::sin(rad));
+  put(0x04, kZ);
+  regs[0x06] = 0x01;  // data ready, no overflow
+  regs[0x0D] = 0xFF;  // chip id
+  for (std::size_t n = 0; n < rlength; ++n) {
+    const std::size_t reg = wdata[0] + n;
+    rdata[n] = reg < sizeof regs ? regs[reg] : 0;
+  }
+  return true;
+}
+
 }  // namespace rotord::sim

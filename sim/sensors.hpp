@@ -3,6 +3,7 @@
 
 #include "hal/analog_in.hpp"
 #include "hal/digital_in.hpp"
+#include "hal/i2c.hpp"
 #include "hal/pwm_in.hpp"
 #include "sim/fault_window.hpp"
 #include "sim/plant.hpp"
@@ -99,6 +100,32 @@ class SimMa3 final : public hal::PwmIn {
   FaultWindow noise_burst_;
   double burst_sigma_deg_ = 0.0;
   FaultWindow stuck_;
+};
+
+/// QMC5883L magnetometer on the azimuth mast (I2C 0x0D), registers only as
+/// far as the driver uses them: chip id, control writes, X/Y/Z and status.
+/// The field turns with the plant's angle and is read through a hard-iron
+/// offset and unequal axis gains, as near a steel mast, so the default
+/// calibration (+-1000) reads a distorted heading until the web page's spin
+/// calibration has recorded the real extremes:
+///   x = 300 + 1200 cos(theta), y = -150 + 900 sin(theta) (+ noise).
+class SimMag final : public hal::I2c {
+ public:
+  static constexpr std::uint8_t kAddress = 0x0D;
+  static constexpr double kOffsetX = 300.0, kOffsetY = -150.0;
+  static constexpr double kGainX = 1200.0, kGainY = 900.0, kZ = 400.0;
+
+  SimMag(const AxisPlant& plant, double sigma_counts, std::uint64_t seed)
+      : plant_(plant), sigma_counts_(sigma_counts), rng_(seed) {}
+
+  bool write(std::uint8_t address, const std::uint8_t* data, std::size_t length) override;
+  bool write_read(std::uint8_t address, const std::uint8_t* wdata, std::size_t wlength,
+                  std::uint8_t* rdata, std::size_t rlength) override;
+
+ private:
+  const AxisPlant& plant_;
+  double sigma_counts_;
+  Rng rng_;
 };
 
 /// A switch that closes on one side of a threshold angle (limit switch, T1/T2

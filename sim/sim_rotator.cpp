@@ -26,6 +26,7 @@ SimRotator::AxisSim::AxisSim(const AxisProfile& p, std::uint64_t seed, SensorNoi
       plant(p.plant),
       pot(plant, pot_config(p, noise), part_seed(seed, 1)),
       ma3(plant, noise == SensorNoise::kOn ? p.ma3_sigma_deg : 0.0, part_seed(seed, 2)),
+      mag(plant, noise == SensorNoise::kOn ? 2.0 : 0.0, part_seed(seed, 3)),
       limit_cw(plant, SimSwitch::Sense::kAtOrAbove, p.limit_cw_deg),
       limit_ccw(plant, SimSwitch::Sense::kAtOrBelow, p.limit_ccw_deg),
       t1(plant, SimSwitch::Sense::kAtOrAbove, p.t1_above_deg),
@@ -66,6 +67,7 @@ AxisIo SimRotator::io(AxisId axis) {
   AxisSim& s = sim(axis);
   if (s.profile.sensor == SensorKind::kPot) io.pot = &s.pot;
   if (s.profile.sensor == SensorKind::kMa3) io.ma3 = &s.ma3;
+  if (axis == AxisId::kAz) io.i2c = &s.mag;
   if (s.profile.has_limit_switches) {
     io.limit_cw = &s.limit_cw;
     io.limit_ccw = &s.limit_ccw;

@@ -32,7 +32,8 @@ class SimRotator {
   Millis now_ms() const { return now_ms_; }
 
   /// Wiring for the controller; null where the profile has no such part, and
-  /// all null for a missing elevation axis.
+  /// all null for a missing elevation axis. Every azimuth also has a
+  /// magnetometer on its I2C bus, so az.sensor = mag works on any profile.
   AxisIo io(AxisId axis);
 
   bool has_el() const { return profile_.has_el; }
@@ -70,6 +71,7 @@ class SimRotator {
     AxisPlant plant;
     SimPot pot;
     SimMa3 ma3;
+    SimMag mag;  // read only when az.sensor = mag
     SimSwitch limit_cw;
     SimSwitch limit_ccw;
     SimSwitch t1;

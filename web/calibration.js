@@ -206,6 +206,10 @@ const rotordCalibration = (() => {
       const reverse = el('input', { type: 'checkbox', id: `cal-${axis}-reverse` });
       reverse.checked = !!v(`${axis}.ma3_reverse`);
       const zeroNow = el('p', { class: 'note', id: `cal-${axis}-zero-now` });
+      const label = () => {
+        zero.textContent = `Set this position as ${at.value.trim() === '' ? 'N' : at.value.trim()}°`;
+      };
+      at.addEventListener('input', label);
       card.append(el('div', { class: 'buttons' }, el('label', {}, 'antenna now at ', at, ' °'), zero),
         el('div', { class: 'buttons' }, el('label', {}, reverse, ' counts down when turning ',
           axis === 'az' ? 'clockwise' : 'up')),
@@ -248,7 +252,7 @@ const rotordCalibration = (() => {
           raw.textContent = full ? `${fmt(a.raw, 0)} of ${full}` : fmt(a.raw, 0);
           duty.textContent = full ? `${fmt((100 * (a.raw + 1)) / (full + 1), 1)} %` : '–';
           deg.textContent = `${fmt(a.position_deg, 1)}°`;
-          zero.textContent = `Set this position as ${at.value.trim() === '' ? 'N' : at.value.trim()}°`;
+          label();
           zeroNow.textContent =
             `${axis}.ma3_zero_deg = ${fmt(Number(v(axis + '.ma3_zero_deg')), 2)}°`;
         },
@@ -305,8 +309,8 @@ const rotordCalibration = (() => {
             spin.n += 1;
             spin.x_min = Math.min(spin.x_min, m.x); spin.x_max = Math.max(spin.x_max, m.x);
             spin.y_min = Math.min(spin.y_min, m.y); spin.y_max = Math.max(spin.y_max, m.y);
-            show();
           }
+          show();  // also after a save re-rendered the card
         },
       };
     }
