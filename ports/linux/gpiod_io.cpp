@@ -169,6 +169,15 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
   std::unique_ptr<GpiodRotator> hw(new GpiodRotator(std::move(chip)));
   LineRequester req(s, *hw->chip_, error);
   hw->summary_ = "GPIO " + hw->chip_->describe();
+  const auto pot_on = [&s](Id sensor) { return s.i(sensor) == static_cast<int>(SensorType::kPot); };
+  if (s.b(Id::kElEnabled) && pot_on(Id::kAzSensor) && pot_on(Id::kElSensor) &&
+      s.i(Id::kIioAzDevice) == s.i(Id::kIioElDevice) &&
+      s.i(Id::kIioAzChannel) == s.i(Id::kIioElChannel)) {
+    error = "iio.az_channel and iio.el_channel both read channel " +
+            std::to_string(s.i(Id::kIioAzChannel)) + " of IIO device " +
+            std::to_string(s.i(Id::kIioAzDevice));
+    return nullptr;
+  }
   for (const AxisKeys* k : {&kAzKeys, &kElKeys}) {
     const bool el = k == &kElKeys;
     if (el && !s.b(Id::kElEnabled)) continue;

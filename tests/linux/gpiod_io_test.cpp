@@ -249,6 +249,14 @@ TEST_F(GpiodIoTest, ElevationLinesAreRequestedWhenEnabled) {
   EXPECT_NE(hw->io(AxisId::kEl).pot, nullptr);
 }
 
+TEST_F(GpiodIoTest, BothPotsOnOneAdcChannelAreRefused) {
+  set(Id::kElEnabled, 1);
+  set(Id::kIioElChannel, 0);
+  EXPECT_FALSE(open());
+  EXPECT_EQ(error, "iio.az_channel and iio.el_channel both read channel 0 of IIO device 0");
+  EXPECT_TRUE(board->lines.empty());
+}
+
 TEST(GpiodRulesTest, ConflictingLinesAreRefusedNamingBothKeys) {
   settings::Settings s;
   EXPECT_EQ(s.check_consistency().error, Error::kOk);
