@@ -72,7 +72,7 @@ enum {
 #define CONFIG_ATTRIBUTES (0)
 #define CONFIG_POWER_MA (250)
 
-#define RESET_DESCRIPTOR(itf, str)                                                              \
+#define RESET_DESCRIPTOR(itf, str)                                                         \
   9, TUSB_DESC_INTERFACE, itf, 0, 0, TUSB_CLASS_VENDOR_SPECIFIC, RESET_INTERFACE_SUBCLASS, \
       RESET_INTERFACE_PROTOCOL, str
 

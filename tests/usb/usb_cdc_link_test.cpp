@@ -5,6 +5,8 @@
 // FIFO the host fills, DTR and an open counter.
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <ostream>
 #include <string>
 
 #include "fake_rotator.hpp"
@@ -275,6 +277,10 @@ struct GarbageCase {
   const char* error;
 };
 
+void PrintTo(const GarbageCase& c, std::ostream* os) {
+  *os << usb_port::personality_name(c.personality);
+}
+
 class UsbPersonalityTest : public ::testing::TestWithParam<GarbageCase> {};
 
 TEST_P(UsbPersonalityTest, GarbageGetsThisProtocolsError) {
@@ -298,7 +304,14 @@ INSTANTIATE_TEST_SUITE_P(
                       GarbageCase{Personality::kEasycomm, "FOO\n", "ALUNKNOWN\n"},
                       GarbageCase{Personality::kSeed, "$X\n", "$ERR,UNKNOWN\r\n"},
                       GarbageCase{Personality::kWrc, "FOO\r\n", "ERROR INVALID COMMAND\r\n"},
-                      GarbageCase{Personality::kRotctld, "\\nosuchcommand\n", "RPRT -4\n"}));
+                      GarbageCase{Personality::kRotctld, "\\nosuchcommand\n", "RPRT -4\n"}),
+    [](const ::testing::TestParamInfo<GarbageCase>& param_info) {
+      // "Yaesu GS-232" -> "Yaesu_GS_232": test names take letters, digits and '_'.
+      std::string name = usb_port::personality_name(param_info.param.personality);
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
 
 TEST(UsbPersonality, TheSettingsChoicesMatchTheEnum) {
   const settings::Def& def = settings::def(settings::Id::kUsbPersonality);
