@@ -148,9 +148,9 @@ const rotordCalibration = (() => {
         // Keep the table in counts order from point 1 to point 2; a point
         // beyond either end becomes the new end point.
         const rising = list[list.length - 1].counts >= list[0].counts;
-        let at_index = list.findIndex((p) => (rising ? p.counts > point.counts : p.counts < point.counts));
-        if (at_index < 0) at_index = list.length;
-        list.splice(at_index, 0, point);
+        let where = list.findIndex((p) => (rising ? p.counts > point.counts : p.counts < point.counts));
+        if (where < 0) where = list.length;
+        list.splice(where, 0, point);
         await save(potBody(axis, list), error, `${NAMES[axis]}: point added, ${point.counts} counts = ${angle}°`);
       });
 
@@ -159,7 +159,7 @@ const rotordCalibration = (() => {
       card.append(table, note, error);
       const render = () => {
         const list = potPoints(axis);
-        const sorted = list.map((p, index) => ({ ...p, index })).sort((a, b) => a.counts - b.counts);
+        const sorted = [...list].sort((a, b) => a.counts - b.counts);
         // Volts per count, from the live reading (the ADC's reference / full scale).
         const ref = s.raw_volts !== null && s.raw ? s.raw_volts / s.raw : null;
         table.textContent = '';

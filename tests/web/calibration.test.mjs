@@ -188,10 +188,11 @@ test('magnetometer: raw field, spin calibration over a full turn fixes the headi
   await page.context().close();
   // The pot on the same shaft agrees with the calibrated heading.
   assert.equal((await pot.post('/api/settings', { 'az.sensor': 'pot' })).status, 200);
+  // The next tick applies the switch: from then on there is no raw field.
+  await until(async () => (await pot.status()).az.mag === null, { what: 'the pot in charge' });
   const truth = (await settled(pot)).az.position_deg;
   const diff = Math.abs((((heading - truth) % 360) + 540) % 360 - 180);
   assert.ok(diff < 1.5, `magnetometer ${heading} vs pot ${truth}`);
-  assert.equal((await pot.status()).az.mag, null);
 });
 
 test('MA3: code and duty, "set this position as N", direction keeps the angle', async () => {
