@@ -239,6 +239,18 @@ TEST_F(EasycommTest, ConfigRegistersReadAndWriteTheSettingsTable) {
   EXPECT_EQ(ask("GS\n;AZ EL \n"), "GS1\nAZ100.0 EL20.0\n");
 }
 
+TEST_F(EasycommTest, TextRegistersAndSecretsNeverReadBack) {
+  EXPECT_EQ(ask("CRtime.sntp_server\n"), "CRtime.sntp_server,pool.ntp.org\n");
+  EXPECT_EQ(ask("CWwifi.password,hunter2-wpa2\n"), "");
+  EXPECT_EQ(r.settings.text(settings::Id::kWifiPassword), "hunter2-wpa2");
+  EXPECT_EQ(ask("CRwifi.password\n"), "CRwifi.password,********\n");
+  EXPECT_EQ(ask("CWwifi.password,********\n"), "");  // the mask keeps it
+  EXPECT_EQ(r.settings.text(settings::Id::kWifiPassword), "hunter2-wpa2");
+  EXPECT_EQ(ask("CWnet.ipv4_address,10.0.0.300\n"), "ALRANGE\n");
+  EXPECT_EQ(ask("CWnet.ipv4_mode,static\n"), "ALRANGE\n") << "no address: undone";
+  EXPECT_EQ(r.settings.i(settings::Id::kNetIpv4Mode), 0);
+}
+
 TEST_F(EasycommTest, ConfigErrorsChangeNothing) {
   const auto revision = r.settings.revision();
   EXPECT_EQ(ask("CR\n"), "ALSYNTAX\n");
