@@ -19,6 +19,7 @@
 #include "pico/stdlib.h"
 #include "pico_flash.hpp"
 #include "pico_hal.hpp"
+#include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "protocol/wrc_session.hpp"
@@ -49,6 +50,8 @@ constexpr std::uint16_t kWrcPort = 1234;
 constexpr std::size_t kWrcSlots = 4;  // net.max_clients is clamped to this
 constexpr std::uint16_t kGs232Port = 4601;
 constexpr std::size_t kGs232Slots = 2;  // under 1 KB each; PstRotator or N1MM plus one
+constexpr std::uint16_t kEasycommPort = 4602;
+constexpr std::size_t kEasycommSlots = 2;  // a tracker plus one
 constexpr std::uint16_t kRotctldPort = 4533;
 // ~2.6 KB each (a whole reply, the arguments, input held by \pause): Gpredict
 // or SatNOGS, a logger and a rotctl at once.
@@ -338,9 +341,16 @@ void report_settings(const web::LoadOutcome& r) {
   http_config.is_immutable = &in_program_flash;
   static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
       http_config, make_http);
-  // TODO(protocols): Easycomm joins here as a StaticService.
+  // Easycomm II/III for Easycomm trackers and Hamlib 202/204 (docs/protocols/easycomm.md).
+  auto make_easycomm = [] { return protocol::EasycommSession(controller, ROTORD_VERSION); };
+  static lwip_port::StaticService<protocol::EasycommSession, kEasycommSlots,
+                                  decltype(make_easycomm)>
+      easycomm({"Easycomm II/III", kEasycommPort,
+                static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
+                protocol::EasycommSession::kTooManyConnections},
+               make_easycomm);
   lwip_port::TcpServer* const servers[] = {&wrc.server(), &gs232.server(), &rotctld.server(),
-                                           &http.server()};
+                                           &easycomm.server(), &http.server()};
   if (network) {
     wifi.begin(now_ms());
     // lwIP listens on every address, so the servers work on the station and

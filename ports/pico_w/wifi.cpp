@@ -73,9 +73,13 @@ void Wifi::begin(Millis now) {
   mdns_resp_init();
   if (config_.ssid[0] == '\0') {
     std::printf("rotord: no Wi-Fi network configured (wifi.ssid)\n");
-    start_access_point();
+    start_access_point(now);
     return;
   }
+  start_station(now);
+}
+
+void Wifi::start_station(Millis now) {
   cyw43_arch_enable_sta_mode();  // adds the station netif and starts its DHCP client
   netif* sta = &cyw43_state.netif[CYW43_ITF_STA];
   if (config_.hostname[0] != '\0') netif_set_hostname(sta, config_.hostname);
@@ -104,6 +108,10 @@ void Wifi::start_join(Millis now) {
 }
 
 void Wifi::step(Millis now) {
+  if (state_ == State::kAccessPoint) {
+    retry_station_from_access_point(now);
+    return;
+  }
   if (state_ != State::kJoining && state_ != State::kStation) return;
   const int status = cyw43_tcpip_link_status(&cyw43_state, CYW43_ITF_STA);
   if (status != last_status_) {
@@ -121,8 +129,12 @@ void Wifi::step(Millis now) {
         status == CYW43_LINK_BADAUTH || status == CYW43_LINK_FAIL || status == CYW43_LINK_NONET;
     if (failed || now - join_started_ >= config_.join_timeout_ms) {
       std::printf("rotord: Wi-Fi station did not come up (%s)\n", link_status_name(status));
+      if (mdns_on_[CYW43_ITF_STA]) {  // the netif goes; a later join adds it anew
+        mdns_resp_remove_netif(&cyw43_state.netif[CYW43_ITF_STA]);
+        mdns_on_[CYW43_ITF_STA] = false;
+      }
       cyw43_arch_disable_sta_mode();
-      start_access_point();
+      start_access_point(now);
     }
     return;
   }
@@ -147,11 +159,30 @@ void Wifi::station_up() {
   }
 }
 
-void Wifi::start_access_point() {
+void Wifi::retry_station_from_access_point(Millis now) {
+  if (config_.ssid[0] == '\0' || now - ap_started_ < kApRetryMs) return;
+  int stations = 0;
+  cyw43_wifi_ap_get_stas(&cyw43_state, &stations, nullptr);
+  if (stations > 0) {
+    ap_started_ = now;  // someone is using the setup AP: ask again later
+    return;
+  }
+  std::printf("rotord: nobody on the access point; trying Wi-Fi '%s' again\n", config_.ssid);
+  dhcp_.stop();
+  if (mdns_on_[CYW43_ITF_AP]) {
+    mdns_resp_remove_netif(&cyw43_state.netif[CYW43_ITF_AP]);
+    mdns_on_[CYW43_ITF_AP] = false;
+  }
+  cyw43_arch_disable_ap_mode();
+  start_station(now);  // falls back to the AP again after the join timeout
+}
+
+void Wifi::start_access_point(Millis now) {
   const bool open = std::strlen(config_.ap_password) < 8;  // WPA2 needs 8..63
   cyw43_arch_enable_ap_mode(kApSsid, open ? nullptr : config_.ap_password,
                             open ? CYW43_AUTH_OPEN : CYW43_AUTH_WPA2_AES_PSK);
   state_ = State::kAccessPoint;
+  ap_started_ = now;
   std::printf("rotord: access point '%s' (%s)\n", kApSsid, open ? "open" : "WPA2");
   log_address("access point", CYW43_ITF_AP);
   announce(CYW43_ITF_AP);

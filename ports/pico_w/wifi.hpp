@@ -6,8 +6,10 @@
 // the web settings page takes the network's name and password (then POST
 // /api/reboot). mDNS answers for net.hostname.local on either network; once
 // the station is up, SNTP sets the calendar time (sntp_clock.hpp). Stepped
-// from the main loop like everything else. The AP stays until the next boot:
-// station retries while the AP runs are not implemented.
+// from the main loop like everything else. When a network is configured but
+// the AP had to open (the router was still booting after a power cut, a
+// password changed), the AP tries the network again every kApRetryMs while
+// no phone is connected to it, so the controller comes back on its own.
 #include <cstdint>
 #include <optional>
 
@@ -24,6 +26,10 @@ class Wifi {
 
   static constexpr const char* kApSsid = "rotord-setup";
   static constexpr std::uint16_t kHttpPort = 80;
+  /// How long the setup AP stays before the configured network is tried
+  /// again (only while nobody is connected to the AP: a retry takes the AP
+  /// down for up to the join timeout).
+  static constexpr Millis kApRetryMs = 5 * 60'000;
 
   /// Copies of the settings (they may change at run time; the network takes
   /// them at boot, as their restart flag says).
@@ -46,8 +52,10 @@ class Wifi {
   State state() const { return state_; }
 
  private:
+  void start_station(Millis now);
   void start_join(Millis now);
-  void start_access_point();
+  void start_access_point(Millis now);
+  void retry_station_from_access_point(Millis now);
   void station_up();
   static void log_address(const char* what, int itf);
   void announce(int itf);
@@ -56,6 +64,7 @@ class Wifi {
   lwip_port::DhcpServer dhcp_;  ///< hands out addresses on the setup AP
   State state_ = State::kOff;
   Millis join_started_ = 0;
+  Millis ap_started_ = 0;
   int last_status_ = 0;
   bool mdns_on_[2] = {false, false};  ///< per cyw43 interface (STA, AP)
   bool sntp_started_ = false;
