@@ -318,8 +318,14 @@ Rejection Settings::check_consistency() const {
     return {Error::kOutOfRange, "mag.x_min and mag.y_min must be below mag.x_max and mag.y_max"};
   if (i(Id::kAzSensor) == 2 && (i(Id::kPinI2cSda) == kNoPin || i(Id::kPinI2cScl) == kNoPin))
     return {Error::kOutOfRange, "az.sensor = mag needs pins.i2c_sda and pins.i2c_scl"};
-  if (b(Id::kButtonsEnabled) && (i(Id::kPinBtnCw) == kNoPin || i(Id::kPinBtnCcw) == kNoPin))
-    return {Error::kOutOfRange, "buttons.enabled needs pins.btn_cw and pins.btn_ccw"};
+  // The table holds both ports' pins; either pair wires the buttons (the
+  // core cannot tell whether it runs on a Pico W or under rotord --hw gpiod).
+  const bool pico_buttons = i(Id::kPinBtnCw) != kNoPin && i(Id::kPinBtnCcw) != kNoPin;
+  const bool pi_buttons = i(Id::kGpiodBtnCw) >= 0 && i(Id::kGpiodBtnCcw) >= 0;
+  if (b(Id::kButtonsEnabled) && !pico_buttons && !pi_buttons)
+    return {Error::kOutOfRange,
+            "buttons.enabled needs pins.btn_cw and pins.btn_ccw (Pico W) or gpiod.btn_cw and "
+            "gpiod.btn_ccw (Raspberry Pi)"};
   if (const Rejection net = check_network(); net.error != Error::kOk) return net;
   return {};
 }

@@ -164,12 +164,19 @@ TEST_F(ButtonController, DisabledInSettingsMeansIgnored) {
   EXPECT_FALSE(az().jogging);
 }
 
-TEST(ButtonSettings, EnablingNeedsBothAzimuthPins) {
+TEST(ButtonSettings, EnablingNeedsBothAzimuthPinsOfEitherPort) {
   settings::Settings s;
   ASSERT_EQ(s.set(Id::kButtonsEnabled, 1).error, Error::kOk);
   const settings::Rejection r = s.check_consistency();
   EXPECT_EQ(r.error, Error::kOutOfRange);
-  EXPECT_STREQ(r.reason, "buttons.enabled needs pins.btn_cw and pins.btn_ccw");
+  EXPECT_STREQ(r.reason,
+               "buttons.enabled needs pins.btn_cw and pins.btn_ccw (Pico W) or gpiod.btn_cw and "
+               "gpiod.btn_ccw (Raspberry Pi)");
+  // One Raspberry Pi line is not enough; both are.
+  ASSERT_EQ(s.set(Id::kGpiodBtnCw, 13).error, Error::kOk);
+  EXPECT_EQ(s.check_consistency().error, Error::kOutOfRange);
+  ASSERT_EQ(s.set(Id::kGpiodBtnCcw, 19).error, Error::kOk);
+  EXPECT_EQ(s.check_consistency().error, Error::kOk) << s.check_consistency().reason;
 }
 
 }  // namespace
