@@ -8,7 +8,7 @@ import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import {
-  ARTIFACTS, cleanup, launchBrowser, openPage, Rotord, tempDir, until,
+  ARTIFACTS, cleanup, launchBrowser, openPage, request, Rotord, tempDir, until,
 } from './harness.mjs';
 
 let browser;
@@ -31,7 +31,7 @@ after(async () => {
   cleanup(dir);
 });
 
-const settingsOf = async (r) => (await fetch(r.url + '/api/settings')).json();
+const settingsOf = async (r) => (await request(r.url + '/api/settings')).body;
 // Chromium logs each refused POST (422) as a failed resource: those are expected.
 const unexpected = (errors) => errors.filter((e) => !/status of 422/.test(e));
 

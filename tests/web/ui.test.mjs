@@ -5,7 +5,7 @@ import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import {
-  cleanup, launchBrowser, openPage, Rotord, screenshot, tempDir, until,
+  cleanup, launchBrowser, openPage, request, Rotord, screenshot, tempDir, until,
 } from './harness.mjs';
 
 let browser;
@@ -130,7 +130,7 @@ test('settings: a bad value shows its error, a good one survives a restart', asy
   await error.first().waitFor();
   assert.match(await error.first().textContent(), /outside the allowed range/);
   assert.match(await page.textContent('#msg'), /outside the allowed range/);
-  const unchanged = await (await fetch(rotord.url + '/api/settings')).json();
+  const unchanged = (await request(rotord.url + '/api/settings')).body;
   assert.equal(unchanged['az.max_deg'], 450);
 
   await page.fill('#f-az\\.max_deg', '450');
@@ -160,7 +160,7 @@ test('calibration: "set as low point" writes the live raw reading', async () => 
   await page.fill('#cal-az-deg', '0');
   await page.click('#cal-az-lo');
   await until(async () => (await page.textContent('#msg')).includes('low point set'), { what: 'cal set' });
-  const s = await (await fetch(rotord.url + '/api/settings')).json();
+  const s = (await request(rotord.url + '/api/settings')).body;
   assert.ok(Math.abs(s['az.pot_cal_lo_counts'] - raw) < 20, `${s['az.pot_cal_lo_counts']} vs ${raw}`);
   assert.equal(s['az.pot_cal_lo_deg'], 0);
   assert.deepEqual(page.errors, []);
@@ -168,8 +168,7 @@ test('calibration: "set as low point" writes the live raw reading', async () => 
 });
 
 test('settings: a stored Wi-Fi password shows masked and an untouched save keeps it', async () => {
-  const post = (doc) => fetch(rotord.url + '/api/settings', {
-    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(doc) });
+  const post = (doc) => request(rotord.url + '/api/settings', 'POST', JSON.stringify(doc));
   assert.equal((await post({ 'wifi.password': 'hunter2-wpa2-pass' })).status, 200);
   const page = await openPage(browser, rotord.url + '/settings.html');
   const field = '#f-wifi\\.password';
@@ -180,7 +179,7 @@ test('settings: a stored Wi-Fi password shows masked and an untouched save keeps
   await page.fill('#f-wifi\\.ssid', 'Shack Net');
   await page.click('#save');
   await until(async () => (await page.textContent('#msg')).includes('saved'), { what: 'saved' });
-  const s = await (await fetch(rotord.url + '/api/settings')).json();
+  const s = (await request(rotord.url + '/api/settings')).body;
   assert.equal(s['wifi.ssid'], 'Shack Net');
   assert.equal(s['wifi.password'], '********', 'still stored, still hidden');
   assert.deepEqual(page.errors, []);
