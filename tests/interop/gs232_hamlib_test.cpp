@@ -176,6 +176,11 @@ TEST_F(Gs232Hamlib, Model603StopsAndMovesWithSpeeds) {
   ASSERT_EQ(rotctl(603, "M 2 1").rc, 0);
   ASSERT_TRUE(wait_for_flag("UP")) << wrc_state();
   EXPECT_EQ(wrc_field("SPEED"), 25);
+  // Up far enough that DOWN below is not refused at the lower end stop (a
+  // loaded machine may take longer than the rotctl round trip to get there).
+  for (int n = 0; n < 100 && wrc_field("EL") < 3.0; ++n)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_GE(wrc_field("EL"), 3.0) << wrc_state();
   ASSERT_EQ(rotctl(603, "S").rc, 0);
   ASSERT_TRUE(wait_until_still());
   ASSERT_EQ(rotctl(603, "M 4 70").rc, 0);

@@ -36,6 +36,8 @@ class DaemonProcess {
   pid_t pid() const { return pid_; }
 
  private:
+  /// Starts the daemon on newly found ports; false when it did not get ready.
+  bool spawn(const std::vector<std::string>& extra_args);
   void read_output(int timeout_ms);
 
   Ports ports_;
