@@ -231,7 +231,7 @@ void EasycommSession::move(AxisId axis, Direction dir, std::string_view velocity
 void EasycommSession::read_config(std::string_view reg, ByteSink& out) {
   const std::optional<Id> id = find_register(reg);
   if (!id) return alarm(out, "UNKNOWN");
-  char value[settings::kMaxTextBytes + 1 > 48 ? settings::kMaxTextBytes + 1 : 48];
+  char value[settings::kValueTextCapacity];
   const std::size_t n = controller_.settings().format_value(*id, value, sizeof(value));
   send(out, "CR%.*s,%.*s", static_cast<int>(reg.size()), reg.data(), static_cast<int>(n), value);
 }

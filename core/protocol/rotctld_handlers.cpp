@@ -360,7 +360,7 @@ HamlibError RotctldSession::get_conf(std::string_view token) {
   }
   const std::optional<Id> id = settings::find(token);
   if (!id) return HamlibError::kInvalid;
-  char text[settings::kMaxTextBytes + 1 > 48 ? settings::kMaxTextBytes + 1 : 48];
+  char text[settings::kValueTextCapacity];
   const std::size_t n = controller_.settings().format_value(*id, text, sizeof(text));
   reply_.format("%.*s=%.*s\n", static_cast<int>(name.size()), name.data(), static_cast<int>(n),
                 text);

@@ -57,6 +57,9 @@ inline constexpr std::size_t kMaxTextBytes = [] {
   for (std::size_t bytes : detail::kTextBytesOf) longest = bytes > longest ? bytes : longest;
   return longest - 1;
 }();
+/// A buffer that holds any value format_value writes, with its NUL: the
+/// longest text, or a number, boolean or choice name (well under 48).
+inline constexpr std::size_t kValueTextCapacity = kMaxTextBytes + 1 > 48 ? kMaxTextBytes + 1 : 48;
 
 /// What a text setting may hold, named in its row's unit column.
 enum class TextFormat : std::uint8_t {

@@ -33,6 +33,8 @@ extern "C" {
 
 // The options must be Debian's, the ones liblwip.so was built with (struct
 // layouts depend on them), not the Pico's ports/pico_w/config/lwipopts.h.
+#include "lwip_harness.hpp"
+
 static_assert(NO_SYS == 0 && LWIP_TCPIP_CORE_LOCKING == 1, "not Debian's lwipopts.h");
 
 namespace rotord {
@@ -42,25 +44,8 @@ using lwip_port::ServerConfig;
 using lwip_port::StaticService;
 using lwip_port::TcpServer;
 
-/// Starts lwIP's tcpip thread once for the whole process (lwIP cannot be
-/// de-initialised).
-void ensure_lwip() {
-  static std::atomic<bool> ready{false};
-  static bool started = false;
-  if (!started) {
-    started = true;
-    tcpip_init([](void*) { ready = true; }, nullptr);
-  }
-  while (!ready) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-}
-
-class CoreLock {
- public:
-  CoreLock() { LOCK_TCPIP_CORE(); }
-  ~CoreLock() { UNLOCK_TCPIP_CORE(); }
-  CoreLock(const CoreLock&) = delete;
-  CoreLock& operator=(const CoreLock&) = delete;
-};
+using testing::CoreLock;
+using testing::ensure_lwip;
 
 /// A raw-API client pcb and what it saw.
 struct Client {

@@ -20,6 +20,8 @@ extern "C" {
 #include "lwip/udp.h"
 }
 
+#include "lwip_harness.hpp"
+
 static_assert(NO_SYS == 0 && LWIP_TCPIP_CORE_LOCKING == 1, "not Debian's lwipopts.h");
 
 namespace rotord::pico_w {
@@ -27,23 +29,8 @@ namespace {
 
 using settings::Id;
 
-void ensure_lwip() {
-  static std::atomic<bool> ready{false};
-  static bool started = false;
-  if (!started) {
-    started = true;
-    tcpip_init([](void*) { ready = true; }, nullptr);
-  }
-  while (!ready) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-}
-
-class CoreLock {
- public:
-  CoreLock() { LOCK_TCPIP_CORE(); }
-  ~CoreLock() { UNLOCK_TCPIP_CORE(); }
-  CoreLock(const CoreLock&) = delete;
-  CoreLock& operator=(const CoreLock&) = delete;
-};
+using testing::CoreLock;
+using testing::ensure_lwip;
 
 std::string text_of(const ip4_addr_t* a) {
   char buf[IP4ADDR_STRLEN_MAX];
