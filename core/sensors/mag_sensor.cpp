@@ -3,6 +3,11 @@
 namespace rotord {
 
 void MagSensor::configure(MagChip chip, const MagCalibration& cal, int lowpass_ms) {
+  // A new calibration moves the heading in one step. Smoothing across it
+  // would show a turn that never happened, slewing for several time
+  // constants, so the filter starts again from the next sample.
+  if (!(cal == cal_) || chip != chip_) filter_.reset();
+  chip_ = chip;
   mag_.set_chip(chip);
   cal_ = cal;
   lowpass_ms_ = lowpass_ms;

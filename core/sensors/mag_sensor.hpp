@@ -20,6 +20,7 @@ class MagSensor final : public PositionSensor {
 
  private:
   Magnetometer mag_;
+  MagChip chip_ = MagChip::kQmc5883l;
   MagCalibration cal_;
   int lowpass_ms_ = 0;
   HeadingFilter filter_;

@@ -49,6 +49,7 @@ struct MagCalibration {
   float declination_deg = 0.0f;  ///< east positive: true = magnetic + declination
   bool reverse = false;          ///< the heading falls when the rotator turns clockwise
   bool valid() const { return x_max > x_min && y_max > y_min; }
+  bool operator==(const MagCalibration&) const = default;
 };
 
 /// Heading in degrees [0, 360) from a calibrated sample, or nullopt when the

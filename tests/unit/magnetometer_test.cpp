@@ -253,6 +253,29 @@ TEST(MagSensor, LowPassCrossesNorthTheShortWay) {
   }
 }
 
+TEST(MagSensor, ANewCalibrationTakesEffectAtOnceInsteadOfSlewing) {
+  // The spin calibration corrects the heading by tens of degrees. Through a
+  // 100 ms low-pass that would look like the antenna turning for half a
+  // second after the save; the first reading must already be the new heading.
+  FakeI2c bus;
+  MagSensor sensor(bus);
+  MagCalibration off = calibration();
+  off.x_min -= 400.0f;  // the centre 200 counts left of the truth
+  sensor.configure(MagChip::kQmc5883l, off, 100);
+  field(bus, false, 90.0f);
+  for (Millis t = 0; t <= 2000; t += 10) sensor.read(t);
+  const float wrong_deg = sensor.read(2010).deg;
+  ASSERT_GT(std::fabs(wrong_deg - 90.0f), 5.0f) << "the bad calibration must show";
+  sensor.configure(MagChip::kQmc5883l, calibration(), 100);
+  EXPECT_NEAR(sensor.read(2020).deg, 90.0f, 0.3f);
+  // Configuring again with the same calibration keeps the smoothing going.
+  field(bus, false, 100.0f);
+  sensor.configure(MagChip::kQmc5883l, calibration(), 100);
+  const float smoothed_deg = sensor.read(2030).deg;
+  EXPECT_GT(smoothed_deg, 90.0f);
+  EXPECT_LT(smoothed_deg, 95.0f);
+}
+
 TEST(MagAxis, TheAxisUnwrapsTheHeadingThroughNorth) {
   // A 0..450 rotator read by a QMC5883L: from 350 deg CW through north to
   // 370 (an unwrapped 10 deg), with the position following the turn.

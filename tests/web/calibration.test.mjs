@@ -47,14 +47,23 @@ async function shoot(page, name) {
   await page.locator('#calibration').screenshot({ path: path.join(ARTIFACTS, name) });
 }
 
-/** Waits until the rotator stands still and every latched fault is absent. */
+/**
+ * Waits until the rotator stands still, every latched fault is absent and the
+ * reading has stopped changing: a settings change is applied at the next
+ * tick, and a filtered sensor may still be settling on a motionless antenna.
+ */
 async function settled(r, axis = 'az') {
   let last = null;
+  let previous = null;
   try {
     return await until(async () => {
       last = await r.status();
-      return !last.moving && last[axis].fault === 'none' && last;
-    }, { timeout: 20000, what: 'standstill without fault' });
+      const still = !last.moving && last[axis].fault === 'none';
+      const steady = still && previous !== null &&
+        Math.abs(last[axis].position_deg - previous[axis].position_deg) < 0.3;
+      previous = still ? last : null;
+      return steady && last;
+    }, { timeout: 20000, interval: 250, what: 'standstill without fault' });
   } catch (e) {
     throw new Error(`${e.message}; ${axis}: ${JSON.stringify(last && last[axis])}`);
   }
