@@ -383,7 +383,17 @@ std::size_t Settings::format(Id id, double value, char* out, std::size_t capacit
       n = std::snprintf(out, capacity, "%ld", static_cast<long>(value));
       break;
     case Type::kFloat:
-      n = std::snprintf(out, capacity, "%.6g", value);
+      // The fewest digits that read back as the same value: 0.15 as typed,
+      // yet a computed calibration (62.045454...) survives an export and
+      // re-import unchanged. 17 significant digits always round-trip a double.
+      for (const int digits : {6, 9, 17}) {
+        n = std::snprintf(out, capacity, "%.*g", digits, value);
+        if (n < 0 || static_cast<std::size_t>(n) >= capacity) break;
+        double back = 0.0;
+        if (text::parse_double(std::string_view(out, static_cast<std::size_t>(n)), back) &&
+            back == value)
+          break;
+      }
       break;
     case Type::kText:  // no number to format: format_value prints the text
       n = std::snprintf(out, capacity, "%s", "");

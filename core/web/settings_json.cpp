@@ -94,8 +94,8 @@ void write_setting_value(Id id, double value, JsonWriter& out) {
       out.string("");
       break;
     case Type::kFloat: {
-      // Settings::format's %.6g round-trips what a person typed (0.15, not
-      // 0.1500000059604645).
+      // Settings::format writes the shortest text that reads back the same
+      // (0.15, not 0.1500000059604645).
       char text[32];
       const std::size_t len = settings::Settings::format(id, value, text, sizeof(text));
       out.raw_value(std::string_view(text, len));

@@ -59,6 +59,20 @@ TEST(Settings, ParsesBooleansEnumsAndNumbers) {
   EXPECT_STREQ(buf, "hbridge");
 }
 
+TEST(Settings, FloatsAreWrittenInTheFewestDigitsThatReadBackTheSame) {
+  char buf[kValueTextCapacity];
+  Settings::format(Id::kAzPwmSlowDuty, 0.15, buf, sizeof buf);
+  EXPECT_STREQ(buf, "0.15");  // as a person typed it
+  // Computed values (a pot calibration from a simulated ADC, a third) keep
+  // every digit, so an export imported back changes nothing.
+  for (const double value : {4095.0 / 66.0, 1.0 / 3.0, -123.45678901, 1e-7}) {
+    Settings::format(Id::kAzPotCalLoCounts, value, buf, sizeof buf);
+    Settings s;
+    ASSERT_EQ(s.set_from_text(Id::kAzOffsetDeg, buf).error, Error::kOk) << buf;
+    EXPECT_EQ(s.get(Id::kAzOffsetDeg), value) << buf;
+  }
+}
+
 TEST(Settings, ConsistencyRulesSpanSettings) {
   Settings s;
   ASSERT_EQ(s.set(Id::kAzMinDeg, 100).error, Error::kOk);
