@@ -316,8 +316,12 @@ Rejection Settings::check_consistency() const {
     return {*lines, detail_};
   if (get(Id::kMagXMin) >= get(Id::kMagXMax) || get(Id::kMagYMin) >= get(Id::kMagYMax))
     return {Error::kOutOfRange, "mag.x_min and mag.y_min must be below mag.x_max and mag.y_max"};
-  if (i(Id::kAzSensor) == 2 && (i(Id::kPinI2cSda) == kNoPin || i(Id::kPinI2cScl) == kNoPin))
-    return {Error::kOutOfRange, "az.sensor = mag needs pins.i2c_sda and pins.i2c_scl"};
+  // As with the buttons below, either port's wiring will do.
+  const bool pico_i2c = i(Id::kPinI2cSda) != kNoPin && i(Id::kPinI2cScl) != kNoPin;
+  if (i(Id::kAzSensor) == 2 && !pico_i2c && i(Id::kI2cBus) < 0)
+    return {Error::kOutOfRange,
+            "az.sensor = mag needs pins.i2c_sda and pins.i2c_scl (Pico W) or i2c.bus (Raspberry "
+            "Pi)"};
   // The table holds both ports' pins; either pair wires the buttons (the
   // core cannot tell whether it runs on a Pico W or under rotord --hw gpiod).
   const bool pico_buttons = i(Id::kPinBtnCw) != kNoPin && i(Id::kPinBtnCcw) != kNoPin;

@@ -63,8 +63,10 @@ bool Daemon::open_gpiod() {
   std::string error;
   auto chip = open_gpiod_chip(settings_.i(settings::Id::kGpiodChip), error);
   if (chip)
-    gpio_ =
-        GpiodRotator::open(settings_, std::move(chip), iio_root(), pwm_root(), monotonic_ns, error);
+    gpio_ = GpiodRotator::open(
+        settings_, std::move(chip),
+        GpiodHost{iio_root(), pwm_root(), i2c_dev_root(), &linux_i2c_kernel(), monotonic_ns},
+        error);
   if (!gpio_) {
     std::fprintf(stderr, "rotord: --hw gpiod: %s\n", error.c_str());
     return false;

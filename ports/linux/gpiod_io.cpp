@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "axis/axis_config.hpp"
+#include "sensors/magnetometer.hpp"
 #include "sysfs_pwm.hpp"
 
 namespace rotord::linux_port {
@@ -162,9 +163,7 @@ bool GpiodSwitch::active() {
 
 std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
                                                  std::unique_ptr<GpioChip> chip,
-                                                 const std::string& iio_root,
-                                                 const std::string& pwm_root,
-                                                 GpiodMa3Input::Clock clock, std::string& error) {
+                                                 const GpiodHost& host, std::string& error) {
   error.clear();
   std::unique_ptr<GpiodRotator> hw(new GpiodRotator(std::move(chip)));
   LineRequester req(s, *hw->chip_, error);
@@ -203,7 +202,7 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
         }
         auto pwm = std::make_unique<SysfsPwm>();
         std::string why;
-        if (!pwm->open(pwm_root, pwm_chip, s.i(id), s.i(Id::kPwmHz), why)) {
+        if (!pwm->open(host.pwm_root, pwm_chip, s.i(id), s.i(Id::kPwmHz), why)) {
           error = std::string(key(id)) + " = " + std::to_string(s.i(id)) + ": " + why;
           return nullptr;
         }
@@ -238,15 +237,13 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
     const std::string sensor_text = choice(s, k->sensor);
     if (sensor == SensorType::kMa3) {
       if (auto l = req.line(k->ma3, LineMode::kBothEdges, sensor_text.c_str()))
-        a.ma3 = std::make_unique<GpiodMa3Input>(std::move(l), clock);
+        a.ma3 = std::make_unique<GpiodMa3Input>(std::move(l), host.clock);
     }
     if (req.failed()) return nullptr;
-    if (sensor == SensorType::kMag) {
-      error = sensor_text + ": --hw gpiod has no magnetometer support yet; use pot or ma3";
-      return nullptr;
-    }
     std::string sensor_where;
-    if (sensor == SensorType::kPot) {
+    if (sensor == SensorType::kMag) {
+      if (!hw->open_magnetometer(s, host, sensor_where, error)) return nullptr;
+    } else if (sensor == SensorType::kPot) {
       const int device = s.i(k->iio_device);
       if (device < 0) {
         error = sensor_text + " needs " + key(k->iio_device);
@@ -254,7 +251,8 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
       }
       a.pot = std::make_unique<IioAdc>();
       std::string why;
-      if (!a.pot->open(iio_root, device, s.i(k->iio_channel), s.i(Id::kIioFullScaleCounts), why)) {
+      if (!a.pot->open(host.iio_root, device, s.i(k->iio_channel), s.i(Id::kIioFullScaleCounts),
+                       why)) {
         error = std::string(key(k->iio_device)) + ", " + key(k->iio_channel) + ": " + why;
         return nullptr;
       }
@@ -268,6 +266,46 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
                     drive_where + ", " + sensor_where;
   }
   return hw;
+}
+
+bool GpiodRotator::open_magnetometer(const settings::Settings& s, const GpiodHost& host,
+                                     std::string& where, std::string& error) {
+  const int bus = s.i(Id::kI2cBus);
+  if (bus < 0 || host.i2c_kernel == nullptr) {
+    error = "az.sensor = mag needs i2c.bus";
+    return false;
+  }
+  i2c_ = std::make_unique<I2cDev>(*host.i2c_kernel);
+  std::string why;
+  if (!i2c_->open(host.i2c_dev_root, bus, why)) {
+    error = "i2c.bus = " + std::to_string(bus) + ": " + why;
+    return false;
+  }
+  // Refused now rather than found as a sensor fault at the first tick, like
+  // a missing ADC: the chip must answer and be the one mag.chip names.
+  Magnetometer probe(*i2c_);
+  const auto chip = static_cast<MagChip>(s.i(Id::kMagChip));
+  probe.set_chip(chip);
+  const bool qmc = chip == MagChip::kQmc5883l;
+  char address[8];
+  std::snprintf(address, sizeof address, "0x%02X",
+                qmc ? Magnetometer::kQmcAddress : Magnetometer::kHmcAddress);
+  const std::string chip_text = std::string("mag.chip = ") + (qmc ? "qmc5883l" : "hmc5883l");
+  switch (probe.begin()) {
+    case Magnetometer::Status::kNoAnswer:
+      error = chip_text + ": nothing answers at " + address + " on " + i2c_->path() +
+              " (wiring, power, pull-ups? `i2cdetect -y " + std::to_string(bus) + "` lists it)";
+      return false;
+    case Magnetometer::Status::kWrongChip:
+      error = chip_text + ": the chip at " + address + " on " + i2c_->path() +
+              " does not identify as one (is mag.chip right?)";
+      return false;
+    default:
+      break;
+  }
+  where = "magnetometer " + std::string(qmc ? "QMC5883L" : "HMC5883L") + " at " + address + " on " +
+          i2c_->path();
+  return true;
 }
 
 GpiodRotator::~GpiodRotator() {
@@ -287,6 +325,7 @@ AxisIo GpiodRotator::io(AxisId id) {
   io.t2 = a.t2.get();
   io.button_fwd = a.button_fwd.get();
   io.button_rev = a.button_rev.get();
+  if (id == AxisId::kAz) io.i2c = i2c_.get();
   return io;
 }
 

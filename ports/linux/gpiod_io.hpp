@@ -12,6 +12,7 @@
 #include "axis/axis_io.hpp"
 #include "gpio_line.hpp"
 #include "hal/pwm_out.hpp"
+#include "i2c_dev.hpp"
 #include "iio_adc.hpp"
 #include "ma3_edge_timer.hpp"
 #include "settings/settings.hpp"
@@ -52,17 +53,25 @@ class GpiodSwitch final : public hal::DigitalIn {
   bool error_reported_ = false;
 };
 
+/// Where the host's hardware interfaces are: the real ones in the daemon, a
+/// temporary tree and a chip model in tests.
+struct GpiodHost {
+  std::string iio_root;      ///< /sys/bus/iio/devices
+  std::string pwm_root;      ///< /sys/class/pwm
+  std::string i2c_dev_root;  ///< /dev (i2c-N)
+  I2cKernel* i2c_kernel = nullptr;
+  GpiodMa3Input::Clock clock;
+};
+
 class GpiodRotator {
  public:
-  /// Requests every line the settings call for (outputs inactive) and opens
-  /// every ADC channel, or returns nullptr with `error` naming the setting,
+  /// Requests every line the settings call for (outputs inactive), opens
+  /// every ADC channel and the magnetometer's I2C adapter (and checks that
+  /// the chip answers), or returns nullptr with `error` naming the setting,
   /// the line or file and what is wrong. H-bridge drives need kernel PWM
-  /// channels (pwm.*; never software PWM for a motor); the magnetometer is
-  /// refused (no Linux I2C driver here yet).
+  /// channels (pwm.*; never software PWM for a motor).
   static std::unique_ptr<GpiodRotator> open(const settings::Settings& s,
-                                            std::unique_ptr<GpioChip> chip,
-                                            const std::string& iio_root,
-                                            const std::string& pwm_root, GpiodMa3Input::Clock clock,
+                                            std::unique_ptr<GpioChip> chip, const GpiodHost& host,
                                             std::string& error);
   /// Outputs off, then the lines are released.
   ~GpiodRotator();
@@ -88,12 +97,16 @@ class GpiodRotator {
     std::unique_ptr<IioAdc> pot;
     bool pot_error_reported = false;
   };
+  /// The azimuth magnetometer's adapter (az.sensor = mag).
+  bool open_magnetometer(const settings::Settings& s, const GpiodHost& host, std::string& where,
+                         std::string& error);
   explicit GpiodRotator(std::unique_ptr<GpioChip> chip) : chip_(std::move(chip)) {}
   AxisHw& axis(AxisId id) { return id == AxisId::kEl ? el_ : az_; }
 
   std::unique_ptr<GpioChip> chip_;  // first: released after every line
   AxisHw az_;
   AxisHw el_;
+  std::unique_ptr<I2cDev> i2c_;
   std::string summary_;
 };
 

@@ -5,8 +5,11 @@
 #include <fstream>
 
 #include "fake_gpio_chip.hpp"
+#include "fake_i2c_kernel.hpp"
 #include "fake_sysfs.hpp"
 #include "rotator/controller.hpp"
+#include "sim/profiles.hpp"
+#include "sim/sensors.hpp"
 
 namespace rotord::linux_port {
 namespace {
@@ -14,6 +17,7 @@ namespace {
 using settings::Id;
 using testing::FakeBoard;
 using testing::FakeGpioChip;
+using testing::FakeI2cKernel;
 using testing::FakeSysfs;
 
 // The defaults of the gpiod.* rows (a relay G-5500-style azimuth).
@@ -35,8 +39,9 @@ class GpiodIoTest : public ::testing::Test {
 
   std::unique_ptr<GpiodRotator> open() {
     return GpiodRotator::open(
-        s, std::make_unique<FakeGpioChip>(board), sys.root(), pwm.root(),
-        [] { return std::uint64_t{0}; }, error);
+        s, std::make_unique<FakeGpioChip>(board),
+        GpiodHost{sys.root(), pwm.root(), dev.root(), &kernel, [] { return std::uint64_t{0}; }},
+        error);
   }
   /// The controller's ticks as the daemon runs them: sample, then tick.
   void run_ms(Controller& c, GpiodRotator& hw, Millis ms) {
@@ -50,6 +55,8 @@ class GpiodIoTest : public ::testing::Test {
   settings::Settings s;
   FakeSysfs sys;  ///< /sys/bus/iio/devices
   FakeSysfs pwm;  ///< /sys/class/pwm
+  FakeSysfs dev;  ///< /dev, for i2c-N
+  FakeI2cKernel kernel;
   std::shared_ptr<FakeBoard> board = std::make_shared<FakeBoard>();
   std::string error;
   Millis now = 0;
@@ -212,10 +219,118 @@ TEST_F(GpiodIoTest, HBridgeHalvesFollowTheAxisOnKernelPwmChannels) {
   EXPECT_EQ(file("pwm1/enable"), 0);
 }
 
-TEST_F(GpiodIoTest, TheMagnetometerIsRefused) {
-  set(Id::kAzSensor, 2);
+/// az.sensor = mag on /dev/i2c-1 (the default i2c.bus), calibrated to the
+/// simulated QMC5883L's field, which turns with `plant`.
+class GpiodMagTest : public GpiodIoTest {
+ protected:
+  GpiodMagTest() {
+    set(Id::kAzSensor, 2);
+    set(Id::kMagXMin, sim::SimMag::kOffsetX - sim::SimMag::kGainX);
+    set(Id::kMagXMax, sim::SimMag::kOffsetX + sim::SimMag::kGainX);
+    set(Id::kMagYMin, sim::SimMag::kOffsetY - sim::SimMag::kGainY);
+    set(Id::kMagYMax, sim::SimMag::kOffsetY + sim::SimMag::kGainY);
+    set(Id::kMagLowpassMs, 0);
+    dev.write("i2c-1", "");
+    plant.set_theta_deg(123.0);
+    kernel.device = &mag;
+  }
+  sim::AxisPlant plant{sim::find_profile("g5500")->az.plant};
+  sim::SimMag mag{plant, 0.0, 1};
+};
+
+TEST_F(GpiodMagTest, TheMagnetometerOnI2cGivesTheAzimuth) {
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  EXPECT_NE(hw->summary().find("magnetometer QMC5883L at 0x0D on " + dev.root() + "/i2c-1"),
+            std::string::npos)
+      << hw->summary();
+  Controller c(s, hw->io(AxisId::kAz), hw->io(AxisId::kEl));
+  c.begin(now);
+  run_ms(c, *hw, 100);
+  EXPECT_NEAR(c.status().az.position_deg, 123.0f, 0.2f);
+  for (double deg = 123.0; deg <= 200.0; deg += 0.1) {  // 10 deg/s by hand
+    plant.set_theta_deg(deg);
+    run_ms(c, *hw, 10);
+  }
+  run_ms(c, *hw, 100);
+  EXPECT_NEAR(c.status().az.position_deg, 200.0f, 0.2f);
+  EXPECT_EQ(c.status().az.fault, AxisFault::kNone);
+  // Every register read is one transaction: the register number written,
+  // then the data read after a repeated start, to the same address.
+  ASSERT_FALSE(kernel.transactions.empty());
+  int reads = 0;
+  for (const auto& t : kernel.transactions) {
+    for (const auto& m : t) EXPECT_EQ(m.address, sim::SimMag::kAddress);
+    if (t.size() == 2) {
+      ++reads;
+      EXPECT_FALSE(t[0].read);
+      EXPECT_EQ(t[0].length, 1u);
+      EXPECT_TRUE(t[1].read);
+    } else {
+      ASSERT_EQ(t.size(), 1u);  // a control register write
+      EXPECT_FALSE(t[0].read);
+      EXPECT_EQ(t[0].length, 2u);
+    }
+  }
+  EXPECT_GE(reads, 20);  // one per tick
+}
+
+TEST_F(GpiodMagTest, AChipThatDoesNotAnswerIsRefusedWithItsAddressAndBus) {
+  kernel.device = nullptr;
   EXPECT_FALSE(open());
-  EXPECT_NE(error.find("az.sensor = mag"), std::string::npos) << error;
+  EXPECT_NE(error.find("mag.chip = qmc5883l: nothing answers at 0x0D on " + dev.root() + "/i2c-1"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("i2cdetect -y 1"), std::string::npos) << error;
+  // The simulated chip is a QMC5883L; an HMC5883L is looked for at 0x1E.
+  kernel.device = &mag;
+  set(Id::kMagChip, 1);
+  EXPECT_FALSE(open());
+  EXPECT_NE(error.find("nothing answers at 0x1E"), std::string::npos) << error;
+}
+
+TEST_F(GpiodMagTest, AnotherChipAtTheAddressIsRefused) {
+  struct Zeros final : hal::I2c {  // answers, but its id register reads 0
+    bool write(std::uint8_t, const std::uint8_t*, std::size_t) override { return true; }
+    bool write_read(std::uint8_t, const std::uint8_t*, std::size_t, std::uint8_t* r,
+                    std::size_t n) override {
+      std::fill(r, r + n, std::uint8_t{0});
+      return true;
+    }
+  } zeros;
+  kernel.device = &zeros;
+  EXPECT_FALSE(open());
+  EXPECT_NE(error.find("does not identify as one (is mag.chip right?)"), std::string::npos)
+      << error;
+}
+
+TEST_F(GpiodMagTest, AMissingOrWrongAdapterNamesTheSettingAndTheFile) {
+  set(Id::kI2cBus, 3);
+  EXPECT_FALSE(open());
+  EXPECT_NE(error.find("i2c.bus = 3: cannot open " + dev.root() + "/i2c-3: No such file"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("dtparam=i2c_arm=on"), std::string::npos) << error;
+
+  kernel.funcs = I2C_FUNC_SMBUS_EMUL;
+  set(Id::kI2cBus, 1);
+  EXPECT_FALSE(open());
+  EXPECT_NE(error.find("SMBus-only"), std::string::npos) << error;
+
+  set(Id::kI2cBus, -1);
+  EXPECT_FALSE(open());
+  EXPECT_EQ(error, "az.sensor = mag needs i2c.bus");
+}
+
+TEST_F(GpiodMagTest, TheRealKernelRefusesAFileThatIsNoAdapter) {
+  // The real I2C_FUNCS ioctl on a plain file: what a wrong path gives.
+  const auto hw = GpiodRotator::open(
+      s, std::make_unique<FakeGpioChip>(board),
+      GpiodHost{sys.root(), pwm.root(), dev.root(), &linux_port::linux_i2c_kernel(),
+                [] { return std::uint64_t{0}; }},
+      error);
+  EXPECT_FALSE(hw);
+  EXPECT_NE(error.find(dev.root() + "/i2c-1 is not an I2C adapter"), std::string::npos) << error;
 }
 
 TEST_F(GpiodIoTest, AMissingAdcNamesTheSettingAndTheFile) {

@@ -73,6 +73,24 @@ TEST(Settings, FloatsAreWrittenInTheFewestDigitsThatReadBackTheSame) {
   }
 }
 
+TEST(Settings, TheMagnetometerNeedsEitherPortsI2c) {
+  Settings s;
+  ASSERT_EQ(s.set_from_text(Id::kAzSensor, "mag").error, Error::kOk);
+  ASSERT_EQ(s.set(Id::kPinI2cSda, -1).error, Error::kOk);
+  ASSERT_EQ(s.set(Id::kPinI2cScl, -1).error, Error::kOk);
+  const auto pi = s.check_consistency();
+  EXPECT_EQ(pi.error, Error::kOk) << pi.reason;  // i2c.bus 1 (a Pi's header)
+  ASSERT_EQ(s.set(Id::kI2cBus, -1).error, Error::kOk);
+  const auto neither = s.check_consistency();
+  EXPECT_EQ(neither.error, Error::kOutOfRange);
+  EXPECT_NE(std::string_view(neither.reason).find("i2c.bus"), std::string_view::npos)
+      << neither.reason;
+  ASSERT_EQ(s.set(Id::kPinI2cSda, 0).error, Error::kOk);
+  ASSERT_EQ(s.set(Id::kPinI2cScl, 1).error, Error::kOk);
+  const auto pico = s.check_consistency();
+  EXPECT_EQ(pico.error, Error::kOk) << pico.reason;  // the Pico's pins
+}
+
 TEST(Settings, ConsistencyRulesSpanSettings) {
   Settings s;
   ASSERT_EQ(s.set(Id::kAzMinDeg, 100).error, Error::kOk);
