@@ -64,6 +64,7 @@ void WrcSession::receive(std::string_view bytes, ByteSink& out) {
 }
 
 void WrcSession::poll(Millis now, ByteSink& out) {
+  now_ = now;
   if (!monitor_ || now - last_push_ < kMonitorPeriodMs) return;
   last_push_ = now;
   write_state(out);
@@ -186,7 +187,7 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
     if (!text::parse_int(arg, on) || (on != 0 && on != 1))
       return reply.send(out, "ERROR INVALID ARGUMENT");
     monitor_ = on == 1;
-    last_push_ = controller_.now();
+    last_push_ = now_;
     return reply.send(out, "OK MONITOR %d", monitor_ ? 1 : 0);
   }
   if (is("INFO") && !has_arg) return reply.send(out, "OK INFO rotord %s", version_);

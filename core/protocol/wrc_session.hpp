@@ -30,6 +30,9 @@ class WrcSession final : public Session {
   const char* version_;
   LineAssembler<kMaxLineLength> lines_;
   bool monitor_ = false;
+  // MONITOR's period runs on the transport's clock (poll's `now`), not on
+  // controller time, which `rotord --speedup N` makes N times faster.
+  Millis now_ = 0;
   Millis last_push_ = 0;
 };
 

@@ -7,12 +7,12 @@
 
 namespace rotord::web {
 
-HttpSession::HttpSession(Api& api) : api_(api), last_activity_(api.controller().now()) {}
+HttpSession::HttpSession(Api& api) : api_(api) {}
 
 void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
   // An event stream only talks; anything the client sends is ignored.
   if (close_ || events_) return;
-  last_activity_ = api_.controller().now();
+  received_ = true;
   while (!bytes.empty() && !close_ && !events_) {
     const auto status = parser_.feed(bytes);
     if (status == HttpRequestParser::Status::kNeedMore) break;
@@ -33,7 +33,7 @@ void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
       case Api::Outcome::kStartEvents:
         events_ = true;
         out.write("retry: 1000\n\n");  // EventSource reconnects after 1 s
-        send_event(api_.controller().now(), out);
+        send_event(now_, out);
         return;
       case Api::Outcome::kClose:
         close_ = true;
@@ -78,6 +78,10 @@ void HttpSession::serve_asset(const HttpRequest& request, const ResponseOptions&
 }
 
 void HttpSession::poll(Millis now, protocol::ByteSink& out) {
+  if (!polled_ || received_) last_activity_ = now;
+  polled_ = true;
+  received_ = false;
+  now_ = now;
   if (close_) return;
   if (events_) {
     const RotatorStatus s = api_.controller().status();

@@ -47,6 +47,12 @@ class HttpSession final : public protocol::Session {
   HttpRequestParser parser_;
   bool close_ = false;
   bool events_ = false;
+  // Timeouts and event periods run on the transport's clock, the `now` of
+  // poll(), not on controller time: under `rotord --speedup N` a client must
+  // still get its 5 s. Bytes are stamped at the next poll (a tick later).
+  Millis now_ = 0;
+  bool polled_ = false;
+  bool received_ = false;
   Millis last_activity_ = 0;
   Millis last_event_ = 0;
   bool last_moving_ = false;

@@ -269,31 +269,30 @@ void Daemon::schedule_tick() {
 }
 
 void Daemon::on_tick() {
+  const auto wall_ms = static_cast<Millis>(std::chrono::duration_cast<std::chrono::milliseconds>(
+                                               std::chrono::steady_clock::now() - wall_start_)
+                                               .count());
   if (gpio_) {
     // Real hardware: one tick per wake-up on the wall clock.
-    const auto wall_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
-                             std::chrono::steady_clock::now() - wall_start_)
-                             .count();
     if (wall_ms > now_ms_) {
-      now_ms_ = static_cast<Millis>(wall_ms);
+      now_ms_ = wall_ms;
       gpio_->sample();
       controller_->tick(now_ms_);
     }
   } else {
-    advance_simulation();
+    advance_simulation(wall_ms);
   }
-  for (auto& server : servers_) server->poll(now_ms_);
-  for (auto& line : serial_lines_) line->poll(now_ms_);
+  // Sessions time their clients on the wall clock: --speedup speeds up the
+  // rotator, not the network's timeouts.
+  for (auto& server : servers_) server->poll(wall_ms);
+  for (auto& line : serial_lines_) line->poll(wall_ms);
   save_changed_settings(false);
   if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();
 }
 
-void Daemon::advance_simulation() {
+void Daemon::advance_simulation(Millis wall_ms) {
   // Simulated time runs `speedup` times faster than the wall clock; the
   // control tick stays at 100 Hz of simulated time whatever the speedup.
-  const auto wall_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
-                           std::chrono::steady_clock::now() - wall_start_)
-                           .count();
   const auto target_ms = static_cast<Millis>(static_cast<double>(wall_ms) * options_.speedup);
   // Catch up at most 2 s of simulated time per wake-up, so an overloaded host
   // slows the simulation down instead of stalling the sockets.

@@ -48,7 +48,7 @@ class Daemon final : private web::RebootHook {
   bool attach_serial_lines(const std::vector<ServiceConfig>& services);
   void schedule_tick();
   void on_tick();
-  void advance_simulation();
+  void advance_simulation(Millis wall_ms);
   void stop();
   /// Saves what the protocols changed (after the saver's quiet time, or at
   /// once when `now`), and says so.

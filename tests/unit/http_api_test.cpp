@@ -422,8 +422,10 @@ TEST_F(HttpApi, EventStreamPushesTenPerSecondWhileMovingAndOneWhenIdle) {
 }
 
 TEST_F(HttpApi, SlowAndIdleClientsAreDropped) {
+  // A transport polls its sessions every tick: the bytes are stamped then.
   StringSink sink;
   session.receive("GET /api/sta", sink);
+  session.poll(r.now, sink);
   r.run_ms(HttpSession::kRequestTimeoutMs + 100);
   session.poll(r.now, sink);
   const auto rs = parse_responses(sink.data);
@@ -434,12 +436,36 @@ TEST_F(HttpApi, SlowAndIdleClientsAreDropped) {
   HttpSession idle{api};
   StringSink sink2;
   idle.receive("GET /api/status HTTP/1.1\r\n\r\n", sink2);
+  idle.poll(r.now, sink2);
   r.run_ms(HttpSession::kIdleTimeoutMs / 2);
   idle.poll(r.now, sink2);
   EXPECT_FALSE(idle.wants_close());
   r.run_ms(HttpSession::kIdleTimeoutMs);
   idle.poll(r.now, sink2);
   EXPECT_TRUE(idle.wants_close());
+}
+
+TEST_F(HttpApi, TimeoutsRunOnTheTransportsClockNotOnControllerTime) {
+  // rotord --speedup 20: a minute of rotator time in three seconds of wall
+  // time, which is what the transport polls with. No timeout yet.
+  StringSink sink;
+  HttpSession idle{api};
+  idle.poll(0, sink);
+  idle.receive("GET /api/status HTTP/1.1\r\n\r\n", sink);
+  idle.poll(10, sink);
+  session.receive("GET /api/sta", sink);
+  session.poll(10, sink);
+  for (Millis wall = 20; wall <= 3000; wall += 10) {
+    r.run_ms(200);
+    idle.poll(wall, sink);
+    session.poll(wall, sink);
+  }
+  EXPECT_FALSE(idle.wants_close());
+  EXPECT_FALSE(session.wants_close());
+  idle.poll(10 + HttpSession::kIdleTimeoutMs + 10, sink);
+  EXPECT_TRUE(idle.wants_close());
+  session.poll(10 + HttpSession::kRequestTimeoutMs + 10, sink);
+  EXPECT_TRUE(session.wants_close());
 }
 
 TEST(HttpSessionLimits, TooManyConnectionsReplyIsAValidResponse) {

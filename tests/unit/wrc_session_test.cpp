@@ -129,5 +129,19 @@ TEST_F(WrcTest, MonitorPushesStateTenTimesASecond) {
   EXPECT_EQ(quiet.writes, 0);
 }
 
+TEST_F(WrcTest, MonitorKeepsTenASecondOfWallTimeWhateverTheSpeedup) {
+  // rotord --speedup 10: the controller runs 100 ms per 10 ms of the
+  // transport's (wall) clock; a monitoring client still gets 10 lines a second.
+  StringSink first;
+  session.poll(0, first);
+  EXPECT_EQ(ask("MONITOR 1\n"), "OK MONITOR 1\r\n");
+  StringSink sink;
+  for (Millis wall = 10; wall <= 1000; wall += 10) {
+    r.run_ms(100);
+    session.poll(wall, sink);
+  }
+  EXPECT_EQ(sink.writes, 10);
+}
+
 }  // namespace
 }  // namespace rotord::protocol

@@ -76,8 +76,7 @@ export class Rotord {
 
 /**
  * One HTTP request on its own connection. Not fetch(): it reuses idle
- * keep-alive connections, and rotord closes an idle one after 5 s of
- * controller time, which at --speedup 10 is half a second of wall time, so a
+ * keep-alive connections, and rotord closes an idle one after 5 s, so a
  * reused connection can be closed just as a request goes out ("fetch failed").
  */
 export function request(url, method = 'GET', body = undefined) {
