@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "motion/angles.hpp"
+#include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
 #include "util/text.hpp"
 
@@ -45,12 +46,6 @@ const char* alarm_reason(Error e) {
     default:
       return "SYNTAX";
   }
-}
-
-/// One decimal as Hamlib writes it, without a "-0.0".
-double one_decimal(float deg) {
-  const double d = static_cast<double>(deg);
-  return std::fabs(d) < 0.05 ? 0.0 : d;
 }
 
 bool is_separator(char c) {

@@ -3,6 +3,7 @@
 // otherwise.
 #include <cmath>
 
+#include "protocol/reading_format.hpp"
 #include "protocol/rotctld_locator.hpp"
 #include "protocol/rotctld_number.hpp"
 #include "protocol/rotctld_session.hpp"
@@ -39,12 +40,6 @@ HamlibError from(Error e) {
     default:
       return HamlibError::kInvalid;
   }
-}
-
-/// "%.2f" without a "-0.00" for a reading a hair below zero.
-double two_decimals(float deg) {
-  const double d = static_cast<double>(deg);
-  return std::fabs(d) < 0.005 ? 0.0 : d;
 }
 
 bool axis_moving(const AxisStatus& a) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
 #include "util/text.hpp"
 
@@ -51,11 +52,6 @@ const char* direction_name(const AxisStatus& a, bool el) {
   if (!a.present || !driving || a.drive_dir == Direction::kNone) return "STOP";
   if (el) return a.drive_dir == Direction::kCw ? "UP" : "DOWN";
   return a.drive_dir == Direction::kCw ? "CW" : "CCW";
-}
-
-double one_decimal(float deg) {
-  const double d = static_cast<double>(deg);
-  return std::fabs(d) < 0.05 ? 0.0 : d;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
 #include "util/text.hpp"
 
@@ -91,11 +92,10 @@ void WrcSession::write_state(ByteSink& out) {
   add(s.az.switch_cw, "L2");
   add(s.any_fault(), "FAULT");
   if (s.el.present) {
-    Reply().send(out, "OK STATE AZ=%.1f EL=%.1f SPEED=%d FLAGS=%s",
-                 static_cast<double>(s.az.position_deg), static_cast<double>(s.el.position_deg),
-                 s.speed_pct, flags);
+    Reply().send(out, "OK STATE AZ=%.1f EL=%.1f SPEED=%d FLAGS=%s", one_decimal(s.az.position_deg),
+                 one_decimal(s.el.position_deg), s.speed_pct, flags);
   } else {
-    Reply().send(out, "OK STATE AZ=%.1f SPEED=%d FLAGS=%s", static_cast<double>(s.az.position_deg),
+    Reply().send(out, "OK STATE AZ=%.1f SPEED=%d FLAGS=%s", one_decimal(s.az.position_deg),
                  s.speed_pct, flags);
   }
 }
@@ -120,7 +120,7 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
     return reply.send(out, "OK AZ %.2f", static_cast<double>(az));
   }
   if (is("AZ?") && !has_arg) {
-    return reply.send(out, "OK AZ %.1f", static_cast<double>(controller_.status().az.position_deg));
+    return reply.send(out, "OK AZ %.1f", one_decimal(controller_.status().az.position_deg));
   }
   if (is("EL") && has_arg) {
     float el = 0;
@@ -134,7 +134,7 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
   }
   if (is("EL?") && !has_arg) {
     if (!controller_.has_el()) return reply.send(out, "ERROR NOT SUPPORTED");
-    return reply.send(out, "OK EL %.1f", static_cast<double>(controller_.status().el.position_deg));
+    return reply.send(out, "OK EL %.1f", one_decimal(controller_.status().el.position_deg));
   }
   if (is("MOVE") && has_arg) {
     AxisId axis = AxisId::kAz;

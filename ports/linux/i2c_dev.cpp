@@ -13,7 +13,9 @@ namespace {
 
 class LinuxI2cKernel final : public I2cKernel {
  public:
-  int functionality(int fd, unsigned long& funcs) override { return ::ioctl(fd, I2C_FUNCS, &funcs); }
+  int functionality(int fd, unsigned long& funcs) override {
+    return ::ioctl(fd, I2C_FUNCS, &funcs);
+  }
   int transfer(int fd, i2c_rdwr_ioctl_data& data) override { return ::ioctl(fd, I2C_RDWR, &data); }
 };
 

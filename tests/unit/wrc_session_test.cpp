@@ -107,6 +107,17 @@ TEST_F(WrcTest, LongLinesGetOneErrorAndTheSessionStaysUsable) {
   EXPECT_FALSE(r.controller->status().az.has_target);
 }
 
+TEST_F(WrcTest, AReadingAHairBelowZeroIsZeroNotMinusZero) {
+  // Calibrated so that the antenna at its 0 deg end stop reads -0.03.
+  ASSERT_EQ(r.settings.set(settings::Id::kAzOffsetDeg, -100.03).error, Error::kOk);
+  ASSERT_EQ(r.settings.set(settings::Id::kElOffsetDeg, -20.04).error, Error::kOk);
+  r.run_ms(100);
+  ASSERT_NEAR(r.controller->status().az.position_deg, -0.03f, 0.001f);
+  EXPECT_EQ(ask("AZ?\n"), "OK AZ 0.0\r\n");
+  EXPECT_EQ(ask("EL?\n"), "OK EL 0.0\r\n");
+  EXPECT_EQ(ask("STATE\n").rfind("OK STATE AZ=0.0 EL=0.0 SPEED=", 0), 0u) << ask("STATE\n");
+}
+
 TEST_F(WrcTest, SplitAndPipelinedCommands) {
   EXPECT_EQ(ask("AZ"), "");
   EXPECT_EQ(ask("?"), "");
