@@ -268,7 +268,28 @@ const rotordCalibration = (() => {
       const done = el('button', { type: 'button', id: `cal-${axis}-spin-save`, hidden: true }, 'Save');
       const cancel = el('button', { type: 'button', id: `cal-${axis}-spin-cancel`, hidden: true }, 'Cancel');
       const range = el('p', { class: 'note', id: `cal-${axis}-spin-range` });
-      card.append(el('div', { class: 'buttons' }, start, done, cancel), range, error);
+      // After the spin: where the boom points. The sensor's north is seldom
+      // the boom's, so this turns mag.declination_deg until the reading is
+      // the angle entered (declination and mounting angle in one number).
+      const at = angleInput(axis);
+      const align = el('button', { type: 'button', id: `cal-${axis}-align` }, 'Set this heading');
+      const alignNow = el('p', { class: 'note', id: `cal-${axis}-align-now` });
+      const label = () => {
+        align.textContent = `Set this heading as ${at.value.trim() === '' ? 'N' : at.value.trim()}°`;
+      };
+      at.addEventListener('input', label);
+      card.append(el('div', { class: 'buttons' }, start, done, cancel), range,
+        el('div', { class: 'buttons' }, el('label', {}, 'antenna now at ', at, ' °'), align), alignNow, error);
+      align.addEventListener('click', async () => {
+        const angle = entered(at);
+        if (angle === null || !status || !status[axis].valid) return;
+        // The reading moves by exactly the change of declination (the axis
+        // unwraps the heading), so the change is the difference, kept in
+        // the setting's -180..180.
+        const turn = angle - status[axis].position_deg;
+        const decl = round(((((Number(v('mag.declination_deg')) || 0) + turn) % 360 + 540) % 360) - 180, 2);
+        await save({ 'mag.declination_deg': decl }, error, `${NAMES[axis]}: this heading is now ${angle}°`);
+      });
       const current = () => `x ${v('mag.x_min')} … ${v('mag.x_max')}, y ${v('mag.y_min')} … ${v('mag.y_max')}`;
       const show = () => {
         const spin = spins[axis];
@@ -304,6 +325,8 @@ const rotordCalibration = (() => {
           const m = a.mag;
           xy.textContent = m ? `x ${m.x}, y ${m.y}, z ${m.z}` : 'no sample (the chip does not answer)';
           deg.textContent = a.valid ? `${fmt(a.position_deg, 1)}°` : '–';
+          label();
+          alignNow.textContent = `mag.declination_deg = ${fmt(Number(v('mag.declination_deg')) || 0, 2)}°`;
           const spin = spins[axis];
           if (spin && m) {
             spin.n += 1;

@@ -32,10 +32,7 @@ bool sensor_frame_changed(const AxisConfig& a, const AxisConfig& b) {
       return a.ma3_zero_deg != b.ma3_zero_deg || a.ma3_reverse != b.ma3_reverse ||
              a.ma3_bits != b.ma3_bits;
     case SensorType::kMag:
-      return a.mag_cal.x_min != b.mag_cal.x_min || a.mag_cal.x_max != b.mag_cal.x_max ||
-             a.mag_cal.y_min != b.mag_cal.y_min || a.mag_cal.y_max != b.mag_cal.y_max ||
-             a.mag_cal.declination_deg != b.mag_cal.declination_deg ||
-             a.mag_cal.reverse != b.mag_cal.reverse || a.mag_chip != b.mag_chip;
+      return !(a.mag_cal == b.mag_cal) || a.mag_chip != b.mag_chip;
   }
   return false;
 }

@@ -207,6 +207,37 @@ test('magnetometer: raw field, spin calibration over a full turn fixes the headi
   assert.ok(diff < 1.5, `magnetometer ${heading} vs pot ${truth}`);
 });
 
+test('magnetometer: "set this heading as N" turns the declination', async () => {
+  // The spin calibration of the previous test is saved; the pot is in charge.
+  // At 200 deg the single-turn heading can only mean 200 (not 560 or -160).
+  assert.equal((await pot.post('/api/goto', { az: 200 })).status, 200);
+  await until(async () => {
+    const s = await pot.status();
+    return !s.moving && Math.abs(s.az.position_deg - 200) <= 1.5;
+  }, { timeout: 30000, what: 'the rotator at 200' });
+  assert.equal((await pot.post('/api/settings', { 'az.sensor': 'mag' })).status, 200);
+  await until(async () => (await pot.status()).az.mag !== null, { what: 'the magnetometer in charge' });
+  const page = await openSettings(pot);
+  const s0 = await settled(pot);
+  const declination0 = (await settingsOf(pot))['mag.declination_deg'];
+  const n = Math.round(s0.az.position_deg) + 7;
+  await page.fill('#cal-az-deg', String(n));
+  assert.equal(await page.textContent('#cal-az-align'), `Set this heading as ${n}°`);
+  await page.click('#cal-az-align');
+  await until(async () => (await page.textContent('#msg')).includes(`this heading is now ${n}°`),
+    { what: 'heading set' });
+  const s = await settled(pot);
+  assert.ok(Math.abs(s.az.position_deg - n) < 0.5, `reads ${s.az.position_deg}, wanted ${n}`);
+  assert.equal(s.az.fault, 'none');
+  const declination = (await settingsOf(pot))['mag.declination_deg'];
+  assert.ok(Math.abs(declination - declination0 - (n - s0.az.position_deg)) < 0.05,
+    `declination ${declination0} -> ${declination}`);
+  await until(async () => (await page.textContent('#cal-az-align-now'))
+    .startsWith(`mag.declination_deg = ${declination.toFixed(2)}`), { what: 'the new declination on the card' });
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
+
 test('MA3: code and duty, "set this position as N", direction keeps the angle', async () => {
   assert.equal((await ma3.post('/api/settings', { 'az.offset_deg': 5 })).status, 200);
   const page = await openSettings(ma3);
