@@ -7,20 +7,14 @@
 
 #include "fake_rotator.hpp"
 #include "protocol/gs232_angles.hpp"
+#include "string_sink.hpp"
 
 namespace rotord::protocol {
 namespace {
 
 using settings::Id;
 
-struct StringSink final : ByteSink {
-  std::string data;
-  int writes = 0;
-  void write(std::string_view bytes) override {
-    data.append(bytes);
-    ++writes;
-  }
-};
+using testing::StringSink;
 
 constexpr const char* kErr = "?>\r\n";
 

@@ -5,13 +5,9 @@
 #include <vector>
 
 #include "protocol/session.hpp"
+#include "string_sink.hpp"
 
 namespace rotord::testing {
-
-struct StringSink final : protocol::ByteSink {
-  std::string data;
-  void write(std::string_view bytes) override { data.append(bytes); }
-};
 
 struct HttpResponse {
   int status = 0;

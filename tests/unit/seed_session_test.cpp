@@ -5,18 +5,12 @@
 #include <string>
 
 #include "fake_rotator.hpp"
+#include "string_sink.hpp"
 
 namespace rotord::protocol {
 namespace {
 
-struct StringSink final : ByteSink {
-  std::string data;
-  int writes = 0;
-  void write(std::string_view bytes) override {
-    data.append(bytes);
-    ++writes;
-  }
-};
+using testing::StringSink;
 
 class SeedTest : public ::testing::Test {
  protected:

@@ -1,0 +1,20 @@
+#pragma once
+// Keeps every byte a session writes, and counts the writes: a transport sends
+// each write as one unit (one TCP segment where it can).
+#include <string>
+#include <string_view>
+
+#include "protocol/session.hpp"
+
+namespace rotord::testing {
+
+struct StringSink final : protocol::ByteSink {
+  std::string data;
+  int writes = 0;
+  void write(std::string_view bytes) override {
+    data.append(bytes);
+    ++writes;
+  }
+};
+
+}  // namespace rotord::testing
