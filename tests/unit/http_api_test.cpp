@@ -6,6 +6,7 @@
 
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
+#include "memory_storage.hpp"
 #include "web/assets.hpp"
 #include "web/http_session.hpp"
 #include "web/json_reader.hpp"
@@ -14,30 +15,10 @@ namespace rotord::web {
 namespace {
 
 using rotord::testing::HttpResponse;
+using rotord::testing::MemoryStorage;
 using rotord::testing::parse_responses;
 using rotord::testing::StringSink;
 using settings::Id;
-
-class MemoryStorage final : public hal::Storage {
- public:
-  std::string document;
-  bool stored = false;
-  bool fail = false;
-  int saves = 0;
-  long load(char* buf, std::size_t capacity) override {
-    if (!stored) return -1;
-    if (document.size() > capacity) return -2;
-    document.copy(buf, document.size());
-    return static_cast<long>(document.size());
-  }
-  bool save(std::string_view doc) override {
-    ++saves;
-    if (fail) return false;
-    document = std::string(doc);
-    stored = true;
-    return true;
-  }
-};
 
 class CountingReboot final : public RebootHook {
  public:
@@ -73,8 +54,7 @@ class HttpApi : public ::testing::Test {
   }
   HttpResponse post(const std::string& path, const std::string& body,
                     const std::string& type = "application/json") {
-    auto rs = send("POST " + path + " HTTP/1.1\r\nHost: x\r\nContent-Type: " + type +
-                   "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body);
+    auto rs = send(rotord::testing::post_request(path, body, type));
     return rs.empty() ? HttpResponse{} : rs[0];
   }
   static bool has(const HttpResponse& res, const std::string& text) {
@@ -131,9 +111,7 @@ TEST_F(HttpApi, GotoOnAnAzimuthOnlyRotatorRefusesElevation) {
   HttpSession s2{api2};
   StringSink sink;
   const std::string body = R"({"az":90,"el":10})";
-  s2.receive("POST /api/goto HTTP/1.1\r\nContent-Type: application/json\r\nContent-Length: " +
-                 std::to_string(body.size()) + "\r\n\r\n" + body,
-             sink);
+  s2.receive(rotord::testing::post_request("/api/goto", body), sink);
   const auto rs = parse_responses(sink.data);
   ASSERT_EQ(rs.size(), 1u);
   EXPECT_EQ(rs[0].status, 422);

@@ -24,6 +24,13 @@ struct HttpResponse {
 
 /// Parses consecutive responses with Content-Length bodies; a response
 /// without one takes the rest (an event stream).
+/// The bytes of one POST request with a body, as a browser sends it.
+inline std::string post_request(const std::string& path, const std::string& body,
+                                const std::string& type = "application/json") {
+  return "POST " + path + " HTTP/1.1\r\nHost: x\r\nContent-Type: " + type +
+         "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+}
+
 inline std::vector<HttpResponse> parse_responses(std::string data) {
   std::vector<HttpResponse> out;
   while (!data.empty()) {

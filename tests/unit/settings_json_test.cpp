@@ -7,33 +7,15 @@
 #include <string>
 
 #include "http_test_client.hpp"
+#include "memory_storage.hpp"
 #include "web/http_request.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord::web {
 namespace {
 
+using rotord::testing::MemoryStorage;
 using settings::Id;
-
-class FakeStorage final : public hal::Storage {
- public:
-  long result = -1;  ///< what load returns when no document is set
-  std::string document;
-  bool has_document = false;
-  int saves = 0;
-  long load(char* buf, std::size_t capacity) override {
-    if (!has_document) return result;
-    if (document.size() > capacity) return -2;
-    document.copy(buf, document.size());
-    return static_cast<long>(document.size());
-  }
-  bool save(std::string_view doc) override {
-    ++saves;
-    document = std::string(doc);
-    has_document = true;
-    return true;
-  }
-};
 
 std::string encode(const settings::Settings& s) {
   rotord::testing::StringSink sink;
@@ -71,7 +53,7 @@ TEST(SettingsJson, TheWholeDocumentFitsTheRequestBodyWithRoomToGrow) {
   const std::string doc = encode(settings::Settings());
   EXPECT_LT(doc.size() * 4 / 3, HttpRequestParser::kMaxBodyBytes) << doc.size();
   // The pretty stored form fits the storage buffer with the same margin.
-  FakeStorage storage;
+  MemoryStorage storage;
   char buf[Api::kMaxDocumentBytes];
   ASSERT_TRUE(save_settings(storage, settings::Settings(), buf, sizeof(buf)));
   EXPECT_LT(storage.document.size() * 4 / 3, sizeof(buf)) << storage.document.size();
@@ -127,7 +109,7 @@ TEST(SettingsJson, ManyErrorsAreCountedBeyondTheTable) {
 }
 
 TEST(SettingsJson, LoadNothingStoredKeepsTheDefaults) {
-  FakeStorage storage;
+  MemoryStorage storage;
   settings::Settings s;
   settings::Settings scratch;
   char buf[256];
@@ -136,7 +118,7 @@ TEST(SettingsJson, LoadNothingStoredKeepsTheDefaults) {
 }
 
 TEST(SettingsJson, LoadAppliesAValidDocument) {
-  FakeStorage storage;
+  MemoryStorage storage;
   storage.has_document = true;
   storage.document = "{\n  \"az.offset_deg\": 4.5\n}\n";
   settings::Settings s;
@@ -158,7 +140,7 @@ TEST(SettingsJson, CorruptOrInvalidDocumentsLeaveTheDefaultsAndAreNotRewritten) 
       {"{\"az.offset\": 1}", "az.offset"},  // unknown (hand-edited) key
   };
   for (const auto& c : cases) {
-    FakeStorage storage;
+    MemoryStorage storage;
     storage.has_document = true;
     storage.document = c.doc;
     settings::Settings s;
@@ -176,7 +158,7 @@ TEST(SettingsJson, CorruptOrInvalidDocumentsLeaveTheDefaultsAndAreNotRewritten) 
 }
 
 TEST(SettingsJson, LoadReportsADocumentTooLargeForTheBuffer) {
-  FakeStorage storage;
+  MemoryStorage storage;
   storage.has_document = true;
   storage.document = std::string(300, ' ') + "{}";
   settings::Settings s;
@@ -186,7 +168,7 @@ TEST(SettingsJson, LoadReportsADocumentTooLargeForTheBuffer) {
 }
 
 TEST(SettingsJson, SaveWritesAPrettyDocumentThatLoadsBack) {
-  FakeStorage storage;
+  MemoryStorage storage;
   settings::Settings s;
   s.set(Id::kParkElDeg, 45);
   char buf[Api::kMaxDocumentBytes];

@@ -10,6 +10,7 @@
 
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
+#include "memory_storage.hpp"
 #include "web/http_session.hpp"
 #include "web/settings_json.hpp"
 #include "web/web_api.hpp"
@@ -17,38 +18,15 @@
 namespace rotord {
 namespace {
 
+using rotord::testing::MemoryStorage;
 using settings::Id;
-
-class FakeStorage final : public hal::Storage {
- public:
-  std::string stored;
-  bool has = false;
-  bool fail = false;
-  int saves = 0;     // successful writes
-  int attempts = 0;  // every call of save()
-
-  long load(char* buf, std::size_t capacity) override {
-    if (!has) return -1;
-    if (stored.size() > capacity) return -2;
-    stored.copy(buf, stored.size());
-    return static_cast<long>(stored.size());
-  }
-  bool save(std::string_view document) override {
-    ++attempts;
-    if (fail) return false;
-    stored = std::string(document);
-    has = true;
-    ++saves;
-    return true;
-  }
-};
 
 class SaverTest : public ::testing::Test {
  protected:
   void SetUp() override { saver.begin(); }
 
   settings::Settings values;
-  FakeStorage storage;
+  MemoryStorage storage;
   char buf[web::Api::kMaxDocumentBytes];
   SettingsSaver saver{values, storage, buf, sizeof buf};
 };
@@ -88,10 +66,10 @@ TEST_F(SaverTest, ABurstOfChangesIsWrittenOnceAfterTheQuietTime) {
   EXPECT_EQ(web::load_settings(storage, loaded, scratch, load_buf, sizeof load_buf).status,
             web::LoadOutcome::kLoaded);
   EXPECT_EQ(loaded.get(Id::kParkAzDeg), 50.0);
-  FakeStorage api_storage;
+  MemoryStorage api_storage;
   char api_buf[web::Api::kMaxDocumentBytes];
   ASSERT_TRUE(web::save_settings(api_storage, values, api_buf, sizeof api_buf));
-  EXPECT_EQ(storage.stored, api_storage.stored);
+  EXPECT_EQ(storage.document, api_storage.document);
 }
 
 TEST_F(SaverTest, AChangeAndItsUndoWriteNothing) {
@@ -146,7 +124,7 @@ TEST_F(SaverTest, AFailedWriteIsRetriedLaterAndTheSettingsStay) {
   EXPECT_EQ(r, SettingsSaver::Result::kSaved);
   EXPECT_EQ(storage.saves, 1);
   EXPECT_EQ(saver.retry_delay_ms(), 0);
-  EXPECT_NE(storage.stored.find("\"park.az_deg\": 123"), std::string::npos) << storage.stored;
+  EXPECT_NE(storage.document.find("\"park.az_deg\": 123"), std::string::npos) << storage.document;
 }
 
 TEST_F(SaverTest, ATooLargeDocumentFailsWithoutWriting) {
@@ -173,7 +151,7 @@ TEST_F(SaverTest, WaitsWhileTheRotatorMovesAndFlushDoesNot) {
 
 TEST(SettingsSaverApi, AChangeTheApiSavedIsNotWrittenAgain) {
   rotord::testing::FakeRotator r;
-  FakeStorage storage;
+  MemoryStorage storage;
   char buf[web::Api::kMaxDocumentBytes];
   SettingsSaver saver(r.settings, storage, buf, sizeof buf);
   saver.begin();
@@ -184,25 +162,21 @@ TEST(SettingsSaverApi, AChangeTheApiSavedIsNotWrittenAgain) {
   saver.poll(0);
   const std::string body = R"({"park.az_deg": 33})";
   rotord::testing::StringSink sink;
-  session.receive(
-      "POST /api/settings HTTP/1.1\r\nContent-Type: application/json\r\n"
-      "Content-Length: " +
-          std::to_string(body.size()) + "\r\n\r\n" + body,
-      sink);
+  session.receive(rotord::testing::post_request("/api/settings", body), sink);
   const auto responses = rotord::testing::parse_responses(sink.data);
   ASSERT_EQ(responses.size(), 1u) << sink.data;
   EXPECT_EQ(responses[0].status, 200) << responses[0].body;
   EXPECT_EQ(storage.saves, 1);
   // The API's document holds both changes: nothing is left for the saver.
-  EXPECT_NE(storage.stored.find("\"az.offset_deg\": 7"), std::string::npos) << storage.stored;
-  EXPECT_NE(storage.stored.find("\"park.az_deg\": 33"), std::string::npos) << storage.stored;
+  EXPECT_NE(storage.document.find("\"az.offset_deg\": 7"), std::string::npos) << storage.document;
+  EXPECT_NE(storage.document.find("\"park.az_deg\": 33"), std::string::npos) << storage.document;
   for (Millis t = 10; t < 20000; t += 10) EXPECT_EQ(saver.poll(t), SettingsSaver::Result::kIdle);
   EXPECT_EQ(storage.attempts, 1);
 }
 
 TEST(SettingsSaverApi, AFailedApiSaveIsUndoneAndTheSettingsInForceAreSavedLater) {
   rotord::testing::FakeRotator r;
-  FakeStorage storage;
+  MemoryStorage storage;
   char buf[web::Api::kMaxDocumentBytes];
   SettingsSaver saver(r.settings, storage, buf, sizeof buf);
   ASSERT_TRUE(saver.save("{}\n"));  // something is stored already
@@ -212,11 +186,7 @@ TEST(SettingsSaverApi, AFailedApiSaveIsUndoneAndTheSettingsInForceAreSavedLater)
   storage.fail = true;
   const std::string body = R"({"park.az_deg": 33})";
   rotord::testing::StringSink sink;
-  session.receive(
-      "POST /api/settings HTTP/1.1\r\nContent-Type: application/json\r\n"
-      "Content-Length: " +
-          std::to_string(body.size()) + "\r\n\r\n" + body,
-      sink);
+  session.receive(rotord::testing::post_request("/api/settings", body), sink);
   EXPECT_NE(sink.data.find("HTTP/1.1 500"), std::string::npos) << sink.data;
   EXPECT_NE(r.settings.get(Id::kParkAzDeg), 33.0);  // the API undid it
   // The revision moved (change and undo); what is stored is unknown to the
@@ -224,8 +194,8 @@ TEST(SettingsSaverApi, AFailedApiSaveIsUndoneAndTheSettingsInForceAreSavedLater)
   // works again, and the result is the settings in force.
   storage.fail = false;
   for (Millis t = 0; t < 20000; t += 10) saver.poll(t);
-  EXPECT_NE(storage.stored.find("\"park.az_deg\": "), std::string::npos);
-  EXPECT_EQ(storage.stored.find("\"park.az_deg\": 33"), std::string::npos);
+  EXPECT_NE(storage.document.find("\"park.az_deg\": "), std::string::npos);
+  EXPECT_EQ(storage.document.find("\"park.az_deg\": 33"), std::string::npos);
 }
 
 }  // namespace

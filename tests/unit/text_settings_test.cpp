@@ -9,6 +9,7 @@
 
 #include "hal/flash.hpp"
 #include "http_test_client.hpp"
+#include "memory_storage.hpp"
 #include "settings/settings.hpp"
 #include "storage/flash_slots.hpp"
 #include "util/utc_time.hpp"
@@ -218,16 +219,6 @@ class RamFlash final : public hal::Flash {
   std::vector<unsigned char> mem_;
 };
 
-class MemoryStorage final : public hal::Storage {
- public:
-  std::string document;
-  long load(char*, std::size_t) override { return -1; }
-  bool save(std::string_view doc) override {
-    document = std::string(doc);
-    return true;
-  }
-};
-
 /// Every text at its maximum length, with the characters that need escaping.
 Settings longest_texts() {
   Settings s;
@@ -247,7 +238,7 @@ Settings longest_texts() {
 TEST(TextSettings, LongestDocumentFitsTheApiBufferAndAFlashSlot) {
   const Settings s = longest_texts();
   char buf[web::Api::kMaxDocumentBytes];
-  MemoryStorage memory;
+  rotord::testing::MemoryStorage memory;
   ASSERT_TRUE(web::save_settings(memory, s, buf, sizeof buf))
       << "the stored document outgrew Api::kMaxDocumentBytes";
   const std::size_t n = memory.document.size();
