@@ -5,8 +5,9 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdlib>
 #include <cstring>
+
+#include "host_path.hpp"
 
 namespace rotord::linux_port {
 namespace {
@@ -27,8 +28,7 @@ I2cKernel& linux_i2c_kernel() {
 }
 
 std::string i2c_dev_root() {
-  const char* env = std::getenv("ROTORD_I2C_DEV_ROOT");
-  return env != nullptr && *env != '\0' ? env : "/dev";
+  return host_path("ROTORD_I2C_DEV_ROOT", "/dev");
 }
 
 I2cDev::~I2cDev() {

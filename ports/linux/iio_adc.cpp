@@ -9,6 +9,8 @@
 #include <fstream>
 #include <string_view>
 
+#include "host_path.hpp"
+
 namespace rotord::linux_port {
 namespace {
 
@@ -30,8 +32,7 @@ bool parse_long(std::string_view text, long& out) {
 }  // namespace
 
 std::string iio_root() {
-  const char* env = std::getenv("ROTORD_IIO_ROOT");
-  return env != nullptr && env[0] != '\0' ? env : "/sys/bus/iio/devices";
+  return host_path("ROTORD_IIO_ROOT", "/sys/bus/iio/devices");
 }
 
 int iio_full_scale_for(const std::string& name) {

@@ -6,9 +6,10 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <thread>
+
+#include "host_path.hpp"
 
 namespace rotord::linux_port {
 namespace {
@@ -20,8 +21,7 @@ bool exists(const std::string& path) {
 }  // namespace
 
 std::string pwm_root() {
-  const char* env = std::getenv("ROTORD_PWM_ROOT");
-  return env != nullptr && env[0] != '\0' ? env : "/sys/class/pwm";
+  return host_path("ROTORD_PWM_ROOT", "/sys/class/pwm");
 }
 
 bool SysfsPwm::write_file(const std::string& name, const std::string& value,

@@ -10,10 +10,14 @@ fail() { echo "FAIL: $*"; exit 1; }
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 mkdir -p "$dir/rotord"
+# rotord --hw gpiod on the settings file in $dir, no ports; its output.
+rotord_gpiod() {
+  XDG_CONFIG_HOME="$dir" timeout 20 "$ROTORD" --hw gpiod --web-port 0 --wrc-port 0 \
+    --rotctld-port 0 --gs232-port 0 --easycomm-port 0 2>&1
+}
 printf '{"gpiod.chip": 31}\n' > "$dir/rotord/settings.json"
 
-out=$(XDG_CONFIG_HOME="$dir" timeout 20 "$ROTORD" --hw gpiod --web-port 0 --wrc-port 0 \
-      --rotctld-port 0 --gs232-port 0 --easycomm-port 0 2>&1)
+out=$(rotord_gpiod)
 rc=$?
 echo "$out"
 [ "$rc" -ne 0 ] || fail "exit code 0 without a GPIO chip"
@@ -28,8 +32,7 @@ grep -q 'ready' <<<"$out" && fail "it said ready"
 # where the default chip 0 is absent: on a Pi the defaults would open it.
 if [ ! -e /dev/gpiochip0 ]; then
 printf '{"gpiod.chip": 31, "gpiod.btn_cw": 17}\n' > "$dir/rotord/settings.json"
-out=$(XDG_CONFIG_HOME="$dir" timeout 20 "$ROTORD" --hw gpiod --web-port 0 --wrc-port 0 \
-      --rotctld-port 0 --gs232-port 0 --easycomm-port 0 2>&1)
+out=$(rotord_gpiod)
 rc=$?
 echo "$out"
 [ "$rc" -ne 0 ] || fail "exit code 0"
@@ -39,8 +42,7 @@ fi
 
 if [ -e /dev/gpiochip0 ]; then
   printf '{"gpiod.chip": 0, "iio.az_device": 31}\n' > "$dir/rotord/settings.json"
-  out=$(XDG_CONFIG_HOME="$dir" ROTORD_IIO_ROOT="$dir/iio" timeout 20 "$ROTORD" --hw gpiod \
-        --web-port 0 --wrc-port 0 --rotctld-port 0 --gs232-port 0 --easycomm-port 0 2>&1)
+  out=$(ROTORD_IIO_ROOT="$dir/iio" rotord_gpiod)
   rc=$?
   echo "$out"
   [ "$rc" -ne 0 ] || fail "exit code 0 without the ADC"
