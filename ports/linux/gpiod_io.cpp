@@ -290,7 +290,7 @@ bool GpiodRotator::open_magnetometer(const settings::Settings& s, const GpiodHos
   char address[8];
   std::snprintf(address, sizeof address, "0x%02X",
                 qmc ? Magnetometer::kQmcAddress : Magnetometer::kHmcAddress);
-  const std::string chip_text = std::string("mag.chip = ") + (qmc ? "qmc5883l" : "hmc5883l");
+  const std::string chip_text = choice(s, Id::kMagChip);
   switch (probe.begin()) {
     case Magnetometer::Status::kNoAnswer:
       error = chip_text + ": nothing answers at " + address + " on " + i2c_->path() +
