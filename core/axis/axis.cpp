@@ -108,6 +108,7 @@ Error Axis::go_to(float target_deg) {
   if (request_.kind != RequestKind::kGoto || request_.target_deg != target_deg) {
     starts_this_request_ = 0;
     move_started_ = now_;
+    move_distance_deg_ = std::fabs(target_deg - pos_deg_);
   }
   request_ = {RequestKind::kGoto, target_deg, Direction::kNone, 0};
   arrived_ = false;
@@ -126,11 +127,25 @@ Error Axis::jog(Direction dir, Millis until) {
   // its limit must not creep on because of sensor noise.
   const bool at_limit = dir == Direction::kCw ? status_.limit_cw : status_.limit_ccw;
   if (blocked(dir) || (at_limit && state_ == AxisState::kIdle)) return Error::kLimit;
-  if (request_.kind != RequestKind::kJog || request_.dir != dir) move_started_ = now_;
+  const bool new_jog = request_.kind != RequestKind::kJog || request_.dir != dir;
   request_ = {RequestKind::kJog, 0.0f, dir, until};
+  if (new_jog) {
+    move_started_ = now_;
+    move_distance_deg_ = request_distance_deg();
+  }
   arrived_ = false;
   publish();
   return Error::kOk;
+}
+
+void Axis::set_speed_pct(int pct) {
+  if (pct == speed_pct_) return;
+  speed_pct_ = pct;
+  // A move slowed down on the way gets the time the rest of it needs.
+  if (request_.kind != RequestKind::kNone) {
+    move_started_ = now_;
+    move_distance_deg_ = request_distance_deg();
+  }
 }
 
 void Axis::stop() {
@@ -257,6 +272,73 @@ float Axis::stop_distance_deg() const {
   return std::fabs(status_.speed_deg_s) * (coast_s_ + 0.01f);
 }
 
+float Axis::commanded_duty(bool slow_zone) const {
+  if (slow_zone) return cfg_.pwm_slow_duty;
+  // SPEED 1..100 spans pwm_slow_duty (the lowest duty that moves, above the
+  // dead band) to pwm_fast_duty, so every allowed speed turns the motor.
+  const float pct = static_cast<float>(speed_pct_ - 1) / 99.0f;
+  return cfg_.pwm_slow_duty + (cfg_.pwm_fast_duty - cfg_.pwm_slow_duty) * pct;
+}
+
+float Axis::expected_rate_deg_s(bool slow_zone) const {
+  const bool slow = slow_zone || speed_pct_ <= 50;
+  float ratio = 1.0f;
+  switch (cfg_.drive) {
+    case DriveType::kRelay:
+      break;
+    case DriveType::kRelayTwoSpeed:
+    case DriveType::kRelayVoltageSelect:
+      if (slow) ratio = cfg_.slow_speed_ratio;
+      break;
+    case DriveType::kHBridge: {
+      // A DC motor's speed grows with the duty above its dead band
+      // (physics.md, H-bridge actuation).
+      const float dead_band = cfg_.pwm_dead_band;
+      ratio = (commanded_duty(slow_zone) - dead_band) / (1.0f - dead_band);
+      break;
+    }
+  }
+  // A slow duty set at or below the dead band never moves; the stall rule
+  // reports that. The floor only keeps the allowance finite.
+  constexpr float kSlowestRatio = 0.02f;
+  if (!(ratio > kSlowestRatio)) ratio = kSlowestRatio;
+  return cfg_.speed_deg_s * ratio;
+}
+
+Millis Axis::move_allowance_ms(float distance_deg) const {
+  // Twice the expected travel at the commanded speed, so a rotator running at
+  // half its rated speed (cold grease, low mains) still arrives, plus the
+  // start and stop sequences of every allowed start; never less than the
+  // configured timeout, which remains the allowance of short moves.
+  const float slow_part_deg = distance_deg < cfg_.slow_zone_deg ? distance_deg : cfg_.slow_zone_deg;
+  const float travel_s = (distance_deg - slow_part_deg) / expected_rate_deg_s(false) +
+                         slow_part_deg / expected_rate_deg_s(true);
+  const int brake_ms = cfg_.has_brake ? cfg_.brake_release_ms + cfg_.brake_engage_ms : 0;
+  const int sequence_ms =
+      cfg_.reverse_dead_ms + cfg_.min_dwell_ms + brake_ms + cfg_.dir_settle_ms + 2 * cfg_.soft_ms;
+  constexpr float kMarginFactor = 2.0f;
+  constexpr float kCoastAndSettleS = 10.0f;
+  const float allowed_s = kMarginFactor * travel_s + kCoastAndSettleS +
+                          static_cast<float>((kMaxCorrections + 1) * sequence_ms) / 1000.0f;
+  const Millis allowed_ms = static_cast<Millis>(allowed_s * 1000.0f);
+  return allowed_ms > cfg_.move_timeout_ms ? allowed_ms : cfg_.move_timeout_ms;
+}
+
+float Axis::request_distance_deg() const {
+  switch (request_.kind) {
+    case RequestKind::kGoto:
+      return std::fabs(request_.target_deg - pos_deg_);
+    case RequestKind::kJog:
+      // A jog may run to the end of the travel; an endless axis has no end,
+      // and its jogs keep the configured timeout.
+      if (cfg_.continuous) return 0.0f;
+      return request_.dir == Direction::kCw ? cfg_.max_deg - pos_deg_ : pos_deg_ - cfg_.min_deg;
+    case RequestKind::kNone:
+      break;
+  }
+  return 0.0f;
+}
+
 void Axis::read_switches() {
   sw_cw_ = active(io_.limit_cw);
   sw_ccw_ = active(io_.limit_ccw);
@@ -360,10 +442,7 @@ void Axis::drive_moving(Millis now) {
       out_.set(OutputChannel::kVoltageFast, slow ? 0.0f : 1.0f);
       break;
     case DriveType::kHBridge: {
-      const float pct = static_cast<float>(speed_pct_ - 1) / 99.0f;
-      const float target =
-          near_target ? cfg_.pwm_slow_duty
-                      : cfg_.pwm_slow_duty + (cfg_.pwm_fast_duty - cfg_.pwm_slow_duty) * pct;
+      const float target = commanded_duty(near_target);
       // Soft start: the duty slews at most full scale per soft_ms.
       float step = 1.0f;
       if (cfg_.soft_ms > 0)
@@ -429,7 +508,8 @@ void Axis::tick(Millis now) {
         } else if (now - stall_ref_t_ >= cfg_.stall_ms) {
           latch_fault(AxisFault::kStall);
         }
-        if (state_ == AxisState::kMoving && now - move_started_ >= cfg_.move_timeout_ms)
+        if (state_ == AxisState::kMoving &&
+            now - move_started_ >= move_allowance_ms(move_distance_deg_))
           latch_fault(AxisFault::kTimeout);
         break;
       }
@@ -455,10 +535,21 @@ void Axis::tick(Millis now) {
   publish();
 }
 
+float Axis::reported_position_deg() const {
+  // At rest on a range end a noisy sensor reads a little beyond it (-0.14 at
+  // the CCW stop, 450.16 at the CW one). Clients such as Hamlib refuse to
+  // send back a position outside the limits they were given, so an excess
+  // within the go-to tolerance is reported as the range end; a real
+  // overtravel beyond that stays visible.
+  if (pos_deg_ < cfg_.min_deg && pos_deg_ >= cfg_.min_deg - cfg_.tolerance_deg) return cfg_.min_deg;
+  if (pos_deg_ > cfg_.max_deg && pos_deg_ <= cfg_.max_deg + cfg_.tolerance_deg) return cfg_.max_deg;
+  return pos_deg_;
+}
+
 void Axis::publish() {
   status_.present = true;
   status_.position_valid = have_pos_;
-  status_.position_deg = cfg_.continuous ? wrap_360(pos_deg_) : pos_deg_;
+  status_.position_deg = cfg_.continuous ? wrap_360(pos_deg_) : reported_position_deg();
   status_.raw = raw_;
   status_.raw_full_scale = 0.0f;
   status_.adc_ref_v = 0.0f;

@@ -46,7 +46,7 @@ class Axis {
   Error jog(Direction dir, Millis until);
   void stop();
   void clear_fault();
-  void set_speed_pct(int pct) { speed_pct_ = pct; }
+  void set_speed_pct(int pct);
   int speed_pct() const { return speed_pct_; }
 
   const AxisStatus& status() const { return status_; }
@@ -71,6 +71,10 @@ class Axis {
   float initial_unwrap(float sensor_deg) const;
   float estimate_speed() const;
   float stop_distance_deg() const;
+  float commanded_duty(bool slow_zone) const;
+  float expected_rate_deg_s(bool slow_zone) const;
+  Millis move_allowance_ms(float distance_deg) const;
+  float request_distance_deg() const;
   bool blocked(Direction dir) const;
   Direction desired_direction();
   void begin_start(Direction dir, Millis now);
@@ -78,6 +82,7 @@ class Axis {
   void drive_moving(Millis now);
   void finish_stop(Millis now);
   void latch_fault(AxisFault fault);
+  float reported_position_deg() const;
   void publish();
 
   AxisId id_;
@@ -116,7 +121,8 @@ class Axis {
   Millis last_tick_ = 0;
   Millis stop_done_at_ = -1000000;  // when the motor was last cut
   Millis drive_off_at_ = 0;
-  Millis move_started_ = 0;
+  Millis move_started_ = 0;         // the request began (or its speed changed) then ...
+  float move_distance_deg_ = 0.0f;  // ... with this far to go: sets its TIMEOUT allowance
   Millis stall_ref_t_ = 0;
   float stall_ref_deg_ = 0.0f;
   float cut_deg_ = 0.0f;

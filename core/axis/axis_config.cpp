@@ -13,7 +13,8 @@ struct AxisKeys {
   Id min_deg, max_deg, offset_deg, tolerance_deg, slow_zone_deg, drive;
   Id dir_settle_ms, soft_ms, reverse_dead_ms, min_dwell_ms, pwm_slow_duty, pwm_fast_duty;
   Id sensor, pot_samples, pot_median, pot_lowpass_ms, ma3_zero_deg, ma3_reverse, ma3_bits;
-  Id stall_deg, stall_ms, jump_deg, move_timeout_s, coast_s, coast_learn;
+  Id stall_deg, stall_ms, jump_deg, move_timeout_s, speed_deg_s, slow_speed_ratio, pwm_dead_band;
+  Id coast_s, coast_learn;
 };
 
 constexpr AxisKeys kAzKeys{
@@ -40,6 +41,9 @@ constexpr AxisKeys kAzKeys{
     .stall_ms = Id::kAzStallMs,
     .jump_deg = Id::kAzJumpDeg,
     .move_timeout_s = Id::kAzMoveTimeoutS,
+    .speed_deg_s = Id::kAzSpeedDegS,
+    .slow_speed_ratio = Id::kAzSlowSpeedRatio,
+    .pwm_dead_band = Id::kAzPwmDeadBand,
     .coast_s = Id::kAzCoastS,
     .coast_learn = Id::kAzCoastLearn,
 };
@@ -67,6 +71,9 @@ constexpr AxisKeys kElKeys{
     .stall_ms = Id::kElStallMs,
     .jump_deg = Id::kElJumpDeg,
     .move_timeout_s = Id::kElMoveTimeoutS,
+    .speed_deg_s = Id::kElSpeedDegS,
+    .slow_speed_ratio = Id::kElSlowSpeedRatio,
+    .pwm_dead_band = Id::kElPwmDeadBand,
     .coast_s = Id::kElCoastS,
     .coast_learn = Id::kElCoastLearn,
 };
@@ -98,6 +105,9 @@ AxisConfig axis_config_from(const settings::Settings& s, AxisId axis) {
   c.stall_ms = s.i(k.stall_ms);
   c.jump_deg = s.f(k.jump_deg);
   c.move_timeout_ms = s.i(k.move_timeout_s) * 1000;
+  c.speed_deg_s = s.f(k.speed_deg_s);
+  c.slow_speed_ratio = s.f(k.slow_speed_ratio);
+  c.pwm_dead_band = s.f(k.pwm_dead_band);
   c.coast_s = s.f(k.coast_s);
   c.coast_learn = s.b(k.coast_learn);
   if (axis == AxisId::kAz) {  // an elevation axis has none of these

@@ -46,7 +46,10 @@ struct AxisConfig {
   float stall_deg = 2.0f;
   int stall_ms = 3000;
   float jump_deg = 15.0f;
-  int move_timeout_ms = 180000;
+  int move_timeout_ms = 180000;   ///< the shortest move timeout, whatever the distance
+  float speed_deg_s = 6.0f;       ///< rated speed at full power
+  float slow_speed_ratio = 0.3f;  ///< two-speed / voltage-select slow speed, fraction of full
+  float pwm_dead_band = 0.3f;     ///< H-bridge duty below which the motor does not turn
   float coast_s = 0.15f;
   bool coast_learn = true;
 };

@@ -266,10 +266,7 @@ void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
   // Easycomm reports a compass bearing: Hamlib's 0..360 limits and trackers
   // comparing it with the bearing they sent expect one, whatever the cable
   // wrap (the unwrapped position is on the web page, rotctld and WRC).
-  const double az =
-      one_decimal(s.limits.az_continuous || s.az.position_deg < 0.0f || s.az.position_deg >= 360.0f
-                      ? wrap_360(s.az.position_deg)
-                      : s.az.position_deg);
+  const double az = bearing_rounded(s.az.position_deg, 1);
   const double el = s.el.present ? one_decimal(s.el.position_deg) : 0.0;
   if (request.query_az && request.query_el) return send(out, "AZ%.1f EL%.1f", az, el);
   if (request.query_az) return send(out, "AZ%.1f", az);

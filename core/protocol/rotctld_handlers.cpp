@@ -88,7 +88,7 @@ HamlibError RotctldSession::execute(const Command& command) {
     case Op::kGetPos: {
       const RotatorStatus s = controller_.status();
       if (!s.az.position_valid || (s.el.present && !s.el.position_valid)) return HamlibError::kIo;
-      value("Azimuth", "%.2f", two_decimals(s.az.position_deg));
+      value("Azimuth", "%.2f", az_reading(s, 2));
       value("Elevation", "%.2f", s.el.present ? two_decimals(s.el.position_deg) : 0.0);
       return HamlibError::kOk;
     }
@@ -163,7 +163,9 @@ HamlibError RotctldSession::execute(const Command& command) {
         return HamlibError::kInvalid;
       if (seconds > 0) {
         paused_ = true;
-        pause_until_ = controller_.now() + static_cast<Millis>(seconds) * 1000;
+        // On the transport's clock, as poll() reads it: controller time runs
+        // N times faster under `rotord --speedup N`.
+        pause_until_ = transport_now_ + static_cast<Millis>(seconds) * 1000;
       }
       return HamlibError::kOk;
     }

@@ -58,6 +58,7 @@ void RotctldSession::consume(std::string_view bytes, ByteSink& out) {
 }
 
 void RotctldSession::poll(Millis now, ByteSink& out) {
+  transport_now_ = now;
   if (!paused_ || now < pause_until_) return;
   paused_ = false;
   out.write(reply_.view());  // the \pause reply, held until now as rotctld does

@@ -115,7 +115,8 @@ class RotctldSession final : public Session {
   bool line_skipped_lf_ = false;
 
   bool paused_ = false;
-  Millis pause_until_ = 0;
+  Millis pause_until_ = 0;    // on the transport's clock
+  Millis transport_now_ = 0;  // the last poll's time
   std::array<char, kPauseInputBytes> pause_input_{};
   std::size_t pause_input_length_ = 0;
 

@@ -132,7 +132,7 @@ void SeedSession::write_state(ByteSink& out) {
   const char* fault = "NONE";
   if (s.az.fault != AxisFault::kNone) fault = axis_fault_name(s.az.fault);
   if (s.el.present && s.el.fault != AxisFault::kNone) fault = axis_fault_name(s.el.fault);
-  send(out, "$Q,%.1f,%.1f,%d,%s,%s,%s,%s", one_decimal(s.az.position_deg),
+  send(out, "$Q,%.1f,%.1f,%d,%s,%s,%s,%s", az_reading(s, 1),
        s.el.present ? one_decimal(s.el.position_deg) : 0.0, s.speed_pct, enabled_ ? "E" : "D",
        direction_name(s.az, false), direction_name(s.el, true), fault);
 }

@@ -68,10 +68,31 @@ void WrcSession::poll(Millis now, ByteSink& out) {
   now_ = now;
   if (!monitor_ || now - last_push_ < kMonitorPeriodMs) return;
   last_push_ = now;
-  write_state(out);
+  // The WRC firmware pushes its monitor lines without the "OK " of a reply.
+  if (tap_ == nullptr) return write_state(out, "STATE");
+  // The firmware also prints them on its USB log port: one copy of the
+  // line goes there as well.
+  struct Tee final : ByteSink {
+    ByteSink& client;
+    MonitorTap& tap;
+    Millis now;
+    Tee(ByteSink& c, MonitorTap& t, Millis n) : client(c), tap(t), now(n) {}
+    void write(std::string_view bytes) override {
+      client.write(bytes);
+      tap.offer(now, bytes);
+    }
+  } tee(out, *tap_, now);
+  write_state(tee, "STATE");
 }
 
-void WrcSession::write_state(ByteSink& out) {
+void MonitorTap::offer(Millis now, std::string_view line) {
+  if (written_once_ && now - last_write_ < WrcSession::kMonitorPeriodMs) return;
+  written_once_ = true;
+  last_write_ = now;
+  sink_.write(line);
+}
+
+void WrcSession::write_state(ByteSink& out, const char* prefix) {
   const RotatorStatus s = controller_.status();
   char flags[64] = "";
   std::size_t n = 0;
@@ -91,12 +112,12 @@ void WrcSession::write_state(ByteSink& out) {
   add(s.az.switch_ccw, "L1");
   add(s.az.switch_cw, "L2");
   add(s.any_fault(), "FAULT");
+  Reply reply;
   if (s.el.present) {
-    Reply().send(out, "OK STATE AZ=%.1f EL=%.1f SPEED=%d FLAGS=%s", one_decimal(s.az.position_deg),
-                 one_decimal(s.el.position_deg), s.speed_pct, flags);
+    reply.send(out, "%s AZ=%.1f EL=%.1f SPEED=%d FLAGS=%s", prefix, az_reading(s, 1),
+               one_decimal(s.el.position_deg), s.speed_pct, flags);
   } else {
-    Reply().send(out, "OK STATE AZ=%.1f SPEED=%d FLAGS=%s", one_decimal(s.az.position_deg),
-                 s.speed_pct, flags);
+    reply.send(out, "%s AZ=%.1f SPEED=%d FLAGS=%s", prefix, az_reading(s, 1), s.speed_pct, flags);
   }
 }
 
@@ -120,7 +141,7 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
     return reply.send(out, "OK AZ %.2f", static_cast<double>(az));
   }
   if (is("AZ?") && !has_arg) {
-    return reply.send(out, "OK AZ %.1f", one_decimal(controller_.status().az.position_deg));
+    return reply.send(out, "OK AZ %.1f", az_reading(controller_.status(), 1));
   }
   if (is("EL") && has_arg) {
     float el = 0;
@@ -151,7 +172,7 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
       upper[i] = (arg[i] >= 'a' && arg[i] <= 'z') ? static_cast<char>(arg[i] - 32) : arg[i];
     return reply.send(out, "OK MOVE %s", upper);
   }
-  if (is("STATE") && !has_arg) return write_state(out);
+  if (is("STATE") && !has_arg) return write_state(out, "OK STATE");
   if (is("FAULT?") && !has_arg) {
     const RotatorStatus s = controller_.status();
     if (s.el.present)

@@ -42,7 +42,7 @@ class Api {
   static constexpr Millis kMinHoldMs = 100;
   static constexpr Millis kMaxHoldMs = 10000;
   /// The stored settings document (pretty-printed), with room to grow.
-  static constexpr std::size_t kMaxDocumentBytes = 6144;
+  static constexpr std::size_t kMaxDocumentBytes = 7168;
 
   explicit Api(const ApiContext& context) : ctx_(context) {}
 

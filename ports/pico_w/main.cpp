@@ -40,6 +40,14 @@
 namespace rotord::pico_w {
 namespace {
 
+/// The USB log port as a ByteSink.
+class LogPortSink final : public protocol::ByteSink {
+ public:
+  void write(std::string_view bytes) override {
+    std::fwrite(bytes.data(), 1, bytes.size(), stdout);
+  }
+};
+
 constexpr Millis kTickMs = 10;  // 100 Hz, as on Linux
 // Long enough for the slowest blocking SDK call in the loop (enabling the
 // access point: a few Wi-Fi chip ioctls), short enough that a hung loop stops
@@ -307,7 +315,11 @@ void report_settings(const web::LoadOutcome& r) {
 
   // wifi.*, net.*, time.* as loaded at boot (they all need a restart).
   static Wifi wifi(Wifi::config_from(settings, ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000}));
-  auto make_wrc = [] { return protocol::WrcSession(controller, ROTORD_VERSION); };
+  // WRC MONITOR lines also go to the USB log port as they happen, where the
+  // WRC firmware prints them (stdout is that port: pico_stdio_usb on CDC 0).
+  static LogPortSink log_port;
+  static protocol::MonitorTap monitor_tap(log_port);
+  auto make_wrc = [] { return protocol::WrcSession(controller, ROTORD_VERSION, &monitor_tap); };
   static lwip_port::StaticService<protocol::WrcSession, kWrcSlots, decltype(make_wrc)> wrc(
       {"WRC text protocol", kWrcPort, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
        protocol::WrcSession::kTooManyConnections},

@@ -18,42 +18,17 @@
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "http_client.hpp"
 
 namespace rotord::testing {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Response {
-  int status = 0;
-  std::string head;
-  std::string body;
-};
-
-/// One request on its own connection (Connection: close), read to the end.
-Response http(int port, const std::string& method, const std::string& path,
-              const std::string& body = "", const std::string& type = "application/json") {
-  TcpClient c(port);
-  Response r;
-  if (!c.connected()) return r;
-  std::string req = method + " " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n";
-  if (!type.empty() && method == "POST") req += "Content-Type: " + type + "\r\n";
-  if (method == "POST") req += "Content-Length: " + std::to_string(body.size()) + "\r\n";
-  c.send(req + "\r\n" + body);
-  c.wait_closed(10000);
-  const std::string raw = c.recv_once(0);
-  const auto end = raw.find("\r\n\r\n");
-  if (raw.rfind("HTTP/1.1 ", 0) != 0 || end == std::string::npos) return r;
-  r.status = std::atoi(raw.c_str() + 9);
-  r.head = raw.substr(0, end);
-  r.body = raw.substr(end + 4);
-  return r;
-}
+using Response = HttpResponse;
 
 double number(const std::string& json, const std::string& key, std::size_t from = 0) {
-  const auto pos = json.find("\"" + key + "\":", from);
-  if (pos == std::string::npos) return -1e9;
-  return std::strtod(json.c_str() + pos + key.size() + 3, nullptr);
+  return json_number(json, key, from);
 }
 
 double az_of(const std::string& status) {

@@ -260,5 +260,32 @@ TEST(Scenario, SmallMovesDoNotHunt) {
   EXPECT_LE(s.status().az.moves, 20u);
 }
 
+TEST(Scenario, SpidCrossesItsWholeTravelAtEveryAllowedSpeed) {
+  // Issue 10: at speed 50 a 720 deg move took longer than the fixed 180 s
+  // timeout and latched TIMEOUT part way. The allowance now follows from the
+  // distance and the speed that speed achieves above the PWM dead band.
+  for (const int speed_pct : {1, 25, 50, 100}) {
+    Scenario s("spid", 540.0, 10.0);
+    s.run_ms(100);
+    ASSERT_EQ(s.controller().set_speed_pct(speed_pct), Error::kOk);
+    ASSERT_EQ(s.controller().go_to(-180.0f, std::nullopt, AzTarget::kUnwrapped), Error::kOk);
+    ASSERT_TRUE(s.run_until_settled(1800000)) << "speed " << speed_pct;
+    EXPECT_EQ(s.status().az.fault, AxisFault::kNone) << "speed " << speed_pct;
+    EXPECT_NEAR(s.theta(AxisId::kAz), -180.0, 1.0) << "speed " << speed_pct;
+  }
+}
+
+TEST(Scenario, ASlippingRotatorStillTimesOut) {
+  // A slipping clutch turns at a fifth of the speed: too fast for the stall
+  // rule, far too slow for the move; the timeout stops it.
+  Scenario s("spid", 0.0, 10.0);
+  s.sim().slip(AxisId::kAz, 0.2, sim::kForever_s);
+  ASSERT_EQ(s.controller().go_to(500.0f, std::nullopt, AzTarget::kUnwrapped), Error::kOk);
+  s.run_until_settled(600000);
+  EXPECT_EQ(s.status().az.fault, AxisFault::kTimeout);
+  EXPECT_LT(s.theta(AxisId::kAz), 480.0);
+  EXPECT_FALSE(s.sim().outputs(AxisId::kAz).any_on());
+}
+
 }  // namespace
 }  // namespace rotord

@@ -299,15 +299,31 @@ TEST_F(ControllerTest, SpeedIsValidated) {
   EXPECT_EQ(status().speed_pct, 80);
 }
 
-TEST_F(ControllerTest, MoveTimeoutLatchesAFault) {
+TEST_F(ControllerTest, AMoveFarSlowerThanRatedLatchesATimeout) {
+  // Rated 6 deg/s, so 200 deg may take 2 x 33 s + 10 s + three starts'
+  // dead times: about 81 s. A slipping rotator making 1 deg/s is slow but
+  // never stalled; the timeout stops it.
   r.settings.set(Id::kAzMoveTimeoutS, 5);
-  rate_deg_per_tick = 0.01f;  // 1 deg/s: slow but not stalled
+  r.settings.set(Id::kAzSpeedDegS, 6.0);
+  rate_deg_per_tick = 0.01f;
   ASSERT_EQ(r.controller->go_to(300.0f, std::nullopt), Error::kOk);
-  run_ms(4000);
+  run_ms(75000);
   EXPECT_EQ(status().az.fault, AxisFault::kNone);
-  run_ms(2000);
+  run_ms(10000);
   EXPECT_EQ(status().az.fault, AxisFault::kTimeout);
   EXPECT_FALSE(r.az.drive.last.any_on());
+}
+
+TEST_F(ControllerTest, TheShortestTimeoutIsTheConfiguredOne) {
+  // 100 deg at a rated 6 deg/s is allowed about 47 s; a configured 60 s
+  // still applies above that.
+  r.settings.set(Id::kAzMoveTimeoutS, 60);
+  rate_deg_per_tick = 0.01f;  // 1 deg/s
+  ASSERT_EQ(r.controller->go_to(200.0f, std::nullopt), Error::kOk);
+  run_ms(58000);
+  EXPECT_EQ(status().az.fault, AxisFault::kNone);
+  run_ms(4000);
+  EXPECT_EQ(status().az.fault, AxisFault::kTimeout);
 }
 
 TEST_F(ControllerTest, ContinuousRotatorTakesTheShortWayThroughNorth) {

@@ -105,6 +105,8 @@ TEST_F(WrcTest, AReadingAHairBelowZeroIsZeroNotMinusZero) {
   // Calibrated so that the antenna at its 0 deg end stop reads -0.03.
   ASSERT_EQ(r.settings.set(settings::Id::kAzOffsetDeg, -100.03).error, Error::kOk);
   ASSERT_EQ(r.settings.set(settings::Id::kElOffsetDeg, -20.04).error, Error::kOk);
+  ASSERT_EQ(r.settings.set(settings::Id::kAzMinDeg, -90).error, Error::kOk);
+  ASSERT_EQ(r.settings.set(settings::Id::kElMinDeg, -10).error, Error::kOk);
   r.run_ms(100);
   ASSERT_NEAR(r.controller->status().az.position_deg, -0.03f, 0.001f);
   EXPECT_EQ(ask("AZ?\n"), "OK AZ 0.0\r\n");
@@ -127,7 +129,10 @@ TEST_F(WrcTest, MonitorPushesStateTenTimesASecond) {
     session.poll(t, sink);
   }
   EXPECT_EQ(sink.writes, 10);
-  EXPECT_EQ(sink.data.rfind("OK STATE AZ=", 0), 0u);
+  // Pushed as the WRC firmware pushes them: no "OK", unlike the reply to STATE.
+  EXPECT_EQ(sink.data.rfind("STATE AZ=100.0 EL=20.0 SPEED=100 FLAGS=\r\nSTATE AZ=", 0), 0u)
+      << sink.data;
+  EXPECT_EQ(ask("STATE\n"), "OK STATE AZ=100.0 EL=20.0 SPEED=100 FLAGS=\r\n");
   EXPECT_EQ(ask("MONITOR 0\n"), "OK MONITOR 0\r\n");
   StringSink quiet;
   session.poll(5000, quiet);
