@@ -17,8 +17,9 @@ Daemon::~Daemon() {
 
 bool Daemon::setup() {
   if (options_.hw == "gpiod") {
-    if (options_.speedup != 1.0) {
-      std::fprintf(stderr, "rotord: --speedup applies to the simulator only, not to --hw gpiod\n");
+    if (options_.speedup != 1.0 || options_.clock != "wall") {
+      std::fprintf(
+          stderr, "rotord: --speedup and --clock apply to the simulator only, not to --hw gpiod\n");
       return false;
     }
     defaults_ = settings_;
@@ -51,8 +52,15 @@ bool Daemon::setup() {
   defaults_ = settings_;
   load_settings();
   sim_ = std::make_unique<sim::SimRotator>(*profile, options_.sim_seed);
-  std::printf("rotord %s: simulated rotator '%s' (%s), speedup %g\n", ROTORD_VERSION, profile->name,
-              profile->description, options_.speedup);
+  if (options_.clock == "manual") {
+    std::printf("rotord %s: simulated rotator '%s' (%s), manual clock (advance <ms> on stdin)\n",
+                ROTORD_VERSION, profile->name, profile->description);
+    clock_control_ =
+        std::make_unique<ClockControl>(io_, [this](Millis ms) { return advance_manual_clock(ms); });
+  } else {
+    std::printf("rotord %s: simulated rotator '%s' (%s), speedup %g\n", ROTORD_VERSION,
+                profile->name, profile->description, options_.speedup);
+  }
   if (!start_controller()) return false;
   std::printf("rotord: ready\n");
   std::fflush(stdout);
@@ -242,6 +250,7 @@ int Daemon::run() {
   controller_->begin(now_ms_);
   if (sim_) sim_->advance_to(now_ms_);
   wall_start_ = std::chrono::steady_clock::now();
+  if (clock_control_) clock_control_->start();
   schedule_tick();
   io_.run();
   if (controller_) controller_->shutdown();
@@ -268,11 +277,17 @@ void Daemon::schedule_tick() {
   });
 }
 
+Millis Daemon::wall_ms() const {
+  return static_cast<Millis>(std::chrono::duration_cast<std::chrono::milliseconds>(
+                                 std::chrono::steady_clock::now() - wall_start_)
+                                 .count());
+}
+
 void Daemon::on_tick() {
-  const auto wall_ms = static_cast<Millis>(std::chrono::duration_cast<std::chrono::milliseconds>(
-                                               std::chrono::steady_clock::now() - wall_start_)
-                                               .count());
-  if (gpio_) {
+  const Millis wall_ms = this->wall_ms();
+  if (clock_control_) {
+    // Controller time moves only by advance_manual_clock().
+  } else if (gpio_) {
     // Real hardware: one tick per wake-up on the wall clock.
     if (wall_ms > now_ms_) {
       now_ms_ = wall_ms;
@@ -282,6 +297,10 @@ void Daemon::on_tick() {
   } else {
     advance_simulation(wall_ms);
   }
+  serve(wall_ms);
+}
+
+void Daemon::serve(Millis wall_ms) {
   // Sessions time their clients on the wall clock: --speedup speeds up the
   // rotator, not the network's timeouts.
   for (auto& server : servers_) server->poll(wall_ms);
@@ -297,11 +316,23 @@ void Daemon::advance_simulation(Millis wall_ms) {
   // Catch up at most 2 s of simulated time per wake-up, so an overloaded host
   // slows the simulation down instead of stalling the sockets.
   int budget = 200;
-  while (now_ms_ + kTickMs <= target_ms && budget-- > 0) {
-    now_ms_ += kTickMs;
-    sim_->advance_to(now_ms_);
-    controller_->tick(now_ms_);
+  while (now_ms_ + kTickMs <= target_ms && budget-- > 0) tick_simulation();
+}
+
+void Daemon::tick_simulation() {
+  now_ms_ += kTickMs;
+  sim_->advance_to(now_ms_);
+  controller_->tick(now_ms_);
+}
+
+Millis Daemon::advance_manual_clock(Millis ms) {
+  // The sessions run between the ticks as they would in real time, so a
+  // GS-232 timed list or a settings save falls on the tick it belongs to.
+  for (Millis done = 0; done < ms && controller_ && !reboot_pending_; done += kTickMs) {
+    tick_simulation();
+    serve(wall_ms());
   }
+  return now_ms_;
 }
 
 void Daemon::save_changed_settings(bool now) {

@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include "clock_control.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
 #include "options.hpp"
@@ -49,6 +50,14 @@ class Daemon final : private web::RebootHook {
   void schedule_tick();
   void on_tick();
   void advance_simulation(Millis wall_ms);
+  /// One control tick of the simulator at now_ms_ + kTickMs.
+  void tick_simulation();
+  /// --clock manual: runs `ms` of controller time at once, with the sessions
+  /// and the settings saver served after every tick; returns the new time.
+  Millis advance_manual_clock(Millis ms);
+  /// Work every wake-up does whatever the clock: sessions, saving, reboot.
+  void serve(Millis wall_ms);
+  Millis wall_ms() const;
   void stop();
   /// Saves what the protocols changed (after the saver's quiet time, or at
   /// once when `now`), and says so.
@@ -66,7 +75,8 @@ class Daemon final : private web::RebootHook {
   /// Between the REST API and storage_; saves settings changed by protocols.
   std::unique_ptr<SettingsSaver> saver_;
   std::unique_ptr<sim::SimRotator> sim_;
-  std::unique_ptr<GpiodRotator> gpio_;  ///< --hw gpiod, instead of sim_
+  std::unique_ptr<GpiodRotator> gpio_;           ///< --hw gpiod, instead of sim_
+  std::unique_ptr<ClockControl> clock_control_;  ///< --clock manual
   int exit_code_ = 0;
   std::unique_ptr<Controller> controller_;
   std::unique_ptr<web::Api> api_;

@@ -16,6 +16,12 @@ int main(int argc, char** argv) {
   app.add_option("--speedup", o.speedup, "Run simulated time N times faster than the wall clock")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
+  app.add_option("--clock", o.clock,
+                 "wall: controller time follows the wall clock (times --speedup); manual: it "
+                 "stands still until 'advance <ms>' arrives on standard input (tests own the "
+                 "clock; simulator only)")
+      ->check(CLI::IsMember({"wall", "manual"}))
+      ->capture_default_str();
   app.add_option("--sim-seed", o.sim_seed, "Seed of the simulator's noise (same seed, same run)")
       ->capture_default_str();
   app.add_option("--bind", o.bind, "Address to listen on")->capture_default_str();

@@ -11,6 +11,7 @@ struct Options {
   std::string hw = "sim";  ///< sim or gpiod
   std::string sim_profile = "g5500";
   double speedup = 1.0;
+  std::string clock = "wall";  ///< wall, or manual: controller time moves only when told (tests)
   std::uint32_t sim_seed = 1;
   std::string bind = "0.0.0.0";
   int web_port = 8080;

@@ -31,8 +31,10 @@ double angle_error(double a, double b) {
 class EasycommHamlib : public ::testing::Test {
  protected:
   void start(std::vector<std::string> extra = {}) {
-    std::vector<std::string> args = {"--sim", "g5500",       "--speedup",
-                                     "20",    "--seed-port", std::to_string(seed_port)};
+    // The test owns controller time (--clock manual): it advances it instead
+    // of sleeping, so a loaded machine changes nothing but the wall time.
+    std::vector<std::string> args = {"--sim",  "g5500",       "--clock",
+                                     "manual", "--seed-port", std::to_string(seed_port)};
     args.insert(args.end(), extra.begin(), extra.end());
     daemon = std::make_unique<DaemonProcess>(args);
     ASSERT_TRUE(daemon->ready()) << daemon->output();
@@ -59,7 +61,7 @@ class EasycommHamlib : public ::testing::Test {
     for (int n = 0; n < 300; ++n) {
       p = position(model, where);
       if (p.size() == 2 && angle_error(p[0], az) <= 1.5 && std::fabs(p[1] - el) <= 1.5) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      daemon->advance_ms(500);
     }
     return p;
   }
@@ -81,7 +83,7 @@ class EasycommHamlib : public ::testing::Test {
       if (s.find("CW") == std::string::npos && s.find("CCW") == std::string::npos &&
           s.find("UP") == std::string::npos && s.find("DOWN") == std::string::npos)
         return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      daemon->advance_ms(500);
     }
     return false;
   }
@@ -116,23 +118,23 @@ TEST_F(EasycommHamlib, Model202StopMoveParkReset) {
   start();
   // A long go-to, stopped on the way.
   ASSERT_EQ(rotctl(202, tcp, "P 10 0").rc, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  daemon->advance_ms(1000);
   ASSERT_EQ(rotctl(202, tcp, "S").rc, 0);
   ASSERT_TRUE(wait_until_still());
   const double stopped = wrc_az();
   EXPECT_GT(angle_error(stopped, 10), 5) << wrc_state();
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  daemon->advance_ms(1000);
   EXPECT_NEAR(wrc_az(), stopped, 0.5);  // it stays stopped
   // Move right (MR), then stop.
   ASSERT_EQ(rotctl(202, tcp, "M 16 50").rc, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  daemon->advance_ms(1000);
   EXPECT_NE(wrc_state().find("FLAGS=CW"), std::string::npos) << wrc_state();
   ASSERT_EQ(rotctl(202, tcp, "S").rc, 0);
   ASSERT_TRUE(wait_until_still());
   EXPECT_GT(wrc_az(), stopped);
   // Move up (MU), stop.
   ASSERT_EQ(rotctl(202, tcp, "M 2 50").rc, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  daemon->advance_ms(1000);
   EXPECT_NE(wrc_state().find("UP"), std::string::npos) << wrc_state();
   ASSERT_EQ(rotctl(202, tcp, "S").rc, 0);
   ASSERT_TRUE(wait_until_still());
@@ -151,16 +153,16 @@ TEST_F(EasycommHamlib, Model204MovesWithSpeedsAndParks) {
   ASSERT_EQ(position(204, tcp).size(), 2u);
   // VL4900: left (CCW) at speed 50.
   ASSERT_EQ(rotctl(204, tcp, "M 8 50").rc, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  daemon->advance_ms(1000);
   EXPECT_NE(wrc_state().find("FLAGS=CCW"), std::string::npos) << wrc_state();
   ASSERT_EQ(rotctl(204, tcp, "S").rc, 0);
   ASSERT_TRUE(wait_until_still());
   // V SPEED then M with speed -1 (VR1234), and up at full speed (VU9900).
   ASSERT_EQ(rotctl(204, tcp, "V SPEED 1234 M 16 -1").rc, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  daemon->advance_ms(4000);  // the stop's settle and the reversal's dead time first
   EXPECT_NE(wrc_state().find("FLAGS=CW"), std::string::npos) << wrc_state();
   ASSERT_EQ(rotctl(204, tcp, "M 2 100").rc, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  daemon->advance_ms(1000);
   EXPECT_NE(wrc_state().find("UP"), std::string::npos) << wrc_state();
   ASSERT_EQ(rotctl(204, tcp, "S").rc, 0);
   ASSERT_TRUE(wait_until_still());
@@ -179,7 +181,7 @@ TEST_F(EasycommHamlib, Model201SendsEasycommOneLines) {
   start();
   // 201 cannot read the position; the WRC port shows where it went.
   ASSERT_EQ(rotctl(201, tcp, "P 200 10").rc, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  daemon->advance_ms(1000);
   ASSERT_TRUE(wait_until_still());
   EXPECT_NEAR(wrc_az(), 200, 1.5) << wrc_state();
   EXPECT_NEAR(wrc_field("EL"), 10, 1.5) << wrc_state();
@@ -196,7 +198,7 @@ TEST_F(EasycommHamlib, BadInputOverTcpGetsAlarmsAndMovesNothing) {
   EXPECT_EQ(c.ask(std::string("\0\xff\x01garbage\n", 11)), "ALUNKNOWN");
   EXPECT_EQ(c.ask(std::string(100000, 'A') + "\n"), "ALOVERFLOW");
   EXPECT_EQ(c.ask("VE\n").rfind("VErotord-", 0), 0u);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  daemon->advance_ms(1000);
   EXPECT_TRUE(wait_until_still());
   // The same place, give or take the simulated pot's noise.
   const std::vector<double> a = numbers_in(before.substr(2)),
@@ -244,6 +246,7 @@ class NullModem {
                ("pty,raw,echo=0,link=" + b).c_str(), static_cast<char*>(nullptr));
       ::_exit(127);
     }
+    // Wall time on purpose: socat, a real process, creates the links.
     for (int n = 0; n < 100 && !(std::filesystem::exists(a) && std::filesystem::exists(b)); ++n)
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
@@ -298,7 +301,7 @@ TEST_F(EasycommHamlib, SeedProtocolOverTcpAndPty) {
   EXPECT_EQ(c.ask("$S,60\n"), "$OK,S,60");
   EXPECT_EQ(c.ask("$E\n"), "$OK,E");
   EXPECT_EQ(c.ask("$R,cw\n"), "$OK,R,CW");
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  daemon->advance_ms(1000);
   EXPECT_NE(c.ask("$Q\n").find(",60,E,CW,"), std::string::npos);
   EXPECT_EQ(c.ask("$D\n"), "$OK,D");
   EXPECT_TRUE(wait_until_still());

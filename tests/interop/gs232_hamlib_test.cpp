@@ -34,7 +34,9 @@ class Gs232Hamlib : public ::testing::Test {
     std::ofstream(config) << "{\"gs232.variant\": \"" << variant
                           << "\", \"gs232.ack_writes\": " << (ack_writes ? "true" : "false")
                           << "}\n";
-    std::vector<std::string> args = {"--sim", "g5500", "--speedup", "20", "--config", config};
+    // The test owns controller time (--clock manual): it advances it instead
+    // of sleeping, so a loaded machine changes nothing but the wall time.
+    std::vector<std::string> args = {"--sim", "g5500", "--clock", "manual", "--config", config};
     args.insert(args.end(), extra.begin(), extra.end());
     daemon = std::make_unique<DaemonProcess>(args);
     ASSERT_TRUE(daemon->ready()) << daemon->output();
@@ -65,7 +67,7 @@ class Gs232Hamlib : public ::testing::Test {
     for (int n = 0; n < 300; ++n) {
       p = position(model, where);
       if (p.size() == 2 && std::fabs(p[0] - az) <= 1.5 && std::fabs(p[1] - el) <= 1.5) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      daemon->advance_ms(500);
     }
     return p;
   }
@@ -85,7 +87,7 @@ class Gs232Hamlib : public ::testing::Test {
       if (s.find("CW") == std::string::npos && s.find("UP") == std::string::npos &&
           s.find("DOWN") == std::string::npos)
         return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      daemon->advance_ms(500);
     }
     return false;
   }
@@ -93,7 +95,7 @@ class Gs232Hamlib : public ::testing::Test {
   bool wait_for_flag(const std::string& flag) {
     for (int n = 0; n < 100; ++n) {
       if (wrc_state().find(flag) != std::string::npos) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      daemon->advance_ms(500);
     }
     return false;
   }
@@ -157,12 +159,13 @@ TEST_F(Gs232Hamlib, Model603StopsAndMovesWithSpeeds) {
   ASSERT_TRUE(wait_until_still());
   const double stopped = wrc_field("AZ");
   EXPECT_LT(stopped, 430) << wrc_state();
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  daemon->advance_ms(1000);
   EXPECT_NEAR(wrc_field("AZ"), stopped, 0.5);  // it stays stopped
   // M 8 50 sends X2 and L: counter-clockwise at the second speed step.
   ASSERT_EQ(rotctl(603, "M 8 50").rc, 0);
   ASSERT_TRUE(wait_for_flag("FLAGS=CCW")) << wrc_state();
   EXPECT_EQ(wrc_field("SPEED"), 50);
+  daemon->advance_ms(1000);  // a second of turning before the stop
   ASSERT_EQ(rotctl(603, "S").rc, 0);
   ASSERT_TRUE(wait_until_still());
   EXPECT_LT(wrc_field("AZ"), stopped);
@@ -178,8 +181,7 @@ TEST_F(Gs232Hamlib, Model603StopsAndMovesWithSpeeds) {
   EXPECT_EQ(wrc_field("SPEED"), 25);
   // Up far enough that DOWN below is not refused at the lower end stop (a
   // loaded machine may take longer than the rotctl round trip to get there).
-  for (int n = 0; n < 100 && wrc_field("EL") < 3.0; ++n)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  for (int n = 0; n < 100 && wrc_field("EL") < 3.0; ++n) daemon->advance_ms(500);
   EXPECT_GE(wrc_field("EL"), 3.0) << wrc_state();
   ASSERT_EQ(rotctl(603, "S").rc, 0);
   ASSERT_TRUE(wait_until_still());
@@ -202,7 +204,7 @@ TEST_F(Gs232Hamlib, ParkAndResetAreNotOfferedByTheGs232Backends) {
     EXPECT_NE(k.rc, 0);
     EXPECT_NE(k.out.find("Feature not available"), std::string::npos) << k.out;
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  daemon->advance_ms(1000);
   EXPECT_NEAR(wrc_field("AZ"), az, 0.5);
 }
 
@@ -263,7 +265,7 @@ TEST_F(Gs232Hamlib, BadInputOverTcpGetsTheErrorPromptAndMovesNothing) {
   EXPECT_EQ(c.ask(std::string("\0\xff\x01garbage\r", 11)), "?>");
   EXPECT_EQ(c.ask(std::string(100000, 'M') + "\r"), "?>");
   EXPECT_EQ(c.ask("\r\r\rC2\r"), before);  // empty commands: no reply
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  daemon->advance_ms(1000);
   EXPECT_TRUE(wait_until_still());
   EXPECT_EQ(c.ask("C2\r"), before);
   // A write-only command answers a bare CR at once, in one segment.
@@ -282,7 +284,7 @@ TEST_F(Gs232Hamlib, TimedListOverTcp) {
   std::string n;
   for (int k = 0; k < 100 && n != "+0002+0002"; ++k) {
     n = c.ask("N\r");
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    daemon->advance_ms(500);
   }
   EXPECT_EQ(n, "+0002+0002");
   const std::vector<double> p = wait_for(603, 110, 20);

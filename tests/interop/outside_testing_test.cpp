@@ -31,15 +31,16 @@ bool read_position(TcpClient& rotctld, double& az, double& el) {
   return true;
 }
 
-/// Polls (bounded: `tries` x 100 ms of wall time) until the azimuth is within
-/// 1 deg of `az`, or a fault shows.
-bool wait_for_az(TcpClient& rotctld, TcpClient& wrc, double target_az, int tries) {
-  for (int n = 0; n < tries; ++n) {
+/// Advances controller time a second at a time (at most `seconds`) until the
+/// azimuth is within 1 deg of `az`, or a fault shows.
+bool wait_for_az(DaemonProcess& daemon, TcpClient& rotctld, TcpClient& wrc, double target_az,
+                 int seconds) {
+  for (int n = 0; n < seconds; ++n) {
     double az = 0, el = 0;
     if (!read_position(rotctld, az, el)) return false;
     if (std::fabs(az - target_az) <= 1.0) return true;
     if (wrc.ask("FAULT?\n") != "OK FAULT AZ=NONE EL=NONE") return false;
-    sleep_ms(100);
+    if (daemon.advance_ms(1000) < 0) return false;
   }
   return false;
 }
@@ -47,23 +48,23 @@ bool wait_for_az(TcpClient& rotctld, TcpClient& wrc, double target_az, int tries
 TEST(OutsideTesting, AFullTravelMoveAtHalfSpeedArrivesWithoutATimeout) {
   // SPID, az -180..540, PWM with a dead band; 720 deg at speed 50 is ~200 s
   // of simulated time, beyond the old fixed 180 s timeout.
-  DaemonProcess daemon({"--sim", "spid", "--speedup", "50"});
+  DaemonProcess daemon({"--sim", "spid", "--clock", "manual"});
   ASSERT_TRUE(daemon.ready()) << daemon.output();
   TcpClient rotctld(daemon.ports().rotctld);
   TcpClient wrc(daemon.ports().wrc);
   TcpClient gs232(daemon.ports().gs232);
   EXPECT_EQ(rotctld.ask("P 540 10\n"), "RPRT 0");
-  ASSERT_TRUE(wait_for_az(rotctld, wrc, 540.0, 400)) << wrc.ask("FAULT?\n");
+  ASSERT_TRUE(wait_for_az(daemon, rotctld, wrc, 540.0, 400)) << wrc.ask("FAULT?\n");
   // Hamlib's model 603 sends X2 before its manual moves; the speed is shared.
   gs232.send("X2\r");
   EXPECT_EQ(wrc.ask("SPEED?\n"), "OK SPEED 50");
   EXPECT_EQ(rotctld.ask("P -180 10\n"), "RPRT 0");
-  EXPECT_TRUE(wait_for_az(rotctld, wrc, -180.0, 600)) << wrc.ask("FAULT?\n");
+  EXPECT_TRUE(wait_for_az(daemon, rotctld, wrc, -180.0, 600)) << wrc.ask("FAULT?\n");
   EXPECT_EQ(wrc.ask("FAULT?\n"), "OK FAULT AZ=NONE EL=NONE");
 }
 
 TEST(OutsideTesting, HamlibModel2CanSendBackThePositionItReadAtTheRangeEnds) {
-  DaemonProcess daemon({"--sim", "g5500", "--speedup", "20"});
+  DaemonProcess daemon({"--sim", "g5500", "--clock", "manual"});
   ASSERT_TRUE(daemon.ready()) << daemon.output();
   const std::string where = "127.0.0.1:" + std::to_string(daemon.ports().rotctld);
   auto rotctl = [&](const std::string& commands) {
@@ -74,8 +75,8 @@ TEST(OutsideTesting, HamlibModel2CanSendBackThePositionItReadAtTheRangeEnds) {
   for (const char* ends : {"450 180", "0 0"}) {
     ASSERT_EQ(rotctl(std::string("P ") + ends).rc, 0) << ends;
     const double target_az = std::atof(ends);
-    ASSERT_TRUE(wait_for_az(rotctld, wrc, target_az, 400)) << ends;
-    sleep_ms(1500);  // wall time for the coast and the last readings (30 s simulated)
+    ASSERT_TRUE(wait_for_az(daemon, rotctld, wrc, target_az, 400)) << ends;
+    daemon.advance_ms(30000);  // the coast, the elevation's arrival, the last readings
     const CommandOutput read = rotctl("p");
     ASSERT_EQ(read.rc, 0) << read.out;
     const std::vector<double> p = numbers_in(read.out);
@@ -94,6 +95,8 @@ TEST(OutsideTesting, HamlibModel2CanSendBackThePositionItReadAtTheRangeEnds) {
 }
 
 TEST(OutsideTesting, RotctldPauseLastsItsSecondsOfWallTimeUnderSpeedup) {
+  // Wall time on purpose: the defect is the mix of --speedup's controller
+  // time with the wall clock.
   DaemonProcess daemon({"--sim", "g5500", "--speedup", "50"});
   ASSERT_TRUE(daemon.ready()) << daemon.output();
   // Let controller time run well ahead of the wall clock (100 s simulated,

@@ -61,17 +61,23 @@ bool DaemonProcess::spawn(const std::vector<std::string>& extra_args) {
                                    "--easycomm-port",
                                    std::to_string(ports_.easycomm)};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
-  if (out_fd_ >= 0) {
-    ::close(out_fd_);
-    out_fd_ = -1;
+  for (int* fd : {&out_fd_, &in_fd_}) {
+    if (*fd >= 0) ::close(*fd);
+    *fd = -1;
   }
   int pipe_fds[2];
-  if (::pipe(pipe_fds) != 0) return false;
+  int in_fds[2];
+  // Close-on-exec: a daemon started later by the same test must not hold
+  // this one's pipes open (dup2 below clears the flag on the child's copies).
+  if (::pipe2(pipe_fds, O_CLOEXEC) != 0) return false;
+  if (::pipe2(in_fds, O_CLOEXEC) != 0) return false;
   pid_ = ::fork();
   if (pid_ == 0) {
+    ::dup2(in_fds[0], 0);
     ::dup2(pipe_fds[1], 1);
     ::dup2(pipe_fds[1], 2);
     ::close(pipe_fds[0]);
+    ::close(in_fds[1]);
     if (!config_home_.empty()) ::setenv("XDG_CONFIG_HOME", config_home_.c_str(), 1);
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -80,7 +86,9 @@ bool DaemonProcess::spawn(const std::vector<std::string>& extra_args) {
     ::_exit(127);
   }
   ::close(pipe_fds[1]);
+  ::close(in_fds[0]);
   out_fd_ = pipe_fds[0];
+  in_fd_ = in_fds[1];
   ::fcntl(out_fd_, F_SETFL, O_NONBLOCK);
   // Ready when it says so, or not when the process died.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -112,6 +120,26 @@ void DaemonProcess::read_output(int timeout_ms) {
   }
 }
 
+long long DaemonProcess::advance_ms(long long ms) {
+  if (pid_ <= 0 || in_fd_ < 0) return -1;
+  const std::string command = "advance " + std::to_string(ms) + "\n";
+  if (::write(in_fd_, command.data(), command.size()) != static_cast<ssize_t>(command.size()))
+    return -1;
+  static const std::string kReply = "rotord: clock ";
+  // Bounded for liveness only: a day of simulated time runs in seconds.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline) {
+    const auto at = output_.find(kReply, clock_seen_);
+    const auto eol = at == std::string::npos ? at : output_.find('\n', at);
+    if (eol != std::string::npos) {
+      clock_seen_ = eol;
+      return std::atoll(output_.c_str() + at + kReply.size());
+    }
+    read_output(100);
+  }
+  return -1;
+}
+
 int DaemonProcess::terminate() {
   if (pid_ <= 0) return -1;
   ::kill(pid_, SIGTERM);
@@ -135,6 +163,7 @@ int DaemonProcess::terminate() {
 DaemonProcess::~DaemonProcess() {
   terminate();
   if (out_fd_ >= 0) ::close(out_fd_);
+  if (in_fd_ >= 0) ::close(in_fd_);
   std::error_code ignored;
   if (!config_home_.empty()) std::filesystem::remove_all(config_home_, ignored);
 }

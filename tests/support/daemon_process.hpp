@@ -31,6 +31,10 @@ class DaemonProcess {
   const Ports& ports() const { return ports_; }
   /// Everything the daemon printed so far.
   const std::string& output() const { return output_; }
+  /// With `--clock manual` among the arguments: runs `ms` of controller time
+  /// in the daemon and waits (bounded) until it has; returns the controller
+  /// time after it, or -1.
+  long long advance_ms(long long ms);
   /// Sends SIGTERM and waits; returns the exit status (or -1).
   int terminate();
   pid_t pid() const { return pid_; }
@@ -43,6 +47,8 @@ class DaemonProcess {
   Ports ports_;
   pid_t pid_ = -1;
   int out_fd_ = -1;
+  int in_fd_ = -1;              ///< the daemon's standard input: the manual clock's commands
+  std::size_t clock_seen_ = 0;  ///< output_ up to here holds no unread clock reply
   bool ready_ = false;
   std::string output_;
   std::string config_home_;  ///< XDG_CONFIG_HOME of the child
