@@ -108,23 +108,10 @@
     return `M100 0L${x0} ${y0}A100 100 0 0 0 ${x1} ${y1}Z`;
   }
 
-  // --- the simulated clock's rate (rotord --speedup) ---------------------------
-  // Dead-man times are in controller time; scaling by the observed rate keeps
-  // "stops within one second" true in wall time on a fast simulation too.
-  let rate = 1;
-  let rateRef = null;
-  function updateRate(s) {
-    const now = performance.now();
-    if (!rateRef) { rateRef = { wall: now, ctrl: s.time_ms }; return; }
-    const dw = now - rateRef.wall;
-    if (dw < 1000) return;
-    const r = (s.time_ms - rateRef.ctrl) / dw;
-    if (r > 0.05 && r < 2000) rate = r;
-    rateRef = { wall: now, ctrl: s.time_ms };
-  }
+  // hold_ms is wall time on rotord's side too (its dead-man runs on the
+  // transport's clock), whatever --speedup does to the simulation.
   const HOLD_WALL_MS = 700;  // motion stops at most this long after the last renewal
   const RENEW_MS = 200;
-  const holdMs = () => Math.min(10000, Math.max(100, Math.round(HOLD_WALL_MS * rate)));
 
   // --- commands ----------------------------------------------------------------
   async function command(path, body, okText) {
@@ -139,7 +126,7 @@
     if (holding && holding.dir === dir) return;
     stopHold(false);
     const send = () => rotord.post('/api/move', { dir, speed: Number($('speed').value) || undefined,
-      hold_ms: holdMs() }).then((r) => {
+      hold_ms: HOLD_WALL_MS }).then((r) => {
       if (r.status !== 200 && holding && holding.dir === dir) {
         rotord.message(msg, (r.body && r.body.error) || `error ${r.status}`, false);
         stopHold(true);
@@ -222,7 +209,6 @@
 
   rotord.live((s) => {
     last = s;
-    updateRate(s);
     if (!drawQueued) { drawQueued = true; requestAnimationFrame(draw); }
   });
   rotord.get('/api/status').then((r) => { if (r.status === 200 && !last) { last = r.body; draw(); } });

@@ -220,6 +220,26 @@ void Api::write_status(JsonWriter& w) const {
   w.end_object();
 }
 
+void Api::poll(Millis transport_now) {
+  transport_now_ = transport_now;
+  for (std::size_t n = 0; n < dead_man_.size(); ++n) {
+    DeadMan& d = dead_man_[n];
+    if (!d.armed || transport_now < d.until) continue;
+    d.armed = false;
+    const auto axis = static_cast<AxisId>(n);
+    const RotatorStatus s = ctx_.controller.status();
+    const AxisStatus& a = axis == AxisId::kAz ? s.az : s.el;
+    // Only the jog the hold started: a go-to given since stays.
+    if (a.jogging) ctx_.controller.move(axis, Direction::kNone);
+  }
+}
+
+void Api::arm_dead_man(AxisId axis, Millis hold_ms) {
+  DeadMan& d = dead_man_[static_cast<std::size_t>(axis)];
+  d.armed = hold_ms > 0;
+  d.until = transport_now_ + hold_ms;
+}
+
 Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
                          const ResponseOptions& options) {
   struct Route {
@@ -290,6 +310,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
   }
 
   if (path == "/api/stop") {
+    dead_man_ = {};
     c.stop();
     send_ok(out, options);
   } else if (path == "/api/goto") {
@@ -399,15 +420,18 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       hold = static_cast<Millis>(v);
     }
     if (dir == Direction::kNone && !axis) {
+      dead_man_ = {};
       c.stop();
       send_ok(out, options);
       return Outcome::kDone;
     }
-    const Error e = c.move(axis.value_or(AxisId::kAz), dir, speed, hold);
+    const AxisId moved = axis.value_or(AxisId::kAz);
+    const Error e = c.move(moved, dir, speed);
     if (e != Error::kOk) {
       send_command_error(e, out, options);
       return Outcome::kDone;
     }
+    arm_dead_man(moved, dir == Direction::kNone ? 0 : hold);
     send_ok(out, options);
   } else if (path == "/api/park") {
     if (const Error e = c.park(); e != Error::kOk) {

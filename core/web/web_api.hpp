@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <cstddef>
 
 #include "hal/storage.hpp"
@@ -52,6 +53,11 @@ class Api {
   Outcome handle(const HttpRequest& request, protocol::ByteSink& out,
                  const ResponseOptions& options);
 
+  /// Called by the port on every pass of its loop with the transport's
+  /// (wall) clock, whether or not a client is connected: a hold-to-move
+  /// whose renewals stopped (page closed, network gone) stops then.
+  void poll(Millis transport_now);
+
   /// The live state: GET /api/status and every event of /api/events.
   void write_status(JsonWriter& w) const;
   Controller& controller() { return ctx_.controller; }
@@ -66,7 +72,18 @@ class Api {
   void send_changed(protocol::ByteSink& out, const ResponseOptions& options,
                     const SettingSet& changed);
 
+  /// Hold-to-move's dead-man per axis, on the transport's clock: hold_ms is
+  /// the client's time, whatever `--speedup` or `--clock manual` does to
+  /// controller time.
+  struct DeadMan {
+    bool armed = false;
+    Millis until = 0;
+  };
+  void arm_dead_man(AxisId axis, Millis hold_ms);
+
   ApiContext ctx_;
+  Millis transport_now_ = 0;
+  std::array<DeadMan, 2> dead_man_{};
   settings::Settings scratch_;
   settings::Settings backup_;
   SettingErrors errors_;

@@ -303,6 +303,7 @@ void Daemon::on_tick() {
 void Daemon::serve(Millis wall_ms) {
   // Sessions time their clients on the wall clock: --speedup speeds up the
   // rotator, not the network's timeouts.
+  if (api_) api_->poll(wall_ms);
   for (auto& server : servers_) server->poll(wall_ms);
   for (auto& line : serial_lines_) line->poll(wall_ms);
   save_changed_settings(false);

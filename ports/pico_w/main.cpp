@@ -392,6 +392,7 @@ void report_settings(const web::LoadOutcome& r) {
     if (time_reached(next_tick)) {
       const Millis now = now_ms();
       controller.tick(now);
+      api.poll(now);  // hold-to-move's dead-man, with or without a connection
       if (usb_link) usb_link->poll(now);
       if (network) {
         for (lwip_port::TcpServer* server : servers) server->poll(now);

@@ -119,16 +119,24 @@ TEST_F(HttpApi, GotoOnAnAzimuthOnlyRotatorRefusesElevation) {
   EXPECT_FALSE(az_only.controller->status().az.has_target);
 }
 
-TEST_F(HttpApi, MoveHoldsOnlyWhileRenewed) {
+TEST_F(HttpApi, MoveHoldsOnlyWhileRenewedOnTheTransportClock) {
+  // The transport's clock and controller time differ (--speedup, --clock
+  // manual): hold_ms is the client's time, and the port's loop (api.poll)
+  // stops the jog even with no connection left.
+  Millis wall_ms = 1000;
+  api.poll(wall_ms);
   HttpResponse res = post("/api/move", R"({"dir":"cw","hold_ms":300,"speed":50})");
   ASSERT_EQ(res.status, 200) << res.body;
   r.run_ms(100);
+  api.poll(wall_ms += 100);
   EXPECT_TRUE(r.controller->status().az.jogging);
   EXPECT_TRUE(r.az.drive.cw());
   EXPECT_EQ(post("/api/move", R"({"dir":"cw","hold_ms":300})").status, 200);  // renewal
-  r.run_ms(250);
+  r.run_ms(100);
+  api.poll(wall_ms += 250);
   EXPECT_TRUE(r.controller->status().az.jogging);
-  r.run_ms(200);  // no renewal: the dead-man expires
+  r.run_ms(50);
+  api.poll(wall_ms += 100);  // 350 ms of the client's time without a renewal
   EXPECT_FALSE(r.controller->status().az.jogging);
   r.run_ms(2000);
   EXPECT_FALSE(r.az.drive.cw());

@@ -28,21 +28,27 @@ export function tempDir() {
   return mkdtempSync(path.join(os.tmpdir(), 'rotord-web-'));
 }
 
-/** A running `rotord --sim g5500 --speedup 10` on free loopback ports. */
+/**
+ * A running `rotord --sim g5500` on free loopback ports: `--speedup 10`, or
+ * with `clock: 'manual'` controller time that moves only by advance().
+ */
 export class Rotord {
-  constructor({ configPath, speedup = 10, profile = 'g5500' } = {}) {
+  constructor({ configPath, speedup = 10, profile = 'g5500', clock = 'wall' } = {}) {
     this.configPath = configPath;
     this.speedup = speedup;
     this.profile = profile;
+    this.clock = clock;
     this.output = '';
   }
 
   async start() {
     this.port = this.port ?? (await freePort());
-    const args = ['--sim', this.profile, '--speedup', String(this.speedup), '--bind', '127.0.0.1',
+    const timing = this.clock === 'manual' ? ['--clock', 'manual'] : ['--speedup', String(this.speedup)];
+    const args = ['--sim', this.profile, ...timing, '--bind', '127.0.0.1',
       '--web-port', String(this.port), '--wrc-port', '0', '--rotctld-port', '0',
       '--gs232-port', '0', '--easycomm-port', '0', '--config', this.configPath];
-    this.proc = spawn(ROTORD, args, { stdio: ['ignore', 'pipe', 'pipe'] });
+    this.proc = spawn(ROTORD, args, { stdio: ['pipe', 'pipe', 'pipe'] });
+    this.clockSeen = 0;
     const ready = new Promise((resolve, reject) => {
       const onData = (d) => {
         this.output += d;
@@ -63,6 +69,22 @@ export class Rotord {
     const exited = new Promise((resolve) => this.proc.on('exit', resolve));
     this.proc.kill('SIGTERM');
     await exited;
+  }
+
+  /** --clock manual: runs `ms` of controller time; resolves with the new time. */
+  async advance(ms) {
+    const from = this.output.length;
+    this.proc.stdin.write(`advance ${ms}\n`);
+    const line = await until(() => {
+      const m = /rotord: clock (\d+)\n/.exec(this.output.slice(from));
+      return m && Number(m[1]);
+    }, { interval: 5, what: `clock advance ${ms}` });
+    return line;
+  }
+
+  /** until() that advances controller time by `stepMs` between the checks. */
+  async untilAdvancing(fn, { stepMs = 500, ...options } = {}) {
+    return until(async () => (await fn()) || (await this.advance(stepMs), false), options);
   }
 
   async status() {
