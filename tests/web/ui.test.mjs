@@ -80,7 +80,7 @@ async function holdCw(page) {
 test('holding CW moves, releasing stops', async () => {
   const page = await openPage(browser, rotord.url + '/');
   await page.waitForSelector('#conn.live');
-  await page.waitForTimeout(1200);  // let the page measure the simulation's clock rate
+  await page.waitForTimeout(1200);  // wall time: the page's first live events (kept from the rate-measuring page; to drop with the manual clock)
   const start = (await rotord.status()).az.position_deg;
   await holdCw(page);
   await page.waitForTimeout(1500);
