@@ -34,11 +34,13 @@ bool parse_field(std::string_view s, int& value) {
 }
 
 /// Formats a data reply (which always ends in CR LF) and sends it in one write.
+/// A reply that cannot fit goes out as the protocol's error, never as silence
+/// (issue 11).
 template <typename... Args>
 void send(ByteSink& out, const char* fmt, Args... args) {
   char buf[64];
   const int n = std::snprintf(buf, sizeof(buf), fmt, args...);
-  if (n <= 0 || static_cast<std::size_t>(n) >= sizeof(buf)) return;
+  if (n <= 0 || static_cast<std::size_t>(n) >= sizeof(buf)) return out.write(Gs232Session::kError);
   out.write(std::string_view(buf, static_cast<std::size_t>(n)));
 }
 
