@@ -69,7 +69,7 @@ SettingsSaver::Result SettingsSaver::flush(Millis now) {
 SettingsSaver::Result SettingsSaver::write(Millis now) {
   const std::uint32_t revision = settings_.revision();
   Capture capture;
-  if (web::save_settings(capture, settings_, buf_, capacity_)) {
+  if (web::save_settings(capture, settings_, base_, buf_, capacity_)) {
     const std::string_view document = capture.document;
     // A change and its undo (or a value set to what it was) leave the stored
     // document as it is: no write, no flash wear.

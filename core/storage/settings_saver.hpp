@@ -34,9 +34,11 @@ class SettingsSaver final : public hal::Storage {
   static constexpr Millis kFirstRetryMs = 5000;
   static constexpr Millis kMaxRetryMs = 300000;
 
-  SettingsSaver(const settings::Settings& settings, hal::Storage& storage, char* buf,
-                std::size_t capacity)
-      : settings_(settings), storage_(storage), buf_(buf), capacity_(capacity) {}
+  /// `base`: the defaults below the user's layer (settings_layers.hpp);
+  /// only what differs from it is written.
+  SettingsSaver(const settings::Settings& settings, const settings::Settings& base,
+                hal::Storage& storage, char* buf, std::size_t capacity)
+      : settings_(settings), base_(base), storage_(storage), buf_(buf), capacity_(capacity) {}
 
   /// hal::Storage: the port's storage, remembering what it holds.
   long load(char* buf, std::size_t capacity) override;
@@ -71,6 +73,7 @@ class SettingsSaver final : public hal::Storage {
   void remember_stored(std::string_view document);
 
   const settings::Settings& settings_;
+  const settings::Settings& base_;
   hal::Storage& storage_;
   char* buf_;
   std::size_t capacity_;

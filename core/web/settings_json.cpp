@@ -65,6 +65,29 @@ const char* apply_member(Id id, const JsonValue& v, settings::Settings& candidat
   return r.error == Error::kOk ? nullptr : r.reason;
 }
 
+/// Reads settings::kVersionKey's value; the reason when it is not a version
+/// this build reads.
+const char* read_version(const JsonValue& v, int& version) {
+  if (v.type != JsonType::kNumber || v.number != static_cast<int>(v.number) || v.number < 1)
+    return "expected a whole number from 1";
+  if (v.number > settings::kStoredVersion) return "written by a newer rotord";
+  version = static_cast<int>(v.number);
+  return nullptr;
+}
+
+/// The document's settings::kVersionKey, 1 when it has none (or is no
+/// object: apply_settings_json then says why).
+int stored_version(std::string_view json) {
+  JsonObjectReader reader(json);
+  std::string_view key;
+  JsonValue value;
+  while (reader.valid() && reader.next(key, value)) {
+    if (key == settings::kVersionKey && value.type == JsonType::kNumber)
+      return value.number >= settings::kStoredVersion ? settings::kStoredVersion : 1;
+  }
+  return 1;
+}
+
 }  // namespace
 
 void SettingErrors::add(std::string_view key, const char* reason) {
@@ -173,6 +196,10 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
   std::string_view key;
   JsonValue value;
   while (reader.next(key, value)) {
+    if (key == settings::kVersionKey) {
+      if (const char* reason = read_version(value, outcome.version)) errors.add(key, reason);
+      continue;
+    }
     const auto id = settings::find(key);
     if (!id) {
       errors.add(key, "unknown setting");
@@ -209,12 +236,15 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
       target.copy_value(id, scratch);  // validated above
     }
   }
+  outcome.named = seen;
   return outcome;
 }
 
-LoadOutcome load_settings(hal::Storage& storage, settings::Settings& target,
+LoadOutcome load_settings(hal::Storage& storage, const settings::Settings& base,
+                          LegacyBaseGuess* guess, settings::Settings& target,
                           settings::Settings& scratch, char* buf, std::size_t capacity) {
   LoadOutcome outcome;
+  target = base;
   const long n = storage.load(buf, capacity);
   if (n == -1) return outcome;
   if (n < 0 || static_cast<std::size_t>(n) > capacity) {
@@ -222,26 +252,58 @@ LoadOutcome load_settings(hal::Storage& storage, settings::Settings& target,
     outcome.reason = "the stored settings cannot be read or are too large";
     return outcome;
   }
+  const std::string_view document(buf, static_cast<std::size_t>(n));
+  // A version-1 file holds every setting as it was in force, profile values
+  // included: read it over the table's defaults, and keep as the user's what
+  // differs from the base it was saved over. A version-2 file is the user's
+  // layer itself, checked over the base it now sits on.
+  const bool legacy = stored_version(document) < settings::kStoredVersion;
+  if (legacy) target.reset_to_defaults();
   SettingErrors errors;
-  const ApplyOutcome applied = apply_settings_json(
-      std::string_view(buf, static_cast<std::size_t>(n)), target, scratch, errors);
+  const ApplyOutcome applied = apply_settings_json(document, target, scratch, errors);
+  if (applied.status == ApplyOutcome::kApplied && legacy) {
+    const settings::Settings& saved_over = guess != nullptr ? guess->base_of(target) : base;
+    const settings::KeySet keys = applied.named & settings::user_layer(target, saved_over);
+    const settings::Rejection rule =
+        settings::apply_user_layer(base, target, keys, scratch, target);
+    if (rule.error != Error::kOk) {
+      target = base;
+      outcome.status = LoadOutcome::kCorrupt;
+      outcome.reason = rule.reason;  // points into scratch, which outlives the outcome's use
+      return outcome;
+    }
+    outcome.status = LoadOutcome::kLoaded;
+    outcome.migrated = true;
+    return outcome;
+  }
   if (applied.status == ApplyOutcome::kApplied) {
     outcome.status = LoadOutcome::kLoaded;
     return outcome;
   }
+  target = base;
   outcome.status = LoadOutcome::kCorrupt;
   outcome.reason = applied.message;
   if (errors.size() > 0) std::strcpy(outcome.key, errors[0].key);
   return outcome;
 }
 
-bool save_settings(hal::Storage& storage, const settings::Settings& values, char* buf,
-                   std::size_t capacity) {
+bool save_settings(hal::Storage& storage, const settings::Settings& values,
+                   const settings::Settings& base, char* buf, std::size_t capacity) {
   BufferSink sink(buf, capacity);
   {
     JsonWriter writer(sink);
     writer.set_pretty(true);
-    write_settings(values, writer, Secrets::kReveal);  // the device's own copy
+    writer.begin_object();
+    writer.member(settings::kVersionKey, settings::kStoredVersion);
+    const settings::KeySet keys = settings::user_layer(values, base);
+    for (std::size_t n = 0; n < settings::kCount; ++n) {
+      if (!keys.test(n)) continue;
+      const auto id = static_cast<Id>(n);
+      writer.key(settings::def(id).key);
+      write_setting(values, id, writer, Secrets::kReveal);  // the device's own copy
+    }
+    writer.end_object();
+    writer.flush();
   }
   sink.write("\n");
   if (sink.overflow()) return false;

@@ -5,6 +5,7 @@
 
 #include "hal/storage.hpp"
 #include "settings/settings.hpp"
+#include "settings/settings_layers.hpp"
 #include "web/json_reader.hpp"
 #include "web/json_writer.hpp"
 
@@ -12,9 +13,10 @@ namespace rotord::web {
 
 /// The settings as JSON: one flat object {"key": value} in table order, with
 /// numbers as numbers, booleans as true/false and enum settings by choice
-/// name. The same document is GET /api/settings, the body of POST
-/// /api/settings (partial), the web page's export file and what hal::Storage
-/// keeps, so an exported file can be imported or dropped in as the config.
+/// name. The same document is GET /api/settings (every setting in force),
+/// the body of POST /api/settings (partial), the web page's export file and,
+/// as the user's layer only (settings_layers.hpp), what hal::Storage keeps;
+/// an exported file can be imported or dropped in as the config.
 ///
 /// Secrets (settings::kSecret) appear as settings::kSecretMask ("" when
 /// empty) unless `secrets` is kReveal, which only the stored document uses.
@@ -56,7 +58,7 @@ class SettingErrors {
   std::size_t dropped_ = 0;
 };
 
-using SettingSet = std::bitset<settings::kCount>;
+using SettingSet = settings::KeySet;
 
 struct ApplyOutcome {
   enum Status : unsigned char { kApplied, kBadJson, kInvalid } status = kApplied;
@@ -64,6 +66,10 @@ struct ApplyOutcome {
   /// consistency rule that failed).
   const char* message = "";
   SettingSet changed;  ///< kApplied: the settings whose value changed
+  SettingSet named;    ///< kApplied: the settings the document named
+  /// settings::kVersionKey's value; 0 when the document has none. The key is
+  /// accepted (a stored file may be imported) up to settings::kStoredVersion.
+  int version = 0;
 };
 
 /// Applies a (partial) settings document all-or-nothing: every member is
@@ -78,17 +84,33 @@ struct LoadOutcome {
   enum Status : unsigned char { kNothingStored, kLoaded, kCorrupt } status = kNothingStored;
   const char* reason = "";                            ///< kCorrupt: why (first error)
   char key[JsonObjectReader::kMaxKeyBytes + 1] = "";  ///< kCorrupt: the offending key, if any
+  bool migrated = false;  ///< kLoaded: a version-1 file (every setting in it) was read
 };
 
-/// Loads the stored settings over `target` (which holds the defaults). A
-/// corrupt or invalid document leaves `target` untouched; the caller reports
-/// it and must not overwrite the stored copy on its own.
-LoadOutcome load_settings(hal::Storage& storage, settings::Settings& target,
+/// Picks the base a version-1 file was saved over, from the values it holds:
+/// its user's layer is what differs from that base. The Linux simulator
+/// recognises the profile a file was written under; without a guess the
+/// current base is taken, which keeps every value the file holds.
+class LegacyBaseGuess {
+ public:
+  virtual ~LegacyBaseGuess() = default;
+  virtual const settings::Settings& base_of(const settings::Settings& file_values) = 0;
+};
+
+/// Loads the stored user's layer over `base` into `target`. A version-1
+/// document is read over the table's defaults, and the settings it holds
+/// that differ from `guess`'s base (or `base`) become the user's layer, so a
+/// migrated file loses no value the user changed. A corrupt or invalid
+/// document leaves `target` holding `base`; the caller reports it and must
+/// not overwrite the stored copy on its own.
+LoadOutcome load_settings(hal::Storage& storage, const settings::Settings& base,
+                          LegacyBaseGuess* guess, settings::Settings& target,
                           settings::Settings& scratch, char* buf, std::size_t capacity);
 
-/// Serialises `values` into buf (pretty, one setting per line) and saves it.
-/// False when it does not fit or the storage fails.
-bool save_settings(hal::Storage& storage, const settings::Settings& values, char* buf,
-                   std::size_t capacity);
+/// Serialises the user's layer of `values` over `base` into buf (pretty, one
+/// setting per line, secrets revealed, settings::kVersionKey first) and saves
+/// it. False when it does not fit or the storage fails.
+bool save_settings(hal::Storage& storage, const settings::Settings& values,
+                   const settings::Settings& base, char* buf, std::size_t capacity);
 
 }  // namespace rotord::web

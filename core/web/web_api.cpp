@@ -552,7 +552,11 @@ void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options
 
 bool Api::persist(protocol::ByteSink& out, const ResponseOptions& options) {
   if (ctx_.storage == nullptr) return true;
-  if (save_settings(*ctx_.storage, ctx_.controller.settings(), document_, sizeof(document_)))
+  // Only the user's layer over the defaults is stored (settings_layers.hpp).
+  // scratch_ is free again here: post and reset are done with it.
+  if (ctx_.defaults == nullptr) scratch_.reset_to_defaults();
+  const settings::Settings& base = ctx_.defaults != nullptr ? *ctx_.defaults : scratch_;
+  if (save_settings(*ctx_.storage, ctx_.controller.settings(), base, document_, sizeof(document_)))
     return true;
   send_error(out, 500, "the settings could not be saved; nothing was changed", options);
   return false;

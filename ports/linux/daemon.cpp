@@ -3,6 +3,7 @@
 #include <csignal>
 #include <cstdio>
 
+#include "legacy_profile_guess.hpp"
 #include "services.hpp"
 #include "sysfs_pwm.hpp"
 
@@ -22,8 +23,8 @@ bool Daemon::setup() {
           stderr, "rotord: --speedup and --clock apply to the simulator only, not to --hw gpiod\n");
       return false;
     }
-    defaults_ = settings_;
-    load_settings();
+    defaults_ = settings_;  // no profile layer under real hardware
+    if (!load_settings(nullptr)) return false;
     if (!open_gpiod()) return false;
     std::printf("rotord %s: %s\n", ROTORD_VERSION, gpio_->summary().c_str());
     if (!start_controller()) return false;
@@ -50,7 +51,7 @@ bool Daemon::setup() {
     }
   }
   defaults_ = settings_;
-  load_settings();
+  if (!load_settings(profile)) return false;
   sim_ = std::make_unique<sim::SimRotator>(*profile, options_.sim_seed);
   if (options_.clock == "manual") {
     std::printf("rotord %s: simulated rotator '%s' (%s), manual clock (advance <ms> on stdin)\n",
@@ -86,18 +87,25 @@ AxisIo Daemon::axis_io(AxisId axis) {
   return gpio_ ? gpio_->io(axis) : sim_->io(axis);
 }
 
-void Daemon::load_settings() {
+bool Daemon::load_settings(const sim::Profile* profile) {
   storage_ = std::make_unique<FileStorage>(
       options_.config_path.empty() ? FileStorage::default_path() : options_.config_path);
+  if (const std::string why = storage_->unusable_reason(); !why.empty()) {
+    // A FIFO would block the first read forever, before any port listens.
+    std::fprintf(stderr, "rotord: settings file %s %s\n", storage_->path().c_str(), why.c_str());
+    return false;
+  }
   // Heap is fine here (start-up, Linux); the Pico keeps this buffer static.
   saver_buf_.resize(web::Api::kMaxDocumentBytes);
-  saver_ =
-      std::make_unique<SettingsSaver>(settings_, *storage_, saver_buf_.data(), saver_buf_.size());
+  saver_ = std::make_unique<SettingsSaver>(settings_, defaults_, *storage_, saver_buf_.data(),
+                                           saver_buf_.size());
   std::vector<char> buf(web::Api::kMaxDocumentBytes);
   auto scratch = std::make_unique<settings::Settings>();
+  std::unique_ptr<LegacyProfileGuess> guess;
+  if (profile != nullptr) guess = std::make_unique<LegacyProfileGuess>(*profile);
   // Through the saver, so it knows what the file holds.
-  const web::LoadOutcome r =
-      web::load_settings(*saver_, settings_, *scratch, buf.data(), buf.size());
+  const web::LoadOutcome r = web::load_settings(*saver_, defaults_, guess.get(), settings_,
+                                                *scratch, buf.data(), buf.size());
   saver_->begin();  // only later changes are saved; a damaged file stays as it is
   switch (r.status) {
     case web::LoadOutcome::kNothingStored:
@@ -106,6 +114,14 @@ void Daemon::load_settings() {
       break;
     case web::LoadOutcome::kLoaded:
       std::printf("rotord: settings loaded from %s\n", storage_->path().c_str());
+      if (r.migrated) {
+        const sim::Profile* from = guess ? guess->recognised() : nullptr;
+        std::printf(
+            "rotord: %s holds every setting (written before rotord kept only your changes); "
+            "read as your changes over %s%s; the next save keeps only those\n",
+            storage_->path().c_str(), from != nullptr ? "the simulator profile " : "the defaults",
+            from != nullptr ? from->name : "");
+      }
       break;
     case web::LoadOutcome::kCorrupt:
       // Keep running on the defaults, and keep the file: it may hold hours of
@@ -119,6 +135,7 @@ void Daemon::load_settings() {
       storage_->keep_backup_before_next_save();
       break;
   }
+  return true;
 }
 
 bool Daemon::start_controller() {

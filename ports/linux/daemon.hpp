@@ -36,7 +36,8 @@ class Daemon final : private web::RebootHook {
   /// settings, or says what is missing.
   bool open_gpiod();
   AxisIo axis_io(AxisId axis);
-  void load_settings();
+  /// False: the settings file cannot be used at all (not a regular file).
+  bool load_settings(const sim::Profile* profile);
   /// Creates the controller, the REST API and the protocol servers.
   bool start_controller();
   /// POST /api/reboot: the controller is re-created with the current

@@ -49,11 +49,28 @@ std::string FileStorage::default_path() {
   return "rotord-settings.json";
 }
 
+std::string FileStorage::unusable_reason() const {
+  struct stat st {};
+  if (::stat(path_.c_str(), &st) != 0) return {};  // nothing yet, or load() says why
+  if (S_ISREG(st.st_mode)) return {};
+  if (S_ISFIFO(st.st_mode)) return "is a FIFO, not a regular file";
+  if (S_ISDIR(st.st_mode)) return "is a directory, not a regular file";
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "is a device, not a regular file";
+  if (S_ISSOCK(st.st_mode)) return "is a socket, not a regular file";
+  return "is not a regular file";
+}
+
 long FileStorage::load(char* buf, std::size_t capacity) {
-  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: a FIFO put in place after the start-up check must not hang.
+  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) {
     if (errno == ENOENT) return -1;  // nothing stored yet
     last_error_ = std::strerror(errno);
+    return -2;
+  }
+  if (struct stat st{}; ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    last_error_ = "not a regular file";
+    ::close(fd);
     return -2;
   }
   last_error_.clear();
@@ -97,9 +114,12 @@ bool FileStorage::save(std::string_view document) {
     if (::link(path_.c_str(), bad.c_str()) == 0 || errno == ENOENT) backup_pending_ = false;
   }
   const std::string temp = path_ + ".tmp";
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) {
+  // 0600: the file holds secrets (the Wi-Fi password); the rename gives an
+  // older 0644 file this mode too.
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (fd < 0 || ::fchmod(fd, 0600) != 0) {  // a left-over temp file keeps its mode
     last_error_ = "cannot write " + temp + ": " + std::strerror(errno);
+    if (fd >= 0) ::close(fd);
     return false;
   }
   const bool written = write_all(fd, document) && ::fsync(fd) == 0;

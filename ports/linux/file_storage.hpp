@@ -16,6 +16,10 @@ class FileStorage final : public hal::Storage {
   /// $XDG_CONFIG_HOME/rotord/settings.json, else ~/.config/rotord/settings.json.
   static std::string default_path();
 
+  /// Why the path cannot hold the settings ("is a FIFO, not a regular
+  /// file"); empty when it can (a regular file, or nothing there yet).
+  std::string unusable_reason() const;
+
   long load(char* buf, std::size_t capacity) override;
   bool save(std::string_view document) override;
 

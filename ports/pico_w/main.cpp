@@ -128,7 +128,8 @@ FlashSlots g_storage(g_flash);
 // Between the web API and the flash, and the one that saves what the
 // protocols change (GS-232 calibration, WRC AZOFFSET, rotctld C). Its
 // document buffer is the start-up one, free once the settings are loaded.
-SettingsSaver g_saver(g_settings, g_storage, g_boot_document, sizeof g_boot_document);
+// Only the user's changes over g_defaults go to flash (settings_layers.hpp).
+SettingsSaver g_saver(g_settings, g_defaults, g_storage, g_boot_document, sizeof g_boot_document);
 std::optional<PicoAdc> g_az_pot, g_el_pot;
 std::optional<Ma3PioInput> g_az_ma3_pio, g_el_ma3_pio;
 std::optional<Ma3EdgeInput> g_az_ma3_irq, g_el_ma3_irq;
@@ -186,13 +187,15 @@ void apply_wifi_secrets(settings::Settings& s) {
   }
 }
 
-/// Settings from the flash slots over the table's defaults. Invalid stored
-/// settings (a pin conflict, a value a newer firmware refuses) leave the
-/// defaults in place; the stored copy stays in flash, and the next save goes
-/// to the other slot.
+/// The user's changes from the flash slots over the board's defaults (the
+/// table's plus wifi_secrets.h). Invalid stored settings (a pin conflict, a
+/// value a newer firmware refuses) leave the defaults in place; the stored
+/// copy stays in flash, and the next save goes to the other slot. A slot
+/// written before layering (every setting) keeps every value that differs
+/// from the board's defaults.
 web::LoadOutcome load_stored_settings() {
   if (!g_flash.region_free()) return {};
-  return web::load_settings(g_saver, g_settings, g_scratch, g_boot_document,
+  return web::load_settings(g_saver, g_defaults, nullptr, g_settings, g_scratch, g_boot_document,
                             sizeof g_boot_document);
 }
 
@@ -214,9 +217,10 @@ void report_settings(const web::LoadOutcome& r) {
       std::printf("rotord: no settings in flash yet, using the defaults\n");
       break;
     case web::LoadOutcome::kLoaded:
-      std::printf("rotord: settings loaded from flash (slot %d, save #%lu)\n",
-                  g_storage.newest()->slot,
-                  static_cast<unsigned long>(g_storage.newest()->sequence));
+      std::printf(
+          "rotord: settings loaded from flash (slot %d, save #%lu)%s\n", g_storage.newest()->slot,
+          static_cast<unsigned long>(g_storage.newest()->sequence),
+          r.migrated ? "; every setting stored: the next save keeps only your changes" : "");
       break;
     case web::LoadOutcome::kCorrupt:
       std::printf("rotord: the settings in flash are invalid (%s%s%s); running on the defaults\n",

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "fake_flash.hpp"
+#include "settings_bases.hpp"
 #include "util/crc32.hpp"
 #include "web/settings_json.hpp"
 #include "web/web_api.hpp"
@@ -209,19 +210,21 @@ TEST(FlashSlots, SettingsRoundTripThroughTheWebCodec) {
   ASSERT_EQ(values.set(settings::Id::kAzOffsetDeg, 12.5).error, Error::kOk);
   ASSERT_EQ(values.set(settings::Id::kPinBtnCw, 13).error, Error::kOk);
   static char buf[web::Api::kMaxDocumentBytes];
-  ASSERT_TRUE(web::save_settings(slots, values, buf, sizeof buf));
-  // The whole table fits a slot with room to grow.
+  // The user's layer with every row changed fits a slot with room to grow.
+  const settings::Settings base = testing::differs_everywhere(values);
+  ASSERT_TRUE(web::save_settings(slots, values, base, buf, sizeof buf));
   const auto stored = static_cast<std::size_t>(slots.load(buf, sizeof buf));
   EXPECT_LT(stored * 3 / 2, slots.capacity()) << stored;
 
   settings::Settings loaded, scratch;
-  const web::LoadOutcome outcome = web::load_settings(slots, loaded, scratch, buf, sizeof buf);
+  const web::LoadOutcome outcome =
+      web::load_settings(slots, base, nullptr, loaded, scratch, buf, sizeof buf);
   EXPECT_EQ(outcome.status, web::LoadOutcome::kLoaded);
   EXPECT_EQ(loaded.get(settings::Id::kAzOffsetDeg), 12.5);
   EXPECT_EQ(loaded.i(settings::Id::kPinBtnCw), 13);
   // Saving what was loaded writes nothing.
   const int erases = flash.erases;
-  ASSERT_TRUE(web::save_settings(slots, loaded, buf, sizeof buf));
+  ASSERT_TRUE(web::save_settings(slots, loaded, base, buf, sizeof buf));
   EXPECT_EQ(flash.erases, erases);
 }
 

@@ -8,6 +8,7 @@
 
 #include "http_test_client.hpp"
 #include "memory_storage.hpp"
+#include "settings_bases.hpp"
 #include "web/http_request.hpp"
 #include "web/web_api.hpp"
 
@@ -52,10 +53,14 @@ TEST(SettingsJson, RoundTripsEveryType) {
 TEST(SettingsJson, TheWholeDocumentFitsTheRequestBodyWithRoomToGrow) {
   const std::string doc = encode(settings::Settings());
   EXPECT_LT(doc.size() * 4 / 3, HttpRequestParser::kMaxBodyBytes) << doc.size();
-  // The pretty stored form fits the storage buffer with the same margin.
+  // The pretty stored form fits the storage buffer with the same margin,
+  // even when the user changed every setting.
   MemoryStorage storage;
   char buf[Api::kMaxDocumentBytes];
-  ASSERT_TRUE(save_settings(storage, settings::Settings(), buf, sizeof(buf)));
+  const settings::Settings values;
+  ASSERT_TRUE(save_settings(storage, values, rotord::testing::differs_everywhere(values), buf,
+                            sizeof(buf)));
+  EXPECT_GT(storage.document.size(), doc.size());
   EXPECT_LT(storage.document.size() * 4 / 3, sizeof(buf)) << storage.document.size();
 }
 
@@ -113,8 +118,9 @@ TEST(SettingsJson, LoadNothingStoredKeepsTheDefaults) {
   settings::Settings s;
   settings::Settings scratch;
   char buf[256];
-  EXPECT_EQ(load_settings(storage, s, scratch, buf, sizeof(buf)).status,
-            LoadOutcome::kNothingStored);
+  EXPECT_EQ(
+      load_settings(storage, settings::Settings(), nullptr, s, scratch, buf, sizeof(buf)).status,
+      LoadOutcome::kNothingStored);
 }
 
 TEST(SettingsJson, LoadAppliesAValidDocument) {
@@ -124,7 +130,9 @@ TEST(SettingsJson, LoadAppliesAValidDocument) {
   settings::Settings s;
   settings::Settings scratch;
   char buf[256];
-  EXPECT_EQ(load_settings(storage, s, scratch, buf, sizeof(buf)).status, LoadOutcome::kLoaded);
+  EXPECT_EQ(
+      load_settings(storage, settings::Settings(), nullptr, s, scratch, buf, sizeof(buf)).status,
+      LoadOutcome::kLoaded);
   EXPECT_EQ(s.get(Id::kAzOffsetDeg), 4.5);
 }
 
@@ -147,7 +155,8 @@ TEST(SettingsJson, CorruptOrInvalidDocumentsLeaveTheDefaultsAndAreNotRewritten) 
     const settings::Settings before = s;
     settings::Settings scratch;
     char buf[256];
-    const LoadOutcome r = load_settings(storage, s, scratch, buf, sizeof(buf));
+    const LoadOutcome r =
+        load_settings(storage, settings::Settings(), nullptr, s, scratch, buf, sizeof(buf));
     EXPECT_EQ(r.status, LoadOutcome::kCorrupt) << c.doc;
     EXPECT_STRNE(r.reason, "") << c.doc;
     EXPECT_STREQ(r.key, c.key) << c.doc;
@@ -164,7 +173,9 @@ TEST(SettingsJson, LoadReportsADocumentTooLargeForTheBuffer) {
   settings::Settings s;
   settings::Settings scratch;
   char buf[256];
-  EXPECT_EQ(load_settings(storage, s, scratch, buf, sizeof(buf)).status, LoadOutcome::kCorrupt);
+  EXPECT_EQ(
+      load_settings(storage, settings::Settings(), nullptr, s, scratch, buf, sizeof(buf)).status,
+      LoadOutcome::kCorrupt);
 }
 
 TEST(SettingsJson, SaveWritesAPrettyDocumentThatLoadsBack) {
@@ -172,15 +183,19 @@ TEST(SettingsJson, SaveWritesAPrettyDocumentThatLoadsBack) {
   settings::Settings s;
   s.set(Id::kParkElDeg, 45);
   char buf[Api::kMaxDocumentBytes];
-  ASSERT_TRUE(save_settings(storage, s, buf, sizeof(buf)));
-  EXPECT_EQ(storage.document.rfind("{\n  \"el.enabled\": false,\n", 0), 0u) << storage.document;
+  ASSERT_TRUE(save_settings(storage, s, settings::Settings(), buf, sizeof(buf)));
+  // Only the user's layer, after the version.
+  EXPECT_EQ(storage.document, "{\n  \"settings_version\": 2,\n  \"park.el_deg\": 45\n}\n");
   EXPECT_EQ(storage.document.back(), '\n');
   settings::Settings t;
   settings::Settings scratch;
-  ASSERT_EQ(load_settings(storage, t, scratch, buf, sizeof(buf)).status, LoadOutcome::kLoaded);
+  ASSERT_EQ(
+      load_settings(storage, settings::Settings(), nullptr, t, scratch, buf, sizeof(buf)).status,
+      LoadOutcome::kLoaded);
   EXPECT_EQ(t.get(Id::kParkElDeg), 45.0);
-  char small[64];
-  EXPECT_FALSE(save_settings(storage, s, small, sizeof(small)));  // does not fit: not saved
+  char small[32];
+  EXPECT_FALSE(save_settings(storage, s, settings::Settings(), small,
+                             sizeof(small)));  // does not fit: not saved
   EXPECT_EQ(storage.saves, 1);
 }
 

@@ -11,6 +11,7 @@
 #include "http_test_client.hpp"
 #include "memory_storage.hpp"
 #include "settings/settings.hpp"
+#include "settings_bases.hpp"
 #include "storage/flash_slots.hpp"
 #include "util/utc_time.hpp"
 #include "web/settings_json.hpp"
@@ -239,7 +240,9 @@ TEST(TextSettings, LongestDocumentFitsTheApiBufferAndAFlashSlot) {
   const Settings s = longest_texts();
   char buf[web::Api::kMaxDocumentBytes];
   rotord::testing::MemoryStorage memory;
-  ASSERT_TRUE(web::save_settings(memory, s, buf, sizeof buf))
+  // The user's layer at its largest: every row differs from the base.
+  const Settings base = rotord::testing::differs_everywhere(s);
+  ASSERT_TRUE(web::save_settings(memory, s, base, buf, sizeof buf))
       << "the stored document outgrew Api::kMaxDocumentBytes";
   const std::size_t n = memory.document.size();
   // Room for about 30 more rows before Api::kMaxDocumentBytes must grow.
@@ -249,11 +252,12 @@ TEST(TextSettings, LongestDocumentFitsTheApiBufferAndAFlashSlot) {
   FlashSlots slots(flash);
   ASSERT_TRUE(slots.usable());
   EXPECT_GE(slots.capacity(), sizeof buf);
-  ASSERT_TRUE(web::save_settings(slots, s, buf, sizeof buf));
+  ASSERT_TRUE(web::save_settings(slots, s, base, buf, sizeof buf));
   Settings loaded;
   Settings scratch;
   char load_buf[web::Api::kMaxDocumentBytes];
-  const web::LoadOutcome r = web::load_settings(slots, loaded, scratch, load_buf, sizeof load_buf);
+  const web::LoadOutcome r =
+      web::load_settings(slots, base, nullptr, loaded, scratch, load_buf, sizeof load_buf);
   ASSERT_EQ(r.status, web::LoadOutcome::kLoaded) << r.reason << " " << r.key;
   for (std::size_t k = 0; k < settings::kCount; ++k)
     EXPECT_TRUE(loaded.same_value(static_cast<Id>(k), s)) << settings::def(static_cast<Id>(k)).key;
