@@ -148,7 +148,7 @@ TEST_F(ProtocolSettings, WrcAzOffsetIsSavedAfterAQuietTimeAndSurvivesAKill) {
   bool saved = false;
   for (int n = 0; n < 100 && !saved; ++n) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    saved = read_file(config).find("\"az.offset_deg\": 5,") != std::string::npos;
+    saved = read_file(config).find("\"az.offset_deg\": 5\n") != std::string::npos;
   }
   ASSERT_TRUE(saved) << read_file(config);
   ::kill(daemon->pid(), SIGKILL);
@@ -202,7 +202,7 @@ TEST_F(ProtocolSettings, AChangeTheApiSavedIsNotWrittenAgain) {
         std::to_string(body.size()) + "\r\n\r\n" + body);
     c.wait_closed(5000);
   }
-  ASSERT_NE(read_file(config).find("\"park.az_deg\": 90,"), std::string::npos);
+  ASSERT_NE(read_file(config).find("\"park.az_deg\": 90\n"), std::string::npos);
   std::this_thread::sleep_for(std::chrono::milliseconds(400));  // past the quiet time
   ASSERT_EQ(daemon->terminate(), 0);
   EXPECT_EQ(count(daemon->output(), "rotord: settings saved to"), 0) << daemon->output();
