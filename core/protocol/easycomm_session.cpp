@@ -181,6 +181,16 @@ void EasycommSession::run_token(std::string_view token, std::string_view& rest, 
   auto is = [&](std::string_view prefix) { return starts_with(token, prefix); };
   const std::string_view value = token.size() > 2 ? token.substr(2) : std::string_view();
 
+  // Moves, park, reset and register writes: refused to a read-only client
+  // (access.control_networks) with an alarm. SA and SE (stop) still work.
+  const bool changes_state = text::iequals(token, "PARK") || text::iequals(token, "RESET") ||
+                             is("ML") || is("MR") || is("MU") || is("MD") || is("VL") || is("VR") ||
+                             is("VU") || is("VD") || is("CW");
+  if (changes_state && !may_control(controller_.settings())) {
+    if (is("CW") && value.empty()) next_token(rest);  // the register, as its own token
+    return alarm(out, "DENIED");
+  }
+
   if (text::iequals(token, "PARK")) {
     const Error e = controller_.park();
     if (e != Error::kOk) alarm(out, alarm_reason(e));
@@ -236,6 +246,8 @@ void EasycommSession::write_config(std::string_view arg, ByteSink& out) {
   if (comma == std::string_view::npos) return alarm(out, "SYNTAX");
   const std::optional<Id> id = find_register(arg.substr(0, comma));
   if (!id) return alarm(out, "UNKNOWN");
+  // Secrets and the access rules are written through the web or REST only.
+  if (!settings::line_writable(*id)) return alarm(out, "DENIED");
   // A value that breaks a cross-setting rule (a min above its max) is undone.
   if (controller_.settings().update_from_text(*id, arg.substr(comma + 1)).error != Error::kOk)
     alarm(out, "RANGE");
@@ -249,7 +261,9 @@ void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
   } else if (request.stop_el && controller_.has_el()) {
     controller_.move(AxisId::kEl, Direction::kNone);
   }
-  if (request.set_az_deg || request.set_el_deg) {
+  if ((request.set_az_deg || request.set_el_deg) && !may_control(controller_.settings())) {
+    alarm(out, "DENIED");
+  } else if (request.set_az_deg || request.set_el_deg) {
     std::optional<float> el = request.set_el_deg;
     // An azimuth-only rotator ignores the elevation field Hamlib always sends.
     if (!controller_.has_el()) el.reset();

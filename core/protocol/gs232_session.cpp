@@ -106,6 +106,12 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
   if (line.empty()) return;
   const char cmd = upper(line[0]);
   const std::string_view rest = line.substr(1);
+  // Turning, speed, timed lists, calibration and P36/P45: refused with the
+  // controller's error to a read-only client (access.control_networks).
+  // S, A and E (stop) are not among them.
+  if (std::string_view("MWRLUDXTOFP").find(cmd) != std::string_view::npos &&
+      !may_control(controller_.settings()))
+    return out.write(kError);
   if (cmd == 'M' || cmd == 'W') return position_command(cmd == 'W', rest, out);
 
   // Every other command is a letter and at most three characters; spaces

@@ -48,6 +48,9 @@ struct Command {
   bool returns_values;
   /// send_cmd takes the rest of the line as its one argument.
   bool line_argument;
+  /// Moves the rotator or changes a setting: refused to a read-only client
+  /// (access::may_control). Stop is not among them: anyone may stop.
+  bool changes_state;
 };
 
 const Command* find_command(unsigned char code);

@@ -330,6 +330,8 @@ HamlibError RotctldSession::set_conf(std::string_view token, std::string_view te
   // Any key of the settings table works too ("C park.az_deg 180").
   if (!id) id = settings::find(token);
   if (!id) return HamlibError::kInvalid;
+  // Secrets and the access rules are written through the web or REST only.
+  if (!settings::line_writable(*id)) return HamlibError::kRejected;
   // A value that breaks a cross-setting rule (a minimum above its maximum) is undone.
   if (s.update_from_text(*id, text).error != Error::kOk) return HamlibError::kInvalid;
   return HamlibError::kOk;

@@ -249,7 +249,13 @@ void RotctldSession::run(ByteSink& out) {
     }
     reply_.put(separator_);
   }
-  const HamlibError e = arg_too_long_ ? HamlibError::kInvalid : execute(command);
+  // A read-only client (access.control_networks) gets RIG_ERJCTED, which
+  // rotctl prints as "Command rejected by the rotator"; "V ?" only lists.
+  const bool refused =
+      command.changes_state && arg(0) != "?" && !may_control(controller_.settings());
+  const HamlibError e = arg_too_long_ ? HamlibError::kInvalid
+                        : refused     ? HamlibError::kRejected
+                                      : execute(command);
   if (e != HamlibError::kOk) {
     reply_.format("RPRT -%d\n", static_cast<int>(e));
   } else if (extended_ || !command.returns_values) {

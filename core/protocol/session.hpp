@@ -1,6 +1,8 @@
 #pragma once
 #include <string_view>
 
+#include "access/line_access.hpp"
+#include "access/peer.hpp"
 #include "util/time.hpp"
 
 namespace rotord {
@@ -31,6 +33,20 @@ class Session {
   /// The client asked to end the session (rotctld `q`); the transport closes
   /// after flushing.
   virtual bool wants_close() const { return false; }
+
+  /// Who the client is; the transport calls this once, before the first byte.
+  void set_peer(const access::Peer& peer) { peer_ = peer; }
+  const access::Peer& peer() const { return peer_; }
+
+ protected:
+  /// Whether this client may change anything (access::may_control); line
+  /// protocols refuse every other command but STOP in their own way when not.
+  bool may_control(const settings::Settings& settings) const {
+    return access::may_control(settings, peer_);
+  }
+
+ private:
+  access::Peer peer_;
 };
 
 }  // namespace protocol

@@ -131,6 +131,16 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
   Reply reply;
   auto is = [&](const char* word) { return text::iequals(name, word); };
 
+  // The commands that move the rotator or change a setting; a read-only
+  // client (access.control_networks) gets an error for them. STOP is not
+  // among them.
+  if (has_arg && !may_control(controller_.settings())) {
+    for (const char* word : {"AZ", "EL", "MOVE", "SPEED", "AZOFFSET"})
+      if (is(word)) return reply.send(out, "ERROR NOT ALLOWED");
+  }
+  if ((is("PARK") || is("RESET")) && !may_control(controller_.settings()))
+    return reply.send(out, "ERROR NOT ALLOWED");
+
   if (is("AZ") && has_arg) {
     float az = 0;
     if (!parse_float(arg, az)) return reply.send(out, "ERROR INVALID AZIMUTH");

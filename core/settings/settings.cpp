@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "settings/gpiod_rules.hpp"
+#include "settings/network_list.hpp"
 #include "settings/pin_rules.hpp"
 #include "settings/pot_table.hpp"
 #include "util/text.hpp"
@@ -50,6 +51,8 @@ TextFormat text_format(Id id) {
   if (unit == "ipv4") return TextFormat::kIpv4;
   if (unit == "label") return TextFormat::kLabel;
   if (unit == "hostname") return TextFormat::kHostname;
+  if (unit == "hostlist") return TextFormat::kHostList;
+  if (unit == "networks") return TextFormat::kNetworks;
   return TextFormat::kText;
 }
 
@@ -155,17 +158,30 @@ Rejection validate_text(Id id, std::string_view value) {
       if (!is_label(value))
         return {Error::kInvalidArgument, "letters, digits and '-' only, not first or last"};
       break;
-    case TextFormat::kHostname: {
-      std::string_view rest = value;
-      for (;;) {
-        const std::size_t dot = rest.find('.');
-        if (!is_label(rest.substr(0, dot)))
-          return {
-              Error::kInvalidArgument,
-              "not a host name (labels of letters, digits and '-' joined by dots) or IPv4 address"};
-        if (dot == std::string_view::npos) break;
-        rest.remove_prefix(dot + 1);
-      }
+    case TextFormat::kHostname:
+      if (!is_hostname(value))
+        return {
+            Error::kInvalidArgument,
+            "not a host name (labels of letters, digits and '-' joined by dots) or IPv4 address"};
+      break;
+    case TextFormat::kHostList: {
+      bool bad = false;
+      for_each_list_item(value, [&bad](std::string_view name) { bad = bad || !is_hostname(name); });
+      if (bad)
+        return {Error::kInvalidArgument,
+                "host names (letters, digits, '-' and dots) separated by commas or spaces"};
+      break;
+    }
+    case TextFormat::kNetworks: {
+      bool bad = false;
+      for_each_list_item(value, [&bad](std::string_view item) {
+        Ipv4Network ignored;
+        bad = bad || !parse_ipv4_network(item, ignored);
+      });
+      if (bad)
+        return {Error::kInvalidArgument,
+                "IPv4 networks such as 192.168.1.0/24 or addresses such as 10.0.0.5, separated "
+                "by commas or spaces"};
       break;
     }
   }

@@ -20,7 +20,10 @@ enum class Type : std::uint8_t { kFloat, kInt, kBool, kEnum, kText };
 /// export, protocol get commands) see kSecretMask when a value is stored and
 /// "" when not; writing kSecretMask keeps the stored value, so a document read
 /// from the API can be written back without wiping the secret.
-enum Flags : std::uint8_t { kNone = 0, kRestart = 1, kSecret = 2 };
+/// kWebOnly: written only through the web page and the REST API (behind
+/// the login when access control is on), never through a line protocol; the
+/// access rules themselves, so a client cannot widen its own rights.
+enum Flags : std::uint8_t { kNone = 0, kRestart = 1, kSecret = 2, kWebOnly = 4 };
 
 inline constexpr const char* kSecretMask = "********";
 
@@ -68,6 +71,8 @@ enum class TextFormat : std::uint8_t {
   kIpv4,      ///< "ipv4": dotted quad, 0-255 each, no leading zeros
   kLabel,     ///< "label": one DNS label (letters, digits, '-'), a host name without domain
   kHostname,  ///< "hostname": dotted DNS labels, or a dotted quad
+  kHostList,  ///< "hostlist": host names separated by commas or spaces
+  kNetworks,  ///< "networks": IPv4 networks (a.b.c.d/n) or addresses, comma or space separated
 };
 
 /// One row of the settings table.
@@ -97,6 +102,11 @@ inline bool is_text(Id id) {
 }
 inline bool is_secret(Id id) {
   return (def(id).flags & kSecret) != 0;
+}
+/// Whether a line protocol (rotctld `C`, Easycomm `CW`) may write the row:
+/// not secrets, not the access rules.
+inline bool line_writable(Id id) {
+  return (def(id).flags & (kSecret | kWebOnly)) == 0;
 }
 
 /// Result of a rejected value, with a human-readable reason for forms and

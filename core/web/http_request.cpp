@@ -40,6 +40,7 @@ void HttpRequestParser::reset() {
   body_length_ = 0;
   content_length_ = 0;
   has_content_length_ = false;
+  has_host_ = false;
   request_ = HttpRequest{};
   error_status_ = 0;
   error_message_ = "";
@@ -218,6 +219,16 @@ bool HttpRequestParser::parse_header(std::string_view name, std::string_view val
     request_.json_body = text::iequals(media, "application/json");
   } else if (text::iequals(name, "If-None-Match")) {
     request_.if_none_match = value;
+  } else if (text::iequals(name, "Host")) {
+    // Two Host headers are a request smuggling attempt (RFC 9112 3.2).
+    if (has_host_) {
+      fail(400, "more than one Host header");
+      return false;
+    }
+    has_host_ = true;
+    request_.host = value;
+  } else if (text::iequals(name, "Origin")) {
+    request_.origin = value;
   }
   return true;
 }

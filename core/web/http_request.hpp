@@ -15,6 +15,8 @@ struct HttpRequest {
   bool keep_alive = true;
   bool json_body = false;  ///< Content-Type: application/json
   std::string_view if_none_match;
+  std::string_view host;    ///< the Host header as sent (name[:port]); empty when absent
+  std::string_view origin;  ///< the Origin header (scheme://host[:port]); empty when absent
   std::string_view body;
 };
 
@@ -64,6 +66,7 @@ class HttpRequestParser {
   std::size_t body_length_ = 0;
   std::size_t content_length_ = 0;
   bool has_content_length_ = false;
+  bool has_host_ = false;
   HttpRequest request_;
   int error_status_ = 0;
   const char* error_message_ = "";

@@ -3,6 +3,18 @@
 #include <cstdio>
 
 namespace rotord::web {
+namespace {
+
+/// On every response: no other site may frame the pages (clickjacking), the
+/// pages load nothing from elsewhere, and types are not sniffed.
+constexpr std::string_view kSecurityHeaders =
+    "X-Frame-Options: DENY\r\n"
+    "Content-Security-Policy: default-src 'self'; img-src 'self' data:; "
+    "frame-ancestors 'none'; base-uri 'none'; form-action 'self'\r\n"
+    "X-Content-Type-Options: nosniff\r\n"
+    "Referrer-Policy: no-referrer\r\n";
+
+}  // namespace
 
 const char* status_text(int status) {
   switch (status) {
@@ -16,6 +28,10 @@ const char* status_text(int status) {
       return "Bad Request";
     case 404:
       return "Not Found";
+    case 401:
+      return "Unauthorized";
+    case 403:
+      return "Forbidden";
     case 405:
       return "Method Not Allowed";
     case 408:
@@ -28,6 +44,8 @@ const char* status_text(int status) {
       return "URI Too Long";
     case 415:
       return "Unsupported Media Type";
+    case 421:
+      return "Misdirected Request";
     case 422:
       return "Unprocessable Content";
     case 431:
@@ -47,7 +65,9 @@ const char* status_text(int status) {
 
 void write_head(protocol::ByteSink& out, int status, std::string_view content_type, long length,
                 const ResponseOptions& options) {
-  char head[256];
+  // Room for the security headers and an asset's: one write, one segment.
+  // 448 bytes of the Pico W's 4 KB stack, on a path measured at about 2 KB.
+  char head[448];
   int n = std::snprintf(head, sizeof(head), "HTTP/1.1 %d %s\r\nContent-Type: %.*s\r\n", status,
                         status_text(status), static_cast<int>(content_type.size()),
                         content_type.data());
@@ -62,7 +82,8 @@ void write_head(protocol::ByteSink& out, int status, std::string_view content_ty
   if (n > 0) len += static_cast<std::size_t>(n);
   // Headers, extra headers and the blank line go out as one write: one segment
   // for the common small response.
-  if (len + options.extra_headers.size() + 2 <= sizeof(head)) {
+  if (len + kSecurityHeaders.size() + options.extra_headers.size() + 2 <= sizeof(head)) {
+    for (char c : kSecurityHeaders) head[len++] = c;
     for (char c : options.extra_headers) head[len++] = c;
     head[len++] = '\r';
     head[len++] = '\n';
@@ -70,6 +91,7 @@ void write_head(protocol::ByteSink& out, int status, std::string_view content_ty
     return;
   }
   out.write(std::string_view(head, len));
+  out.write(kSecurityHeaders);
   out.write(options.extra_headers);
   out.write("\r\n");
 }

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "web/assets.hpp"
+#include "web/host_check.hpp"
 #include "web/http_response.hpp"
 
 namespace rotord::web {
@@ -28,7 +29,17 @@ void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
 
 void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
   const ResponseOptions options{request.keep_alive, request.method == Method::kHead, {}};
-  if (request.path.substr(0, 5) == "/api/") {
+  // DNS rebinding: a foreign page whose name now points here still sends
+  // its own name as Host. 421: this server is not the one that name means.
+  if (!host_allowed(request.host, api_.settings(), api_.host_name())) {
+    send_error(out, 421,
+               "this controller is not known by that host name; add it to web.allowed_hosts",
+               options);
+  } else if (request.method != Method::kGet && request.method != Method::kHead &&
+             !origin_allowed(request.origin, request.host, api_.settings())) {
+    // A cross-site request: another site's page in the operator's browser.
+    send_error(out, 403, "cross-site request refused (Origin is not this controller)", options);
+  } else if (request.path.substr(0, 5) == "/api/") {
     switch (api_.handle(request, out, options)) {
       case Api::Outcome::kStartEvents:
         events_ = true;

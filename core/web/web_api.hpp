@@ -31,6 +31,9 @@ struct ApiContext {
   const char* version = "";
   /// GET /api/status time_utc; nullptr or an unknown time: null.
   const hal::WallClock* wall_clock = nullptr;
+  /// The host's own name (Linux: gethostname), a name the web may be reached
+  /// by besides net.hostname (host_check.hpp); nullptr on the Pico W.
+  const char* host_name = nullptr;
 };
 
 /// The REST API (docs/web_api.md) on the controller's command API. One per
@@ -46,6 +49,9 @@ class Api {
   static constexpr std::size_t kMaxDocumentBytes = 7168;
 
   explicit Api(const ApiContext& context) : ctx_(context) {}
+
+  const settings::Settings& settings() const { return ctx_.controller.settings(); }
+  const char* host_name() const { return ctx_.host_name; }
 
   enum class Outcome : unsigned char { kDone, kStartEvents, kClose };
   /// Answers one request whose path starts with /api/. kStartEvents: the

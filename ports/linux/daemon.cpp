@@ -1,5 +1,7 @@
 #include "daemon.hpp"
 
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
 
@@ -17,6 +19,9 @@ Daemon::~Daemon() {
 }
 
 bool Daemon::setup() {
+  // The web answers to the host's own name (host_check.hpp).
+  char name[256] = "";
+  if (::gethostname(name, sizeof(name) - 1) == 0) host_name_ = name;
   if (options_.hw == "gpiod") {
     if (options_.speedup != 1.0 || options_.clock != "wall") {
       std::fprintf(
@@ -140,8 +145,9 @@ bool Daemon::load_settings(const sim::Profile* profile) {
 
 bool Daemon::start_controller() {
   controller_ = std::make_unique<Controller>(settings_, axis_io(AxisId::kAz), axis_io(AxisId::kEl));
-  api_ = std::make_unique<web::Api>(
-      web::ApiContext{*controller_, saver_.get(), &defaults_, this, ROTORD_VERSION, &wall_clock_});
+  api_ =
+      std::make_unique<web::Api>(web::ApiContext{*controller_, saver_.get(), &defaults_, this,
+                                                 ROTORD_VERSION, &wall_clock_, host_name_.c_str()});
 
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);

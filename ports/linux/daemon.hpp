@@ -70,6 +70,7 @@ class Daemon final : private web::RebootHook {
   asio::signal_set signals_;
   settings::Settings settings_;
   SystemWallClock wall_clock_;   ///< GET /api/status time_utc
+  std::string host_name_;        ///< gethostname(): a name the web answers to
   settings::Settings defaults_;  ///< table defaults + the profile: what a reset restores
   std::unique_ptr<FileStorage> storage_;
   std::vector<char> saver_buf_;

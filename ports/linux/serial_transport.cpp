@@ -112,6 +112,12 @@ std::optional<SerialSpec> parse_serial_spec(const std::string& text, bool pty, s
   return spec;
 }
 
+std::unique_ptr<protocol::Session> SerialTransport::new_session() const {
+  std::unique_ptr<protocol::Session> session = make_session_();
+  session->set_peer(access::Peer::line());
+  return session;
+}
+
 SerialTransport::SerialTransport(asio::io_context& io, std::string name, SerialSpec spec,
                                  int default_baud, SessionFactory make_session)
     : io_(io),
@@ -119,7 +125,7 @@ SerialTransport::SerialTransport(asio::io_context& io, std::string name, SerialS
       spec_(std::move(spec)),
       baud_(spec_.baud > 0 ? spec_.baud : default_baud),
       make_session_(std::move(make_session)),
-      session_(make_session_()),
+      session_(new_session()),
       line_(io),
       retry_timer_(io) {}
 
@@ -208,7 +214,7 @@ void SerialTransport::read() {
                           session_->receive(std::string_view(buffer_.data(), n), *this);
                           // A session that ends itself (rotctld `q`) starts
                           // afresh: the line stays, the next client gets a new one.
-                          if (session_->wants_close()) session_ = make_session_();
+                          if (session_->wants_close()) session_ = new_session();
                           read();
                         });
 }
@@ -272,13 +278,13 @@ void SerialTransport::write(std::string_view bytes) {
 
 void SerialTransport::set_session_factory(SessionFactory make_session) {
   make_session_ = std::move(make_session);
-  session_ = make_session_();
+  session_ = new_session();
 }
 
 void SerialTransport::poll(Millis now) {
   if (!line_.is_open()) return;
   session_->poll(now, *this);
-  if (session_->wants_close()) session_ = make_session_();
+  if (session_->wants_close()) session_ = new_session();
 }
 
 }  // namespace rotord::linux_port

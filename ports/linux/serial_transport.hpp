@@ -67,6 +67,8 @@ class SerialTransport final : private protocol::ByteSink {
   void on_line_error(const std::error_code& ec);
   void schedule_reopen();
   void close_line();
+  /// A session from the factory, told it is on a line (access.serial_control).
+  std::unique_ptr<protocol::Session> new_session() const;
 
   asio::io_context& io_;
   std::string name_;

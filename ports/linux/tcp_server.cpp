@@ -4,6 +4,22 @@
 #include <vector>
 
 namespace rotord::linux_port {
+namespace {
+
+/// The client's address, for the access rules (access.control_networks). An
+/// IPv4 client of an IPv6 socket (::ffff:a.b.c.d) is an IPv4 client.
+access::Peer peer_of(const asio::ip::tcp::socket& socket) {
+  std::error_code ec;
+  const asio::ip::address address = socket.remote_endpoint(ec).address();
+  if (ec) return {access::Peer::Kind::kOther, 0};
+  if (address.is_v4()) return access::Peer::from_ipv4(address.to_v4().to_uint());
+  if (address.is_v6() && address.to_v6().is_v4_mapped())
+    return access::Peer::from_ipv4(
+        asio::ip::make_address_v4(asio::ip::v4_mapped, address.to_v6()).to_uint());
+  return {access::Peer::Kind::kOther, 0};
+}
+
+}  // namespace
 
 class TcpServer::Connection final : public protocol::ByteSink,
                                     public std::enable_shared_from_this<Connection> {
@@ -13,6 +29,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
       : server_(server), socket_(std::move(socket)), session_(std::move(session)) {
     std::error_code ignored;
     socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
+    session_->set_peer(peer_of(socket_));
   }
 
   void start() { read(); }

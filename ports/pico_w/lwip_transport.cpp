@@ -26,6 +26,15 @@ void detach(tcp_pcb* pcb) {
   tcp_poll(pcb, nullptr, 0);
 }
 
+/// The client's address, for the access rules (access.control_networks).
+access::Peer peer_of(const tcp_pcb* pcb) {
+#if LWIP_IPV4
+  if (IP_IS_V4_VAL(pcb->remote_ip))
+    return access::Peer::from_ipv4(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(&pcb->remote_ip))));
+#endif
+  return {access::Peer::Kind::kOther, 0};
+}
+
 }  // namespace
 
 struct TcpServer::Glue {
@@ -40,6 +49,7 @@ struct TcpServer::Glue {
     c->server_ = server;
     c->pcb_ = pcb;
     c->session_ = session;
+    session->set_peer(peer_of(pcb));
     c->reset_output();
     // Replies are small and clients (Gpredict) wait for each one: no Nagle
     // delay, like TCP_NODELAY on Linux.

@@ -8,11 +8,13 @@ namespace rotord::usb_port {
 UsbCdcLink::UsbCdcLink(CdcPort& port, SessionMaker& sessions)
     : port_(port), sessions_(sessions), opens_(port.opens()) {
   session_ = &sessions_.renew();
+  session_->set_peer(access::Peer::line());
   ++stats_.sessions;
 }
 
 void UsbCdcLink::restart(bool drop_input) {
   session_ = &sessions_.renew();
+  session_->set_peer(access::Peer::line());
   ++stats_.sessions;
   heard_ = false;
   head_ = tail_ = 0;
@@ -70,6 +72,7 @@ void UsbCdcLink::pump_input() {
     // stays, as on Linux's serial transport.
     if (session_->wants_close()) {
       session_ = &sessions_.renew();
+      session_->set_peer(access::Peer::line());
       ++stats_.sessions;
     }
   }

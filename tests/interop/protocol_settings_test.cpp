@@ -197,7 +197,7 @@ TEST_F(ProtocolSettings, AChangeTheApiSavedIsNotWrittenAgain) {
     TcpClient c(daemon->ports().web);
     const std::string body = R"({"park.az_deg": 90})";
     c.send(
-        "POST /api/settings HTTP/1.1\r\nHost: x\r\nConnection: close\r\n"
+        "POST /api/settings HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n"
         "Content-Type: application/json\r\nContent-Length: " +
         std::to_string(body.size()) + "\r\n\r\n" + body);
     c.wait_closed(5000);

@@ -153,7 +153,7 @@ TEST_F(WebApi, EventStreamSendsAtLeastFivePerSecondWhileMoving) {
   start();
   ASSERT_EQ(http(port, "POST", "/api/goto", R"({"az": 400})").status, 200);
   TcpClient c(port);
-  c.send("GET /api/events HTTP/1.1\r\nHost: x\r\nAccept: text/event-stream\r\n\r\n");
+  c.send("GET /api/events HTTP/1.1\r\nHost: localhost\r\nAccept: text/event-stream\r\n\r\n");
   std::string data;
   const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(1);
   while (std::chrono::steady_clock::now() < end) data += c.recv_once(100);
@@ -221,6 +221,8 @@ TEST_F(WebApi, TextSettingsSecretsAreNeverReadBackAndTheMaskKeepsThem) {
     TcpClient rotctl(daemon->ports().rotctld);
     ASSERT_TRUE(rotctl.connected());
     EXPECT_EQ(rotctl.ask("\\get_conf wifi.password\n"), "wifi.password=********");
+    // Never written through a line protocol (issue 12): RIG_ERJCTED.
+    EXPECT_EQ(rotctl.ask("C wifi.password attacker-pass\n"), "RPRT -9");
   }
 
   // The whole document as read (an export imported again) keeps the password.

@@ -49,7 +49,7 @@ class HttpApi : public ::testing::Test {
     return parse_responses(sink.data);
   }
   HttpResponse get(const std::string& path) {
-    auto rs = send("GET " + path + " HTTP/1.1\r\nHost: x\r\n\r\n");
+    auto rs = send("GET " + path + " HTTP/1.1\r\nHost: localhost\r\n\r\n");
     return rs.empty() ? HttpResponse{} : rs[0];
   }
   HttpResponse post(const std::string& path, const std::string& body,
@@ -280,7 +280,7 @@ TEST_F(HttpApi, SchemaComesFromTheTable) {
   EXPECT_EQ(res.status, 200);
   EXPECT_TRUE(JsonObjectReader(res.body).valid());
   EXPECT_TRUE(has(res, R"("groups":["Rotator","Azimuth","Elevation","Magnetometer","Pins",)"
-                       R"("Raspberry Pi","GS-232","USB","Network"])"))
+                       R"("Raspberry Pi","GS-232","USB","Network","Access"])"))
       << res.body;
   EXPECT_TRUE(has(res, R"({"key":"az.drive","type":"enum","unit":"","min":0,"max":3,)"
                        R"("default":"relay","group":"Azimuth")"));

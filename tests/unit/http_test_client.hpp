@@ -27,7 +27,7 @@ struct HttpResponse {
 /// The bytes of one POST request with a body, as a browser sends it.
 inline std::string post_request(const std::string& path, const std::string& body,
                                 const std::string& type = "application/json") {
-  return "POST " + path + " HTTP/1.1\r\nHost: x\r\nContent-Type: " + type +
+  return "POST " + path + " HTTP/1.1\r\nHost: localhost\r\nContent-Type: " + type +
          "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
 }
 

@@ -1,0 +1,41 @@
+#pragma once
+// The list settings of access control: host names (web.allowed_hosts) and
+// IPv4 networks (access.control_networks), items separated by commas or
+// spaces. Parsed where they are used, per request, so a change applies at
+// once and no parsed copy has to be kept in step.
+#include <cstdint>
+#include <string_view>
+
+namespace rotord::settings {
+
+/// Calls `each(item)` for every non-empty item of a comma- or space-separated list.
+template <typename Each>
+void for_each_list_item(std::string_view list, Each&& each) {
+  while (!list.empty()) {
+    const std::size_t end = list.find_first_of(", ");
+    const std::string_view item = list.substr(0, end);
+    if (!item.empty()) each(item);
+    if (end == std::string_view::npos) break;
+    list.remove_prefix(end + 1);
+  }
+}
+
+/// An IPv4 network, address and mask in host order.
+struct Ipv4Network {
+  std::uint32_t address = 0;
+  std::uint32_t mask = 0;
+  bool contains(std::uint32_t ipv4) const { return (ipv4 & mask) == (address & mask); }
+};
+
+/// "192.168.1.0/24" or "10.0.0.5" (a /32). Host bits may be set ("10.0.0.5/8"
+/// is 10.0.0.0/8), as the address a user knows is often their own.
+bool parse_ipv4_network(std::string_view text, Ipv4Network& out);
+
+/// Whether `ipv4` (host order) is in one of the list's networks.
+bool in_network_list(std::string_view list, std::uint32_t ipv4);
+
+/// RFC 1123 host name: labels of letters, digits and '-' joined by dots (a
+/// dotted quad passes too). A trailing dot is not accepted.
+bool is_hostname(std::string_view name);
+
+}  // namespace rotord::settings

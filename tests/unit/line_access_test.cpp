@@ -1,0 +1,171 @@
+// Access control on the line protocols (issue 12): a client outside
+// access.control_networks gets its queries answered and STOP obeyed, and
+// every command that moves the rotator or changes a setting refused in its
+// protocol's own way; a line port follows access.serial_control.
+#include "access/line_access.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "fake_rotator.hpp"
+#include "protocol/easycomm_session.hpp"
+#include "protocol/gs232_session.hpp"
+#include "protocol/rotctld_session.hpp"
+#include "protocol/seed_session.hpp"
+#include "protocol/wrc_session.hpp"
+#include "settings/network_list.hpp"
+#include "string_sink.hpp"
+
+namespace rotord {
+namespace {
+
+using access::Peer;
+using settings::Id;
+
+constexpr std::uint32_t ip(unsigned a, unsigned b, unsigned c, unsigned d) {
+  return (a << 24) | (b << 16) | (c << 8) | d;
+}
+
+TEST(NetworkList, ParsesNetworksAndAddresses) {
+  settings::Ipv4Network n;
+  ASSERT_TRUE(settings::parse_ipv4_network("192.168.1.0/24", n));
+  EXPECT_TRUE(n.contains(ip(192, 168, 1, 77)));
+  EXPECT_FALSE(n.contains(ip(192, 168, 2, 1)));
+  ASSERT_TRUE(settings::parse_ipv4_network("10.0.0.5", n));
+  EXPECT_TRUE(n.contains(ip(10, 0, 0, 5)));
+  EXPECT_FALSE(n.contains(ip(10, 0, 0, 6)));
+  ASSERT_TRUE(settings::parse_ipv4_network("10.1.2.3/8", n));  // host bits ignored
+  EXPECT_TRUE(n.contains(ip(10, 200, 0, 1)));
+  ASSERT_TRUE(settings::parse_ipv4_network("0.0.0.0/0", n));
+  EXPECT_TRUE(n.contains(ip(8, 8, 8, 8)));
+  for (const char* bad : {"", "/24", "10.0.0.0/", "10.0.0.0/33", "10.0.0.0/-1", "10.0.0/8",
+                          "10.0.0.0/8/8", "256.0.0.0/8", "fe80::/64", "10.0.0.0/ 8"})
+    EXPECT_FALSE(settings::parse_ipv4_network(bad, n)) << bad;
+  EXPECT_TRUE(settings::in_network_list("10.0.0.0/8, 192.168.1.5", ip(192, 168, 1, 5)));
+  EXPECT_TRUE(settings::in_network_list("10.0.0.0/8,192.168.1.5", ip(10, 9, 9, 9)));
+  EXPECT_FALSE(settings::in_network_list("10.0.0.0/8 192.168.1.5", ip(192, 168, 1, 6)));
+}
+
+TEST(NetworkList, TheSettingsRefuseMalformedLists) {
+  settings::Settings s;
+  EXPECT_EQ(s.set_text(Id::kAccessControlNetworks, "192.168.1.0/24, 10.0.0.5").error, Error::kOk);
+  EXPECT_NE(s.set_text(Id::kAccessControlNetworks, "192.168.1.0/24, nope").error, Error::kOk);
+  EXPECT_EQ(s.text(Id::kAccessControlNetworks), "192.168.1.0/24, 10.0.0.5");
+  EXPECT_EQ(s.set_text(Id::kWebAllowedHosts, "shack.example.org, rotor").error, Error::kOk);
+  EXPECT_NE(s.set_text(Id::kWebAllowedHosts, "bad_name!").error, Error::kOk);
+  EXPECT_FALSE(settings::line_writable(Id::kAccessControlNetworks));
+  EXPECT_FALSE(settings::line_writable(Id::kWebAllowedHosts));
+  EXPECT_FALSE(settings::line_writable(Id::kAccessLineControl));
+  EXPECT_FALSE(settings::line_writable(Id::kWifiPassword));
+  EXPECT_TRUE(settings::line_writable(Id::kParkAzDeg));
+}
+
+TEST(LineAccess, WhoMayControl) {
+  settings::Settings s;
+  const Peer lan = Peer::from_ipv4(ip(192, 168, 1, 20));
+  const Peer wan = Peer::from_ipv4(ip(203, 0, 113, 9));
+  const Peer v6{Peer::Kind::kOther, 0};
+  // Off by default: everyone, as before access control.
+  EXPECT_TRUE(access::may_control(s, lan));
+  EXPECT_TRUE(access::may_control(s, wan));
+  EXPECT_TRUE(access::may_control(s, v6));
+  ASSERT_EQ(s.set_text(Id::kAccessControlNetworks, "192.168.1.0/24").error, Error::kOk);
+  EXPECT_TRUE(access::may_control(s, lan));
+  EXPECT_FALSE(access::may_control(s, wan));
+  EXPECT_FALSE(access::may_control(s, v6));
+  EXPECT_TRUE(access::may_control(s, Peer{}));  // no transport said: a session on its own
+  EXPECT_TRUE(access::may_control(s, Peer::line()));
+  s.set(Id::kAccessLineControl, 0);
+  EXPECT_FALSE(access::may_control(s, Peer::line()));
+}
+
+/// One session of each protocol for a client outside the allow-list.
+class ReadOnly : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_EQ(r.settings.set_text(Id::kAccessControlNetworks, "10.0.0.0/8").error, Error::kOk);
+    r.run_ms(50);
+  }
+  template <typename Session>
+  std::string ask(Session& session, const std::string& bytes) {
+    session.set_peer(Peer::from_ipv4(ip(192, 168, 1, 20)));
+    testing::StringSink sink;
+    session.receive(bytes, sink);
+    return sink.data;
+  }
+  /// Nothing moved and no setting changed.
+  void expect_untouched(std::uint32_t revision) {
+    r.run_ms(200);
+    EXPECT_FALSE(r.controller->status().moving());
+    EXPECT_FALSE(r.controller->status().az.has_target);
+    EXPECT_EQ(r.settings.revision(), revision);
+  }
+  testing::FakeRotator r;
+};
+
+TEST_F(ReadOnly, RotctldAnswersQueriesAndRefusesTheRestWithRigErjcted) {
+  protocol::RotctldSession s(*r.controller, "9");
+  const auto revision = r.settings.revision();
+  EXPECT_EQ(ask(s, "p\n"), "100.00\n20.00\n");
+  for (const char* command :
+       {"P 200 30\n", "K\n", "R 1\n", "M 8 50\n", "V SPEED 20\n", "C park.az_deg 10\n"})
+    EXPECT_EQ(ask(s, command), "RPRT -9\n") << command;
+  EXPECT_EQ(ask(s, "S\n"), "RPRT 0\n");
+  expect_untouched(revision);
+}
+
+TEST_F(ReadOnly, Gs232RefusesWithItsError) {
+  protocol::Gs232Session s(*r.controller);
+  const auto revision = r.settings.revision();
+  EXPECT_EQ(ask(s, "C\r"), "AZ=100\r\n");
+  for (const char* command :
+       {"M200\r", "W200 030\r", "R\r", "L\r", "U\r", "D\r", "X2\r", "O\r", "F2\r", "T\r"})
+    EXPECT_EQ(ask(s, command), "?>\r\n") << command;
+  EXPECT_EQ(ask(s, "S\r"), "\r");
+  EXPECT_EQ(ask(s, "A\r"), "\r");
+  expect_untouched(revision);
+}
+
+TEST_F(ReadOnly, EasycommRefusesWithAnAlarm) {
+  protocol::EasycommSession s(*r.controller, "9");
+  const auto revision = r.settings.revision();
+  EXPECT_EQ(ask(s, "AZ EL\n"), "AZ100.0 EL20.0\n");
+  for (const char* command :
+       {"AZ200.0 EL30.0\n", "MR\n", "VL500\n", "PARK\n", "RESET\n", "CW7,10\n", "CW 7,10\n"})
+    EXPECT_EQ(ask(s, command), "ALDENIED\n") << command;
+  EXPECT_EQ(ask(s, "SA SE\n"), "");
+  expect_untouched(revision);
+}
+
+TEST_F(ReadOnly, WrcRefusesWithAnError) {
+  protocol::WrcSession s(*r.controller, "9");
+  const auto revision = r.settings.revision();
+  EXPECT_EQ(ask(s, "AZ?\n"), "OK AZ 100.0\r\n");
+  for (const char* command :
+       {"AZ 200\n", "EL 30\n", "MOVE CW\n", "SPEED 20\n", "PARK\n", "RESET\n", "AZOFFSET 5\n"})
+    EXPECT_EQ(ask(s, command), "ERROR NOT ALLOWED\r\n") << command;
+  EXPECT_EQ(ask(s, "STOP\n"), "OK STOP\r\n");
+  expect_untouched(revision);
+}
+
+TEST_F(ReadOnly, SeedRefusesWithAnError) {
+  protocol::SeedSession s(*r.controller);
+  const auto revision = r.settings.revision();
+  EXPECT_EQ(ask(s, "$E\n"), "$OK,E\r\n");
+  EXPECT_EQ(ask(s, "$R,cw\n"), "$ERR,DENIED\r\n");
+  EXPECT_EQ(ask(s, "$S,20\n"), "$ERR,DENIED\r\n");
+  EXPECT_EQ(ask(s, "$D\n"), "$OK,D\r\n");
+  expect_untouched(revision);
+}
+
+TEST_F(ReadOnly, AClientInTheListControls) {
+  protocol::RotctldSession s(*r.controller, "9");
+  s.set_peer(Peer::from_ipv4(ip(10, 1, 2, 3)));
+  testing::StringSink sink;
+  s.receive("P 200 30\n", sink);
+  EXPECT_EQ(sink.data, "RPRT 0\n");
+}
+
+}  // namespace
+}  // namespace rotord
