@@ -164,6 +164,12 @@ void Axis::clear_fault() {
   publish();
 }
 
+void Axis::emergency_stop() {
+  if (fault_ == AxisFault::kEstop) return;
+  latch_fault(AxisFault::kEstop);
+  publish();
+}
+
 void Axis::latch_fault(AxisFault fault) {
   seq_.cancel();
   out_.all_off();

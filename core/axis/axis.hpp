@@ -45,6 +45,8 @@ class Axis {
   /// Move in one direction until stop, a limit, or `until` (0 = no dead-man).
   Error jog(Direction dir, Millis until);
   void stop();
+  /// All outputs off at once, no soft stop, and an ESTOP fault latched.
+  void emergency_stop();
   void clear_fault();
   void set_speed_pct(int pct);
   int speed_pct() const { return speed_pct_; }

@@ -17,6 +17,7 @@ enum class AxisFault : std::uint8_t {
   kSensorJump,   ///< implausible jumps between readings
   kTimeout,      ///< a single move took too long
   kNoSensor,     ///< the configured sensor is not fitted
+  kEstop,        ///< the emergency-stop input is (or was) active
 };
 
 const char* axis_state_name(AxisState state);

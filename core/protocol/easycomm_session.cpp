@@ -196,7 +196,10 @@ void EasycommSession::run_token(std::string_view token, std::string_view& rest, 
     if (e != Error::kOk) alarm(out, alarm_reason(e));
     return;
   }
-  if (text::iequals(token, "RESET")) return controller_.reset();
+  if (text::iequals(token, "RESET")) {
+    if (controller_.reset() != Error::kOk) alarm(out, "ESTOP");
+    return;
+  }
   if (is("ML")) return move(AxisId::kAz, Direction::kCcw, {}, out);
   if (is("MR")) return move(AxisId::kAz, Direction::kCw, {}, out);
   if (is("MU")) return move(AxisId::kEl, Direction::kCw, {}, out);

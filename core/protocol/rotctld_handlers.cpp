@@ -100,8 +100,7 @@ HamlibError RotctldSession::execute(const Command& command) {
     case Op::kReset: {
       long what = 0;  // ROT_RESET_ALL is 1; every value resets everything here
       if (!rotctld::scan_int(arg(0), what)) return HamlibError::kInvalid;
-      controller_.reset();
-      return HamlibError::kOk;
+      return from(controller_.reset());  // refused while the emergency stop is active
     }
     case Op::kMove:
       return move(arg(0), arg(1));

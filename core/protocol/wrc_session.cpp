@@ -210,7 +210,7 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
     return reply.send(out, "OK PARK");
   }
   if (is("RESET") && !has_arg) {
-    controller_.reset();
+    if (controller_.reset() != Error::kOk) return reply.send(out, "ERROR ESTOP");
     return reply.send(out, "OK RESET");
   }
   if (is("MONITOR") && has_arg) {

@@ -44,11 +44,25 @@ void Controller::begin(Millis now) {
   last_activity_ms_ = now;
   az_.begin(now);
   if (has_el_) el_.begin(now);
+  read_estop();
+}
+
+void Controller::read_estop() {
+  if (estop_ == nullptr) return;
+  // Not debounced: a stop acts on the first reading, and a normally-closed
+  // contact makes a broken wire a stop too.
+  const bool closed = estop_->active();
+  estop_active_ = settings_.b(Id::kEstopNormallyClosed) ? !closed : closed;
+  if (!estop_active_) return;
+  az_.emergency_stop();
+  if (has_el_) el_.emergency_stop();
+  mode_ = Mode::kIdle;
 }
 
 void Controller::tick(Millis now) {
   now_ = now;
   if (settings_.revision() != applied_revision_) apply_settings();
+  read_estop();
   apply_buttons(now);
   az_.tick(now);
   if (has_el_) el_.tick(now);
@@ -167,13 +181,15 @@ Error Controller::park() {
   return e;
 }
 
-void Controller::reset() {
+Error Controller::reset() {
   stop();
+  if (estop_active_) return Error::kFaulted;  // released first, then RESET
   az_.clear_fault();
   el_.clear_fault();
   speed_pct_ = settings_.i(Id::kSpeedPct);
   az_.set_speed_pct(speed_pct_);
   el_.set_speed_pct(speed_pct_);
+  return Error::kOk;
 }
 
 Error Controller::set_speed_pct(int pct) {

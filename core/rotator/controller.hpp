@@ -55,6 +55,13 @@ class Controller {
   void tick(Millis now);
   /// All outputs off (exit, signal, watchdog).
   void shutdown();
+  /// The emergency-stop switch (pins.estop / gpiod.estop), or nullptr. Read
+  /// every tick before the axes: active, both axes stop at once and latch
+  /// ESTOP. `input` reads true when its contact is closed; which state stops
+  /// is estop.normally_closed.
+  void attach_estop(hal::DigitalIn* input) { estop_ = input; }
+  /// Whether the emergency stop is active now (as of the last tick).
+  bool estop_active() const { return estop_active_; }
 
   // Commands. Each validates everything before it changes anything.
   Error go_to(std::optional<float> az_deg, std::optional<float> el_deg,
@@ -64,8 +71,9 @@ class Controller {
   Error move(AxisId axis, Direction dir, int speed_pct = -1, Millis deadman_ms = 0);
   void stop();
   Error park();
-  /// Stops, clears latched faults, restores the default speed.
-  void reset();
+  /// Stops, clears latched faults, restores the default speed. kFaulted,
+  /// and nothing cleared, while the emergency-stop input is active.
+  Error reset();
   Error set_speed_pct(int pct);
 
   RotatorStatus status() const;
@@ -83,8 +91,11 @@ class Controller {
   /// Any command restarts the idle time park.after_idle_min counts.
   void note_command();
   void park_when_idle_long_enough(Millis now);
+  void read_estop();
 
   settings::Settings& settings_;
+  hal::DigitalIn* estop_ = nullptr;
+  bool estop_active_ = false;
   Axis az_;
   Axis el_;
   bool has_el_;

@@ -461,8 +461,11 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       send_error(out, 422, "mode must be idle or park", options);
     }
   } else if (path == "/api/reset") {
-    c.reset();
-    send_ok(out, options);
+    if (c.reset() == Error::kOk) {
+      send_ok(out, options);
+    } else {
+      send_error(out, 409, "the emergency stop is active: release it, then reset", options);
+    }
   } else if (path == "/api/speed") {
     Member m[] = {{"speed_pct", JsonType::kNumber}};
     if (!read_members(request.body, m, out, options)) return Outcome::kDone;

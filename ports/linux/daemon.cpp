@@ -145,6 +145,7 @@ bool Daemon::load_settings(const sim::Profile* profile) {
 
 bool Daemon::start_controller() {
   controller_ = std::make_unique<Controller>(settings_, axis_io(AxisId::kAz), axis_io(AxisId::kEl));
+  if (gpio_ && gpio_->estop() != nullptr) controller_->attach_estop(gpio_->estop());
   api_ =
       std::make_unique<web::Api>(web::ApiContext{*controller_, saver_.get(), &defaults_, this,
                                                  ROTORD_VERSION, &wall_clock_, host_name_.c_str()});

@@ -265,6 +265,11 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
                     std::string(settings::choice_name(k->drive, s.i(k->drive))) + " drive on " +
                     drive_where + ", " + sensor_where;
   }
+  hw->estop_ = req.input(Id::kGpiodEstop);
+  if (req.failed()) return nullptr;
+  if (hw->estop_)
+    hw->summary_ += "; emergency stop on line " + std::to_string(s.i(Id::kGpiodEstop)) + " (" +
+                    (s.b(Id::kEstopNormallyClosed) ? "normally-closed" : "normally-open") + ")";
   return hw;
 }
 

@@ -80,6 +80,8 @@ class GpiodRotator {
 
   /// Wiring for the controller; all null for an axis that is not enabled.
   AxisIo io(AxisId axis);
+  /// The emergency-stop switch (gpiod.estop), or nullptr when not wired.
+  hal::DigitalIn* estop() { return estop_.get(); }
   /// Drains MA3 edges as they arrive, on the daemon's loop.
   void watch(asio::io_context& io);
   /// Once per control tick, before it: one conversion per pot.
@@ -106,6 +108,7 @@ class GpiodRotator {
   std::unique_ptr<GpioChip> chip_;  // first: released after every line
   AxisHw az_;
   AxisHw el_;
+  std::unique_ptr<GpiodSwitch> estop_;
   std::unique_ptr<I2cDev> i2c_;
   std::string summary_;
 };

@@ -136,6 +136,7 @@ std::optional<Ma3EdgeInput> g_az_ma3_irq, g_el_ma3_irq;
 std::optional<PicoSwitch> g_az_t1, g_az_t2, g_az_limit_cw, g_az_limit_ccw;
 std::optional<PicoSwitch> g_el_limit_up, g_el_limit_down;
 std::optional<PicoSwitch> g_btn_cw, g_btn_ccw, g_btn_up, g_btn_down;
+std::optional<PicoSwitch> g_estop;
 std::optional<PicoI2c> g_i2c;
 std::optional<PicoDriveSink> g_az_drive, g_el_drive;
 
@@ -299,6 +300,11 @@ void report_settings(const web::LoadOutcome& r) {
     }
   }
   static Controller controller(settings, az_io, el_io);
+  if (PicoSwitch* estop = fit_switch(g_estop, p(Id::kPinEstop))) {
+    controller.attach_estop(estop);
+    std::printf("rotord: emergency stop on GPIO %d (%s contact)\n", p(Id::kPinEstop),
+                settings.b(Id::kEstopNormallyClosed) ? "normally-closed" : "normally-open");
+  }
   controller.begin(now_ms());
 
   // 3. The USB protocol port: one session, fresh whenever a program opens
