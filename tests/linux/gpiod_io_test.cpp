@@ -134,6 +134,36 @@ TEST_F(GpiodIoTest, OutputsAreOffAtShutdownAndAfterRelease) {
   EXPECT_TRUE(board->closed);
 }
 
+TEST_F(GpiodIoTest, TheEmergencyStopLineCutsTheRelaysAndLatches) {
+  constexpr int kEstop = 12;
+  set(Id::kGpiodEstop, kEstop);  // normally closed (the default): closed = run
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  ASSERT_TRUE(board->lines[kEstop].requested);
+  board->lines[kEstop].active = true;
+  EXPECT_EQ(board->lines[kEstop].request.mode, LineMode::kInput);
+  EXPECT_TRUE(board->lines[kEstop].request.active_low);  // a contact to ground
+  ASSERT_NE(hw->estop(), nullptr);
+  Controller c(s, hw->io(AxisId::kAz), hw->io(AxisId::kEl));
+  c.attach_estop(hw->estop());
+  c.begin(now);
+  ASSERT_EQ(c.move(AxisId::kAz, Direction::kCw), Error::kOk);
+  run_ms(c, *hw, 500);
+  ASSERT_TRUE(board->output_active(kAzCw));
+
+  board->lines[kEstop].active = false;  // pressed, or the wire broke
+  run_ms(c, *hw, 10);
+  EXPECT_FALSE(board->output_active(kAzCw));  // on the first tick
+  EXPECT_EQ(c.status().az.fault, AxisFault::kEstop);
+  EXPECT_EQ(c.reset(), Error::kFaulted);
+
+  board->lines[kEstop].active = true;  // released: still latched until RESET
+  run_ms(c, *hw, 10);
+  EXPECT_EQ(c.move(AxisId::kAz, Direction::kCw), Error::kFaulted);
+  EXPECT_EQ(c.reset(), Error::kOk);
+  EXPECT_EQ(c.move(AxisId::kAz, Direction::kCw), Error::kOk);
+}
+
 TEST_F(GpiodIoTest, ActiveLowRelayBoardsAreRequestedInverted) {
   set(Id::kGpiodOutputsActiveLow, 1);
   set(Id::kGpiodInputBias, 3);  // as_is
