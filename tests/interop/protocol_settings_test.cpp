@@ -1,19 +1,17 @@
 // Settings changed through a protocol survive a restart of rotord, as the web
 // API's do: GS-232 O calibration and P45, WRC AZOFFSET, Easycomm CW and
-// rotctld C, each over real TCP against the real daemon (simulated G-5500,
-// speedup 20), restarted on the same --config file.
+// rotctld C, each over real TCP against the real daemon (simulated G-5500
+// on a manual clock the test advances), restarted on the same --config file.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "daemon_process.hpp"
@@ -62,8 +60,8 @@ class ProtocolSettings : public ::testing::Test {
     fs::remove_all(dir);
   }
   void start() {
-    daemon = std::make_unique<DaemonProcess>(
-        std::vector<std::string>{"--sim", "g5500", "--speedup", "20", "--config", config.string()});
+    daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{
+        "--sim", "g5500", "--clock", "manual", "--config", config.string()});
     ASSERT_TRUE(daemon->ready()) << daemon->output();
   }
   /// SIGTERM (a pending change is saved on the way out), then a new daemon.
@@ -94,19 +92,19 @@ TEST_F(ProtocolSettings, Gs232OffsetCalibrationSurvivesARestart) {
   c.send("M100\r");
   read_until(c, "\r");
   int az = -1;
-  for (int n = 0; n < 100 && az != 100; ++n) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  for (int n = 0; n < 60 && az != 100; ++n) {
+    ASSERT_GE(daemon->advance_ms(1000), 0);
     c.send("C\r");
     az = gs232_az(read_until(c, "\n"));
   }
   ASSERT_EQ(az, 100);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // coast out
+  ASSERT_GE(daemon->advance_ms(3000), 0);  // coast out
   c.send("O\r");
   EXPECT_NE(read_until(c, "?\r\n").find("are you sure?"), std::string::npos);
   c.send("Y\r");
   EXPECT_NE(read_until(c, "\n").find("Completed"), std::string::npos);
   // The axis follows the new calibration and latches no jump fault.
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ASSERT_GE(daemon->advance_ms(2000), 0);
   c.send("C\r");
   EXPECT_EQ(gs232_az(read_until(c, "\n")), 0);
   TcpClient wrc(daemon->ports().wrc);
@@ -143,14 +141,13 @@ TEST_F(ProtocolSettings, WrcAzOffsetIsSavedAfterAQuietTimeAndSurvivesAKill) {
     TcpClient c(daemon->ports().wrc);
     EXPECT_EQ(c.ask("AZOFFSET 5\n"), "OK AZOFFSET 5.00");
   }
-  // Saved by the daemon's loop on its own, with no shutdown to flush it: the
-  // file has it within moments (3 s of controller time at speedup 20).
-  bool saved = false;
-  for (int n = 0; n < 100 && !saved; ++n) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    saved = read_file(config).find("\"az.offset_deg\": 5\n") != std::string::npos;
-  }
-  ASSERT_TRUE(saved) << read_file(config);
+  // Saved by the daemon's loop on its own, with no shutdown to flush it: not
+  // within the quiet time, but once it has passed.
+  ASSERT_GE(daemon->advance_ms(1000), 0);
+  EXPECT_EQ(read_file(config).find("az.offset_deg"), std::string::npos);
+  ASSERT_GE(daemon->advance_ms(3000), 0);
+  ASSERT_NE(read_file(config).find("\"az.offset_deg\": 5\n"), std::string::npos)
+      << read_file(config);
   ::kill(daemon->pid(), SIGKILL);
   daemon.reset();
   start();
@@ -183,7 +180,7 @@ TEST_F(ProtocolSettings, RotctldSetConfSurvivesARestart) {
     EXPECT_EQ(c.ask("C park.az_deg 180\n"), "RPRT 0");
     EXPECT_EQ(c.ask("C park.az_deg 181\n"), "RPRT 0");  // a burst: one write
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));  // past the quiet time
+  ASSERT_GE(daemon->advance_ms(8000), 0);  // past the quiet time
   ASSERT_EQ(daemon->terminate(), 0);
   EXPECT_EQ(count(daemon->output(), "rotord: settings saved to"), 1) << daemon->output();
   daemon.reset();
@@ -203,7 +200,7 @@ TEST_F(ProtocolSettings, AChangeTheApiSavedIsNotWrittenAgain) {
     c.wait_closed(5000);
   }
   ASSERT_NE(read_file(config).find("\"park.az_deg\": 90\n"), std::string::npos);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));  // past the quiet time
+  ASSERT_GE(daemon->advance_ms(8000), 0);  // past the quiet time
   ASSERT_EQ(daemon->terminate(), 0);
   EXPECT_EQ(count(daemon->output(), "rotord: settings saved to"), 0) << daemon->output();
 }

@@ -100,6 +100,8 @@ ClientRun run_with_loop(const std::string& command, usb_port::UsbCdcLink& link,
     link.service();
     rotator.run_ms(10);
     link.poll(rotator.now);
+    // Wall time on purpose: a real rotctl process on the other end of the pty
+    // reads at its own pace; controller time above advances by the pass.
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   client.join();

@@ -1,5 +1,7 @@
 // The real web page in Debian's chromium (playwright-core) against a running
-// `rotord --sim g5500 --speedup 10`.
+// `rotord --sim g5500 --clock manual`: controller time moves only when a test
+// advances it; the network's timeouts (the hold-to-move dead-man) stay on the
+// wall clock.
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
@@ -14,7 +16,7 @@ let rotord;
 
 before(async () => {
   dir = tempDir();
-  rotord = await new Rotord({ configPath: path.join(dir, 'settings.json') }).start();
+  rotord = await new Rotord({ configPath: path.join(dir, 'settings.json'), clock: 'manual' }).start();
   browser = await launchBrowser();
 });
 
@@ -25,6 +27,14 @@ after(async () => {
 });
 
 const displayedAz = async (page) => parseFloat(await page.textContent('#az'));
+
+/** The control page is live: its event stream has delivered a position. */
+async function openLive(url) {
+  const page = await openPage(browser, url);
+  await page.waitForSelector('#conn.live');
+  await until(async () => (await page.textContent('#az')).includes('°'), { what: 'first live position' });
+  return page;
+}
 
 test('control page loads without console errors, phone and desktop, light and dark', async () => {
   for (const [width, height, scheme] of [[360, 780, 'light'], [360, 780, 'dark'],
@@ -42,6 +52,7 @@ test('control page loads without console errors, phone and desktop, light and da
 
 test('small phone: STOP stays in reach; the elevation arc shows both travel limits', async () => {
   assert.equal((await rotord.post('/api/settings', { 'el.min_deg': 10, 'el.max_deg': 170 })).status, 200);
+  await rotord.advance(100);  // the controller applies new settings on its next tick
   const page = await openPage(browser, rotord.url + '/', { width: 360, height: 640 });
   await page.waitForSelector('#conn.live');
   const stop = await page.locator('#stop').boundingBox();
@@ -62,10 +73,10 @@ test('clicking the rose moves the rotator and the displayed azimuth follows', as
   await page.mouse.click(box.x + box.width / 2 + box.width * 0.3, box.y + box.height / 2);
   await until(async () => (await rotord.status()).az.target_deg !== null, { what: 'a target' });
   assert.ok(Math.abs((await rotord.status()).az.target_deg - 90) <= 2);
-  await until(async () => {
+  await rotord.untilAdvancing(async () => {
     const s = await rotord.status();
     return !s.moving && Math.abs(s.az.position_deg - 90) <= 1.5;
-  }, { timeout: 30000, what: 'arrival at 90' });
+  }, { stepMs: 1000, what: 'arrival at 90' });
   await until(async () => Math.abs((await displayedAz(page)) - 90) <= 1.5, { what: 'display at 90' });
   assert.deepEqual(page.errors, []);
   await page.context().close();
@@ -78,18 +89,17 @@ async function holdCw(page) {
 }
 
 test('holding CW moves, releasing stops', async () => {
-  const page = await openPage(browser, rotord.url + '/');
-  await page.waitForSelector('#conn.live');
-  await page.waitForTimeout(1200);  // wall time: the page's first live events (kept from the rate-measuring page; to drop with the manual clock)
+  const page = await openLive(rotord.url + '/');
   const start = (await rotord.status()).az.position_deg;
   await holdCw(page);
-  await page.waitForTimeout(1500);
+  await until(async () => (await rotord.status()).az.jogging, { what: 'jogging' });
+  await rotord.advance(3000);  // the G-5500 turns about 6 deg/s
   const held = await rotord.status();
   assert.equal(held.az.jogging, true, 'jogging while held');
   assert.ok(held.az.position_deg > start + 5, `moved CW: ${start} -> ${held.az.position_deg}`);
   await page.mouse.up();
   await until(async () => !(await rotord.status()).az.jogging, { timeout: 1000, what: 'stop on release' });
-  await until(async () => !(await rotord.status()).moving, { timeout: 5000, what: 'standstill' });
+  await rotord.untilAdvancing(async () => !(await rotord.status()).moving, { what: 'standstill' });
   await until(async () => Math.abs((await displayedAz(page)) - (await rotord.status()).az.position_deg) < 1,
     { what: 'display follows' });
   assert.deepEqual(page.errors, []);
@@ -97,9 +107,7 @@ test('holding CW moves, releasing stops', async () => {
 });
 
 test('closing the page while holding stops the motor', async () => {
-  const page = await openPage(browser, rotord.url + '/');
-  await page.waitForSelector('#conn.live');
-  await page.waitForTimeout(1200);
+  const page = await openLive(rotord.url + '/');
   await holdCw(page);
   await until(async () => (await rotord.status()).az.jogging, { what: 'jogging' });
   await page.context().close();
@@ -107,12 +115,12 @@ test('closing the page while holding stops the motor', async () => {
 });
 
 test('a stalled network stops the motor (dead-man, no stop message)', async () => {
-  const page = await openPage(browser, rotord.url + '/');
-  await page.waitForSelector('#conn.live');
-  await page.waitForTimeout(1200);
+  const page = await openLive(rotord.url + '/');
   await holdCw(page);
   await until(async () => (await rotord.status()).az.jogging, { what: 'jogging' });
   await page.context().setOffline(true);  // renewals and the stop on release are lost
+  // Wall time on purpose: the dead-man runs on the transport's clock, and
+  // its timeout is the thing under test.
   const t0 = Date.now();
   await until(async () => !(await rotord.status()).az.jogging, { timeout: 2000, what: 'dead-man stop' });
   assert.ok(Date.now() - t0 <= 1500, `stopped after ${Date.now() - t0} ms`);
@@ -155,7 +163,7 @@ test('settings: a bad value shows its error, a good one survives a restart', asy
 test('calibration: "set as low point" writes the live raw reading', async () => {
   const page = await openPage(browser, rotord.url + '/settings.html');
   await page.waitForSelector('#cal-az-lo');
-  await page.waitForTimeout(500);
+  await until(async () => /\d/.test(await page.textContent('#cal-az-raw')), { what: 'a live raw reading' });
   const raw = (await rotord.status()).az.raw;
   await page.fill('#cal-az-deg', '0');
   await page.click('#cal-az-lo');
