@@ -1,5 +1,7 @@
 // The REST API and the settings file over real TCP against a running rotord
-// on the simulated G-5500 (speedup 10), with --config in a temporary dir.
+// on the simulated G-5500, with --config in a temporary dir. The daemon runs
+// on a manual clock that the tests advance, except where the wall clock's
+// pace is the thing under test (the event stream's push rate).
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -56,13 +58,31 @@ class WebApi : public ::testing::Test {
     daemon.reset();
     fs::remove_all(dir);
   }
-  void start(const std::string& profile = "g5500") {
-    daemon = std::make_unique<DaemonProcess>(
-        std::vector<std::string>{"--sim", profile, "--speedup", "10", "--config", config.string()});
+  enum class Clock { kManual, kWallSpeedup10 };
+  void start(const std::string& profile = "g5500", Clock clock = Clock::kManual) {
+    std::vector<std::string> args{"--sim", profile, "--config", config.string()};
+    const std::vector<std::string> timing = clock == Clock::kManual
+                                                ? std::vector<std::string>{"--clock", "manual"}
+                                                : std::vector<std::string>{"--speedup", "10"};
+    args.insert(args.end(), timing.begin(), timing.end());
+    daemon = std::make_unique<DaemonProcess>(args);
     ASSERT_TRUE(daemon->ready()) << daemon->output();
     port = daemon->ports().web;
   }
   std::string status() { return http(port, "GET", "/api/status").body; }
+  /// Runs `ms` of controller time in the daemon.
+  void advance(long long ms) { ASSERT_GE(daemon->advance_ms(ms), 0) << daemon->output(); }
+  /// Advances controller time until the azimuth stands still; returns the
+  /// last status.
+  std::string settled_status() {
+    std::string s;
+    for (int n = 0; n < 200; ++n) {
+      s = status();
+      if (s.find("\"moving\":false") != std::string::npos) break;
+      advance(500);
+    }
+    return s;
+  }
 
   fs::path dir;
   fs::path config;
@@ -79,7 +99,7 @@ TEST_F(WebApi, GotoMovesTheSimulatedRotatorAndStatusFollows) {
     const std::string s = status();
     az = az_of(s);
     if (std::abs(az - 120) <= 1.0 && s.find("\"moving\":false") != std::string::npos) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    advance(1000);
   }
   EXPECT_NEAR(az, 120, 1.0);
 }
@@ -87,16 +107,24 @@ TEST_F(WebApi, GotoMovesTheSimulatedRotatorAndStatusFollows) {
 TEST_F(WebApi, HoldToMoveStopsWhenRenewalsStop) {
   start();
   const double before = az_of(status());
-  // Wall time on purpose: hold_ms is the client's (wall-clock) time, and the
-  // dead-man after the last renewal is the thing under test. 500 ms is ten
-  // renewal intervals, so a loaded machine still renews in time.
+  // hold_ms is the client's (wall-clock) time and the dead-man runs on the
+  // transport's clock: renewals in quick succession keep the jog alive while
+  // controller time turns the rotator.
   for (int n = 0; n < 10; ++n) {
-    ASSERT_EQ(http(port, "POST", "/api/move", R"({"dir":"ccw","hold_ms":500})").status, 200);
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_EQ(http(port, "POST", "/api/move", R"({"dir":"ccw","hold_ms":5000})").status, 200);
+    advance(300);
   }
   EXPECT_NE(status().find("\"jogging\":true"), std::string::npos);
-  std::this_thread::sleep_for(std::chrono::milliseconds(2000));  // no renewals
-  const std::string s = status();
+  ASSERT_EQ(http(port, "POST", "/api/move", R"({"dir":"ccw","hold_ms":300})").status, 200);
+  // Wall time on purpose: the dead-man after the last renewal is the thing
+  // under test. A bounded poll, not a timing assertion.
+  std::string s = status();
+  for (int n = 0; n < 100 && s.find("\"jogging\":true") != std::string::npos; ++n) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    s = status();
+  }
+  EXPECT_EQ(s.find("\"jogging\":true"), std::string::npos) << s;
+  s = settled_status();
   EXPECT_EQ(s.find("\"jogging\":true"), std::string::npos) << s;
   EXPECT_NE(s.find("\"moving\":false"), std::string::npos) << s;
   EXPECT_LT(az_of(s), before - 2.0);  // it did move CCW meanwhile
@@ -114,8 +142,7 @@ TEST_F(WebApi, EveryCommandEndpointAndItsErrors) {
   EXPECT_NE(status().find("\"speed_pct\":100"), std::string::npos);
   // The park was stopped; let the motor coast out (a loaded machine runs the
   // simulation slower), so "nothing moves" below means the bad requests.
-  for (int n = 0; n < 100 && status().find("\"moving\":false") == std::string::npos; ++n)
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  settled_status();
   ASSERT_NE(status().find("\"moving\":false"), std::string::npos) << status();
 
   Response r = http(port, "POST", "/api/goto", R"({"az": 9999})");
@@ -150,7 +177,7 @@ TEST_F(WebApi, AssetsAndSchema) {
 }
 
 TEST_F(WebApi, EventStreamSendsAtLeastFivePerSecondWhileMoving) {
-  start();
+  start("g5500", Clock::kWallSpeedup10);  // the push rate on the wall clock is under test
   ASSERT_EQ(http(port, "POST", "/api/goto", R"({"az": 400})").status, 200);
   TcpClient c(port);
   c.send("GET /api/events HTTP/1.1\r\nHost: localhost\r\nAccept: text/event-stream\r\n\r\n");
@@ -294,6 +321,7 @@ TEST_F(WebApi, AKillDuringSavingNeverLeavesABrokenFile) {
              "{\"park.az_deg\": " + std::to_string(n % 300) +
                  ", \"az.offset_deg\": " + std::to_string((n % 7) - 3) + "}");
     });
+    // Wall time on purpose: a kill at a different moment of the writes each round.
     std::this_thread::sleep_for(std::chrono::milliseconds(150 + 70 * round));
     ::kill(daemon->pid(), SIGKILL);
     run = false;
@@ -320,22 +348,13 @@ TEST_F(WebApi, RebootRestartsTheControllerWithRestartOnlySettings) {
   EXPECT_EQ(r.status, 202);
   std::string s;
   for (int n = 0; n < 50 && s.find("\"has_el\":false") == std::string::npos; ++n) {
+    // Wall time on purpose: the reboot is scheduled on the transport's clock,
+    // after the reply has gone out. A bounded poll.
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     s = status();
   }
   EXPECT_NE(s.find("\"has_el\":false"), std::string::npos) << s;
   EXPECT_NE(s.find("\"el\":null"), std::string::npos);
-}
-
-/// Polls the status until the azimuth stands still; returns the last status.
-std::string settled_status(int port) {
-  std::string s;
-  for (int n = 0; n < 100; ++n) {
-    s = http(port, "GET", "/api/status").body;
-    if (s.find("\"moving\":false") != std::string::npos) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return s;
 }
 
 TEST_F(WebApi, StatusCarriesThePotReadingInVoltsForTheCalibrationPage) {
@@ -357,21 +376,21 @@ TEST_F(WebApi, StatusCarriesThePotReadingInVoltsForTheCalibrationPage) {
 TEST_F(WebApi, ACalibrationWithAnOffsetReadsTheEnteredAngleAndLatchesNoFault) {
   start();
   ASSERT_EQ(http(port, "POST", "/api/settings", R"({"az.offset_deg": 10})").status, 200);
-  const std::string before = settled_status(port);
+  const std::string before = settled_status();
   const double raw = number(before, "raw", before.find("\"az\":{"));
   // "The antenna points at 200 now": the calibration angle excludes the offset.
   const std::string body =
       "{\"az.pot_cal_lo_counts\": " + std::to_string(raw) + ", \"az.pot_cal_lo_deg\": 190}";
   ASSERT_EQ(http(port, "POST", "/api/settings", body).status, 200);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  const std::string s = settled_status(port);
+  advance(300);
+  const std::string s = settled_status();
   EXPECT_NEAR(az_of(s), 200, 0.5) << s;
   EXPECT_NE(s.find("\"fault\":false"), std::string::npos) << s;
 }
 
 TEST_F(WebApi, Ma3StatusGivesTheCodeRangeAndANewZeroTakesEffectWithoutAFault) {
   start("spid");
-  const std::string s0 = settled_status(port);
+  const std::string s0 = settled_status();
   const std::size_t az = s0.find("\"az\":{");
   EXPECT_NE(s0.find("\"sensor\":\"ma3\"", az), std::string::npos) << s0;
   EXPECT_NE(s0.find("\"raw_unit\":\"code\"", az), std::string::npos) << s0;
@@ -384,8 +403,8 @@ TEST_F(WebApi, Ma3StatusGivesTheCodeRangeAndANewZeroTakesEffectWithoutAFault) {
   double zero = std::fmod(code_deg - want + 720.0, 360.0);
   const std::string body = "{\"az.ma3_zero_deg\": " + std::to_string(zero) + "}";
   ASSERT_EQ(http(port, "POST", "/api/settings", body).status, 200);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  const std::string s = settled_status(port);
+  advance(300);
+  const std::string s = settled_status();
   EXPECT_NEAR(az_of(s), want, 0.3) << s;
   EXPECT_NE(s.find("\"fault\":false"), std::string::npos) << s;
 }
