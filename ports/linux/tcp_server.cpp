@@ -50,6 +50,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
   }
 
   const net::ClientInfo& info() const { return info_; }
+  void count_as_event_stream() { info_.event_stream = true; }
 
   void write(std::string_view bytes) override {
     if (closing_) return;
@@ -90,8 +91,8 @@ class TcpServer::Connection final : public protocol::ByteSink,
                               }
                               info_.last_receive_ms = server_.now_;
                               session_->receive(std::string_view(buffer_.data(), n), *this);
-                              if (session_->is_event_stream() && !info_.event_stream) {
-                                info_.event_stream = true;
+                              if (!stream_seen_ && session_->is_event_stream()) {
+                                stream_seen_ = true;
                                 server_.stream_started(this);
                               }
                               if (session_->wants_close()) {
@@ -138,6 +139,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
   bool writing_ = false;
   bool closing_ = false;
   bool close_requested_ = false;
+  bool stream_seen_ = false;  ///< the session has become an event stream
 };
 
 /// The open connections as the admission rule reads them (a copy of the
@@ -210,6 +212,9 @@ void TcpServer::admit(asio::ip::tcp::socket socket) {
 }
 
 void TcpServer::stream_started(Connection* connection) {
+  // Without a stream limit a stream stays an ordinary client.
+  if (admission_.limits().max_event_streams == 0) return;
+  connection->count_as_event_stream();
   const Snapshot snapshot(connections_);
   std::size_t self = net::Admission::kNone;
   for (std::size_t i = 0; i < snapshot.size(); ++i) {
