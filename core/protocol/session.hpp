@@ -33,6 +33,9 @@ class Session {
   /// The client asked to end the session (rotctld `q`); the transport closes
   /// after flushing.
   virtual bool wants_close() const { return false; }
+  /// The session only pushes from now on (an HTTP event stream): transports
+  /// count it apart from the clients that send requests (net/admission.hpp).
+  virtual bool is_event_stream() const { return false; }
 
   /// Who the client is; the transport calls this once, before the first byte.
   void set_peer(const access::Peer& peer) { peer_ = peer; }

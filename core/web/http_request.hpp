@@ -50,6 +50,10 @@ class HttpRequestParser {
   void reset();
   /// Bytes of an unfinished request have arrived.
   bool in_progress() const { return state_ != State::kStart || head_length_ > 0; }
+  /// The head is complete and the body is arriving.
+  bool in_body() const { return state_ == State::kBody; }
+  /// Body bytes received so far.
+  std::size_t body_received() const { return body_length_; }
 
  private:
   enum class State : unsigned char { kStart, kHead, kBody, kComplete, kError };

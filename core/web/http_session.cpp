@@ -13,7 +13,6 @@ HttpSession::HttpSession(Api& api) : api_(api) {}
 void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
   // An event stream only talks; anything the client sends is ignored.
   if (close_ || events_) return;
-  received_ = true;
   while (!bytes.empty() && !close_ && !events_) {
     const auto status = parser_.feed(bytes);
     if (status == HttpRequestParser::Status::kNeedMore) break;
@@ -24,7 +23,13 @@ void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
     }
     handle(parser_.request(), out);
     parser_.reset();
+    request_timed_ = request_start_pending_ = false;
+    body_timed_ = body_start_pending_ = false;
+    idle_restart_pending_ = true;
   }
+  // What is left is the start of the next request: its deadline begins now.
+  if (parser_.in_progress() && !request_timed_) request_timed_ = request_start_pending_ = true;
+  if (parser_.in_body() && !body_timed_) body_timed_ = body_start_pending_ = true;
 }
 
 void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
@@ -89,9 +94,11 @@ void HttpSession::serve_asset(const HttpRequest& request, const ResponseOptions&
 }
 
 void HttpSession::poll(Millis now, protocol::ByteSink& out) {
-  if (!polled_ || received_) last_activity_ = now;
+  if (!polled_ || idle_restart_pending_) idle_since_ = now;
+  if (request_start_pending_) request_started_ = now;
+  if (body_start_pending_) body_started_ = now;
   polled_ = true;
-  received_ = false;
+  idle_restart_pending_ = request_start_pending_ = body_start_pending_ = false;
   now_ = now;
   if (close_) return;
   if (events_) {
@@ -102,13 +109,26 @@ void HttpSession::poll(Millis now, protocol::ByteSink& out) {
     if (changed || now - last_event_ >= period) send_event(now, out);
     return;
   }
-  const Millis quiet = now - last_activity_;
-  if (parser_.in_progress() && quiet > kRequestTimeoutMs) {
-    send_error(out, 408, "request not completed in time", {false, false, {}});
-    close_ = true;
-  } else if (!parser_.in_progress() && quiet > kIdleTimeoutMs) {
+  if (parser_.in_progress()) {
+    check_request_time(now, out);
+  } else if (now - idle_since_ > kIdleTimeoutMs) {
     close_ = true;
   }
+}
+
+void HttpSession::check_request_time(Millis now, protocol::ByteSink& out) {
+  const char* why = nullptr;
+  if (now - request_started_ > kRequestDeadlineMs) {
+    why = "request not completed in time";
+  } else if (parser_.in_body()) {
+    const Millis late = now - body_started_ - kBodyGraceMs;
+    if (late > 0 &&
+        parser_.body_received() * 1000 < static_cast<std::size_t>(late) * kMinBodyBytesPerSecond)
+      why = "request body arriving too slowly";
+  }
+  if (why == nullptr) return;
+  send_error(out, 408, why, {false, false, {}});
+  close_ = true;
 }
 
 void HttpSession::send_event(Millis now, protocol::ByteSink& out) {

@@ -14,11 +14,20 @@ namespace rotord::web {
 /// answers with its status and closes, because the stream cannot be resynced.
 class HttpSession final : public protocol::Session {
  public:
-  /// A request that has started must be complete within this (slow clients
-  /// would otherwise hold a connection slot forever).
-  static constexpr Millis kRequestTimeoutMs = 10000;
+  /// A request must be complete within this from its first byte: a total,
+  /// not restarted by each byte, or a client trickling a byte every few
+  /// seconds would hold its connection slot forever (issue 12). 408 after.
+  static constexpr Millis kRequestDeadlineMs = 10000;
+  /// A body must arrive at this average rate, counted from the end of the
+  /// head after a grace time: a large Content-Length sent a byte at a time is
+  /// cut off in seconds, while any real client (an 8 KB settings import
+  /// arrives in one go) is far faster. 408 after.
+  static constexpr std::size_t kMinBodyBytesPerSecond = 512;
+  static constexpr Millis kBodyGraceMs = 2000;
   /// A keep-alive connection with no request for this long is closed:
   /// browsers keep several idle connections per page, and slots are few.
+  /// Counted from the end of the last request (or the connection's start);
+  /// stray line ends between requests do not restart it.
   static constexpr Millis kIdleTimeoutMs = 5000;
   /// Event stream: an update every 100 ms while an axis moves (10/s), every
   /// second otherwise, and at once when moving, faults or mode change.
@@ -36,6 +45,7 @@ class HttpSession final : public protocol::Session {
   void poll(Millis now, protocol::ByteSink& out) override;
   bool wants_close() const override { return close_; }
   bool streaming_events() const { return events_; }
+  bool is_event_stream() const override { return events_; }
 
  private:
   void handle(const HttpRequest& request, protocol::ByteSink& out);
@@ -47,13 +57,24 @@ class HttpSession final : public protocol::Session {
   HttpRequestParser parser_;
   bool close_ = false;
   bool events_ = false;
+  /// Closes with 408 when the request in progress is over its deadline or
+  /// its body too slow.
+  void check_request_time(Millis now, protocol::ByteSink& out);
+
   // Timeouts and event periods run on the transport's clock, the `now` of
   // poll(), not on controller time: under `rotord --speedup N` a client must
-  // still get its 5 s. Bytes are stamped at the next poll (a tick later).
+  // still get its 5 s. Events seen in receive() are stamped at the next poll
+  // (a tick later): receive() has no clock.
   Millis now_ = 0;
   bool polled_ = false;
-  bool received_ = false;
-  Millis last_activity_ = 0;
+  bool request_timed_ = false;  ///< the request in progress has a start (pending or stamped)
+  bool request_start_pending_ = false;
+  Millis request_started_ = 0;  ///< its first byte
+  bool body_timed_ = false;
+  bool body_start_pending_ = false;
+  Millis body_started_ = 0;  ///< the end of its head
+  bool idle_restart_pending_ = false;
+  Millis idle_since_ = 0;  ///< the end of the last request, or the first poll
   Millis last_event_ = 0;
   bool last_moving_ = false;
   bool last_fault_ = false;

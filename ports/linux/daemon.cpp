@@ -156,8 +156,7 @@ bool Daemon::start_controller() {
     std::fprintf(stderr, "rotord: invalid bind address '%s'\n", options_.bind.c_str());
     return false;
   }
-  const auto max_clients = static_cast<std::size_t>(settings_.i(settings::Id::kNetMaxClients));
-  std::vector<ServiceConfig> services = make_services(options_, *controller_, *api_, max_clients);
+  std::vector<ServiceConfig> services = make_services(options_, *controller_, *api_, settings_);
   if (!attach_serial_lines(services)) return false;
   for (auto& service : services) {
     if (service.port == 0) continue;

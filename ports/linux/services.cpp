@@ -10,7 +10,8 @@
 namespace rotord::linux_port {
 
 std::vector<ServiceConfig> make_services(const Options& options, Controller& controller,
-                                         web::Api& api, std::size_t max_clients) {
+                                         web::Api& api, const settings::Settings& settings) {
+  const auto max_clients = static_cast<std::size_t>(settings.i(settings::Id::kNetMaxClients));
   std::vector<ServiceConfig> services;
   services.push_back({"web UI and REST API", static_cast<std::uint16_t>(options.web_port),
                       max_clients, std::string(web::HttpSession::kTooManyConnections),
@@ -47,6 +48,10 @@ std::vector<ServiceConfig> make_services(const Options& options, Controller& con
                       max_clients, std::string(protocol::SeedSession::kTooManyConnections),
                       [&controller] { return std::make_unique<protocol::SeedSession>(controller); },
                       "seed", 9600});
+  for (auto& service : services) service.settings = &settings;
+  // Open pages' live streams never take the slots STOP needs.
+  services.front().max_event_streams =
+      static_cast<std::size_t>(settings.i(settings::Id::kWebMaxEventStreams));
   return services;
 }
 

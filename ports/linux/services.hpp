@@ -9,8 +9,10 @@
 namespace rotord::linux_port {
 
 /// Every protocol the daemon serves on TCP, with its port from the options.
-/// A port of 0 leaves that service out.
+/// A port of 0 leaves that service out. Connection limits come from
+/// `settings` (net.max_clients, web.max_event_streams at start-up; the
+/// admission rule reads the rest at each newcomer).
 std::vector<ServiceConfig> make_services(const Options& options, Controller& controller,
-                                         web::Api& api, std::size_t max_clients);
+                                         web::Api& api, const settings::Settings& settings);
 
 }  // namespace rotord::linux_port

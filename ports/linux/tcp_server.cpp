@@ -1,5 +1,6 @@
 #include "tcp_server.hpp"
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -19,25 +20,44 @@ access::Peer peer_of(const asio::ip::tcp::socket& socket) {
   return {access::Peer::Kind::kOther, 0};
 }
 
+/// The client's address, for the per-address cap.
+net::Address address_of(const asio::ip::tcp::socket& socket) {
+  std::error_code ec;
+  const asio::ip::address address = socket.remote_endpoint(ec).address();
+  if (ec) return {};
+  if (address.is_v4()) return net::Address::from_ipv4(address.to_v4().to_uint());
+  net::Address a;
+  const auto bytes = address.to_v6().to_bytes();
+  std::copy(bytes.begin(), bytes.end(), a.bytes.begin());
+  return a;
+}
+
 }  // namespace
 
 class TcpServer::Connection final : public protocol::ByteSink,
                                     public std::enable_shared_from_this<Connection> {
  public:
-  Connection(TcpServer& server, asio::ip::tcp::socket socket,
-             std::unique_ptr<protocol::Session> session)
-      : server_(server), socket_(std::move(socket)), session_(std::move(session)) {
+  Connection(TcpServer& server, asio::ip::tcp::socket socket, const net::ClientInfo& info)
+      : server_(server), socket_(std::move(socket)), info_(info) {
     std::error_code ignored;
     socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
-    session_->set_peer(peer_of(socket_));
   }
 
-  void start() { read(); }
+  void start(std::unique_ptr<protocol::Session> session) {
+    session_ = std::move(session);
+    session_->set_peer(info_.peer);
+    read();
+  }
+
+  const net::ClientInfo& info() const { return info_; }
+  void count_as_event_stream() { info_.event_stream = true; }
 
   void write(std::string_view bytes) override {
     if (closing_) return;
     if (pending_.size() + bytes.size() > kMaxBacklogBytes) {
-      close();  // the client stopped reading; drop it rather than buffer forever
+      // The client stopped reading; drop it rather than buffer forever.
+      ++server_.admission_.counters().dropped_backlog;
+      close();
       return;
     }
     pending_.append(bytes);
@@ -69,7 +89,12 @@ class TcpServer::Connection final : public protocol::ByteSink,
                                 if (ec != asio::error::operation_aborted) close_after_flush();
                                 return;
                               }
+                              info_.last_receive_ms = server_.now_;
                               session_->receive(std::string_view(buffer_.data(), n), *this);
+                              if (!stream_seen_ && session_->is_event_stream()) {
+                                stream_seen_ = true;
+                                server_.stream_started(this);
+                              }
                               if (session_->wants_close()) {
                                 close_after_flush();
                                 return;
@@ -106,6 +131,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
 
   TcpServer& server_;
   asio::ip::tcp::socket socket_;
+  net::ClientInfo info_;
   std::unique_ptr<protocol::Session> session_;
   std::array<char, kReadChunkBytes> buffer_{};
   std::string pending_;
@@ -113,10 +139,29 @@ class TcpServer::Connection final : public protocol::ByteSink,
   bool writing_ = false;
   bool closing_ = false;
   bool close_requested_ = false;
+  bool stream_seen_ = false;  ///< the session has become an event stream
+};
+
+/// The open connections as the admission rule reads them (a copy of the
+/// list: accepting is not the tick, so the heap is fine here).
+class TcpServer::Snapshot final : public net::ClientList {
+ public:
+  explicit Snapshot(const std::list<std::shared_ptr<Connection>>& connections) {
+    for (const auto& c : connections) entries_.push_back(c.get());
+  }
+  std::size_t size() const override { return entries_.size(); }
+  const net::ClientInfo* at(std::size_t i) const override { return &entries_[i]->info(); }
+  Connection* connection(std::size_t i) const { return entries_[i]; }
+
+ private:
+  std::vector<Connection*> entries_;
 };
 
 TcpServer::TcpServer(asio::io_context& io, const asio::ip::address& bind, ServiceConfig config)
-    : io_(io), acceptor_(io), config_(std::move(config)) {
+    : io_(io),
+      acceptor_(io),
+      config_(std::move(config)),
+      admission_({config_.max_clients, SIZE_MAX, config_.max_event_streams}, config_.settings) {
   const asio::ip::tcp::endpoint endpoint(bind, config_.port);
   acceptor_.open(endpoint.protocol());
   acceptor_.set_option(asio::ip::tcp::acceptor::reuse_address(true));
@@ -140,20 +185,43 @@ TcpServer::~TcpServer() {
 void TcpServer::accept() {
   acceptor_.async_accept([this](std::error_code ec, asio::ip::tcp::socket socket) {
     if (ec == asio::error::operation_aborted) return;
-    if (!ec) {
-      if (connections_.size() >= config_.max_clients) {
-        std::error_code ignored;
-        asio::write(socket, asio::buffer(config_.reject_message), ignored);
-        socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
-        socket.close(ignored);
-      } else {
-        connections_.push_back(
-            std::make_shared<Connection>(*this, std::move(socket), config_.make_session()));
-        connections_.back()->start();
-      }
-    }
+    if (!ec) admit(std::move(socket));
     accept();
   });
+}
+
+void TcpServer::admit(asio::ip::tcp::socket socket) {
+  net::ClientInfo info;
+  info.peer = peer_of(socket);
+  info.address = address_of(socket);
+  info.opened_ms = info.last_receive_ms = now_;
+  const Snapshot snapshot(connections_);
+  const net::Admission::Decision d = admission_.admit(snapshot, info, now_);
+  if (d.kind != net::Admission::Decision::Kind::kAdmit) {
+    std::error_code ignored;
+    asio::write(socket, asio::buffer(config_.reject_message), ignored);
+    socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+    socket.close(ignored);
+    return;
+  }
+  // The one making room goes without a word: none of the protocols has a
+  // message for it, and a client that was really idle will just reconnect.
+  if (d.evict != net::Admission::kNone) snapshot.connection(d.evict)->close();
+  connections_.push_back(std::make_shared<Connection>(*this, std::move(socket), info));
+  connections_.back()->start(config_.make_session());
+}
+
+void TcpServer::stream_started(Connection* connection) {
+  // Without a stream limit a stream stays an ordinary client.
+  if (admission_.limits().max_event_streams == 0) return;
+  connection->count_as_event_stream();
+  const Snapshot snapshot(connections_);
+  std::size_t self = net::Admission::kNone;
+  for (std::size_t i = 0; i < snapshot.size(); ++i) {
+    if (snapshot.connection(i) == connection) self = i;
+  }
+  const std::size_t victim = admission_.stream_started(snapshot, self);
+  if (victim != net::Admission::kNone) snapshot.connection(victim)->close();
 }
 
 void TcpServer::remove(Connection* connection) {
@@ -161,6 +229,7 @@ void TcpServer::remove(Connection* connection) {
 }
 
 void TcpServer::poll(Millis now) {
+  now_ = now;
   // A poll may close its connection (backlog full), which edits the list.
   const std::vector<std::shared_ptr<Connection>> snapshot(connections_.begin(), connections_.end());
   for (const auto& c : snapshot) c->poll(now);

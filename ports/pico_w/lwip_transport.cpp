@@ -35,12 +35,51 @@ access::Peer peer_of(const tcp_pcb* pcb) {
   return {access::Peer::Kind::kOther, 0};
 }
 
+/// The client's address, for the per-address cap.
+net::Address address_of(const tcp_pcb* pcb) {
+#if LWIP_IPV4
+  if (IP_IS_V4_VAL(pcb->remote_ip))
+    return net::Address::from_ipv4(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(&pcb->remote_ip))));
+#endif
+#if LWIP_IPV6
+  if (IP_IS_V6_VAL(pcb->remote_ip)) {
+    std::uint8_t bytes[16];
+    std::memcpy(bytes, ip_2_ip6(&pcb->remote_ip)->addr, sizeof(bytes));  // network order
+    return net::Address::from_ipv6(bytes);
+  }
+#endif
+  return {};
+}
+
 }  // namespace
+
+/// The slots as the admission rule reads them; a free slot is null.
+class TcpServer::SlotList final : public net::ClientList {
+ public:
+  explicit SlotList(std::span<Connection> slots) : slots_(slots) {}
+  std::size_t size() const override { return slots_.size(); }
+  const net::ClientInfo* at(std::size_t i) const override {
+    return slots_[i].active() ? &slots_[i].info_ : nullptr;
+  }
+
+ private:
+  std::span<Connection> slots_;
+};
 
 struct TcpServer::Glue {
   static err_t on_accept(void* arg, tcp_pcb* pcb, err_t err) {
     auto* server = static_cast<TcpServer*>(arg);
     if (err != ERR_OK || pcb == nullptr || server == nullptr) return ERR_VAL;
+    net::ClientInfo info;
+    info.peer = peer_of(pcb);
+    info.address = address_of(pcb);
+    info.opened_ms = info.last_receive_ms = server->now_;
+    const net::Admission::Decision d =
+        server->admission_.admit(SlotList(server->slots_), info, server->now_);
+    if (d.kind != net::Admission::Decision::Kind::kAdmit) return reject(*server, pcb);
+    // The one making room gets a FIN, no message (no protocol has one). What
+    // close() returns concerns that pcb, not this callback's.
+    if (d.evict != net::Admission::kNone) server->close(server->slots_[d.evict]);
     Connection* c = server->free_slot();
     protocol::Session* session = c != nullptr ? server->sessions_.open(c->index_) : nullptr;
     if (session == nullptr) return reject(*server, pcb);
@@ -49,7 +88,8 @@ struct TcpServer::Glue {
     c->server_ = server;
     c->pcb_ = pcb;
     c->session_ = session;
-    session->set_peer(peer_of(pcb));
+    c->info_ = info;
+    session->set_peer(info.peer);
     c->reset_output();
     // Replies are small and clients (Gpredict) wait for each one: no Nagle
     // delay, like TCP_NODELAY on Linux.
@@ -93,11 +133,16 @@ struct TcpServer::Glue {
       pbuf_free(p);
       return ERR_OK;
     }
+    c->info_.last_receive_ms = c->server_->now_;
     for (const pbuf* q = p; q != nullptr && !c->overflow_; q = q->next) {
       c->session_->receive(std::string_view(static_cast<const char*>(q->payload), q->len), *c);
     }
     tcp_recved(pcb, p->tot_len);
     pbuf_free(p);
+    if (!c->stream_seen_ && c->session_->is_event_stream()) {
+      c->stream_seen_ = true;
+      c->server_->stream_started(*c);
+    }
     if (c->session_->wants_close()) c->close_requested_ = true;
     return c->server_->settle(*c);
   }
@@ -206,7 +251,12 @@ void TcpServer::Connection::reset_output() {
 }
 
 TcpServer::TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots)
-    : config_(config), sessions_(sessions), slots_(slots) {
+    : config_(config),
+      sessions_(sessions),
+      slots_(slots),
+      admission_(
+          {std::min(config.max_clients, slots.size()), slots.size(), config.max_event_streams},
+          config.settings) {
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     slots_[i].server_ = this;
     slots_[i].index_ = i;
@@ -252,6 +302,7 @@ void TcpServer::stop() {
 }
 
 void TcpServer::poll(Millis now) {
+  now_ = now;
   for (Connection& c : slots_) {
     if (c.pcb_ == nullptr) continue;
     c.session_->poll(now, c);
@@ -266,18 +317,26 @@ std::size_t TcpServer::client_count() const {
 }
 
 TcpServer::Connection* TcpServer::free_slot() {
-  const std::size_t limit = std::min(config_.max_clients, slots_.size());
-  if (client_count() >= limit) return nullptr;
+  // The admission rule has kept the count within the limits already.
   for (Connection& c : slots_) {
     if (!c.active()) return &c;
   }
   return nullptr;
 }
 
+void TcpServer::stream_started(Connection& c) {
+  // Without a stream limit a stream stays an ordinary client.
+  if (admission_.limits().max_event_streams == 0) return;
+  c.info_.event_stream = true;
+  const std::size_t victim = admission_.stream_started(SlotList(slots_), c.index_);
+  if (victim != net::Admission::kNone) close(slots_[victim]);
+}
+
 err_t TcpServer::settle(Connection& c) {
   if (c.pcb_ == nullptr) return ERR_OK;
   if (c.overflow_) {
     ++stats_.dropped_backlog;
+    ++admission_.counters().dropped_backlog;
     return drop(c);
   }
   if (c.close_requested_ && c.idle()) return close(c);
@@ -312,6 +371,8 @@ void TcpServer::release(Connection& c) {
   if (c.session_ != nullptr) sessions_.release(c.index_);
   c.session_ = nullptr;
   c.pcb_ = nullptr;
+  c.info_ = {};
+  c.stream_seen_ = false;
   c.reset_output();
 }
 

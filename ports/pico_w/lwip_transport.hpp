@@ -18,6 +18,7 @@
 #include <string_view>
 #include <utility>
 
+#include "net/admission.hpp"
 #include "protocol/session.hpp"
 
 struct tcp_pcb;
@@ -71,20 +72,28 @@ class StaticSessionPool final : public SessionPool {
 struct ServerConfig {
   const char* name = "";            ///< for logs, e.g. "WRC text protocol"
   std::uint16_t port = 0;           ///< 0 = an ephemeral port (tests)
-  std::size_t max_clients = 4;      ///< clamped to the slots given; one more is refused
+  std::size_t max_clients = 4;      ///< clamped to the slots given; see net/admission.hpp
   std::string_view reject_message;  ///< sent to a refused client before the close
   /// True when [data, data + size) stays unchanged for the life of the
   /// program (the Pico's flash: the web UI's gzipped files). Such writes are
   /// queued by reference and handed to lwIP without a copy, so a 20 KB page
   /// needs neither a 20 KB buffer nor a copy. nullptr: everything is copied.
   bool (*is_immutable)(const void* data, std::size_t size) = nullptr;
+  /// net.idle_evict_s, net.max_per_address, access.control_networks, read at
+  /// each newcomer; null: a full port refuses, as before issue 12.
+  const settings::Settings* settings = nullptr;
+  /// HTTP: event streams apart from max_clients. They share the static slots,
+  /// so a newcomer finding every slot taken drops the oldest stream first.
+  std::size_t max_event_streams = 0;
 };
 
 /// Serves one protocol on one TCP port: a byte session per connection from a
 /// static pool. Mirrors ports/linux/tcp_server: replies go out in the order
 /// and units the session wrote them (Nagle off), and a client that stops
 /// reading is dropped once its copied backlog passes the per-connection
-/// output buffer, so it can never exhaust memory or block the others.
+/// output buffer, so it can never exhaust memory or block the others. Who
+/// gets a slot is net::Admission's rule, as on Linux: a long-idle client
+/// makes room, one host never takes every slot, event streams count apart.
 class TcpServer {
   struct Glue;  // the lwIP callbacks (lwip_transport.cpp)
 
@@ -124,6 +133,8 @@ class TcpServer {
     TcpServer* server_ = nullptr;
     tcp_pcb* pcb_ = nullptr;
     protocol::Session* session_ = nullptr;
+    net::ClientInfo info_;
+    bool stream_seen_ = false;  ///< the session has become an event stream
     std::size_t index_ = 0;
     std::array<char, kOutputBytes> out_{};
     std::size_t out_len_ = 0;
@@ -135,7 +146,7 @@ class TcpServer {
 
   struct Stats {
     std::uint32_t accepted = 0;
-    std::uint32_t rejected = 0;         ///< refused: max clients
+    std::uint32_t rejected = 0;         ///< refused (full or per address); counters() says which
     std::uint32_t dropped_backlog = 0;  ///< output buffer overflowed
     std::uint32_t closed = 0;           ///< by the peer, the session or an error
   };
@@ -158,9 +169,15 @@ class TcpServer {
   const char* name() const { return config_.name; }
   std::size_t client_count() const;
   const Stats& stats() const { return stats_; }
+  /// Refusals, evictions and drops by kind (for /metrics), as on Linux.
+  const net::ConnectionCounters& counters() const { return admission_.counters(); }
 
  private:
+  class SlotList;
   Connection* free_slot();
+  /// Entry `c` has just become an event stream: closes the oldest other one
+  /// when the streams are over their limit.
+  void stream_started(Connection& c);
   /// Called after every session call from an lwIP callback: applies a drop
   /// or a requested close. Returns what the callback must return (ERR_ABRT
   /// once the pcb is gone).
@@ -175,6 +192,8 @@ class TcpServer {
   tcp_pcb* listener_ = nullptr;
   std::uint16_t port_ = 0;
   Stats stats_;
+  net::Admission admission_;
+  Millis now_ = 0;  ///< the last poll's: stamps accepts and received bytes
 };
 
 /// A server with its own session pool and connection slots, meant for static

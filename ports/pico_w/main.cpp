@@ -7,8 +7,10 @@
 // control tick never run concurrently and the core needs no locks. The tick
 // is scheduled by absolute deadline and the loop sleeps only until the next
 // deadline, so network traffic delays a tick by at most one poll.
+#include <algorithm>
 #include <cstdio>
 #include <optional>
+#include <string_view>
 
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
@@ -68,6 +70,10 @@ constexpr std::uint16_t kHttpPort = 80;
 // A browser holds a page connection and the event stream, plus short API
 // requests; each HTTP session is ~6 KB of RAM (request head and body buffers).
 constexpr std::size_t kHttpSlots = 4;
+// Open pages' event streams share those slots; at most this many, so two
+// always remain for requests (web.max_event_streams is clamped to it), and a
+// newcomer finding all four taken closes the oldest stream (net/admission.hpp).
+constexpr std::size_t kHttpEventStreams = 2;
 // POST /api/reboot answers first, then the watchdog resets the chip.
 constexpr Millis kRebootDelayMs = 300;
 
@@ -330,23 +336,31 @@ void report_settings(const web::LoadOutcome& r) {
   static LogPortSink log_port;
   static protocol::MonitorTap monitor_tap(log_port);
   auto make_wrc = [] { return protocol::WrcSession(controller, ROTORD_VERSION, &monitor_tap); };
+  // Every server admits by net/admission.hpp with the live settings (idle
+  // eviction, per-address cap, allow-list), as on Linux.
+  auto line_config = [&settings](const char* name, std::uint16_t port, std::string_view busy) {
+    lwip_port::ServerConfig config;
+    config.name = name;
+    config.port = port;
+    config.max_clients = static_cast<std::size_t>(settings.i(Id::kNetMaxClients));
+    config.reject_message = busy;
+    config.settings = &settings;
+    return config;
+  };
   static lwip_port::StaticService<protocol::WrcSession, kWrcSlots, decltype(make_wrc)> wrc(
-      {"WRC text protocol", kWrcPort, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
-       protocol::WrcSession::kTooManyConnections},
+      line_config("WRC text protocol", kWrcPort, protocol::WrcSession::kTooManyConnections),
       make_wrc);
   // Yaesu GS-232A/B (gs232.variant) for PstRotator, N1MM+, HRD, Hamlib 601/603.
   auto make_gs232 = [] { return protocol::Gs232Session(controller); };
   static lwip_port::StaticService<protocol::Gs232Session, kGs232Slots, decltype(make_gs232)> gs232(
-      {"Yaesu GS-232", kGs232Port, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
-       protocol::Gs232Session::kTooManyConnections},
+      line_config("Yaesu GS-232", kGs232Port, protocol::Gs232Session::kTooManyConnections),
       make_gs232);
   // Hamlib rotctld for Gpredict, SatNOGS, rotctl -m 2 (docs/protocols/rotctld.md).
   auto make_rotctld = [] { return protocol::RotctldSession(controller, ROTORD_VERSION); };
   static lwip_port::StaticService<protocol::RotctldSession, kRotctldSlots, decltype(make_rotctld)>
-      rotctld(
-          {"Hamlib rotctld", kRotctldPort, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
-           protocol::RotctldSession::kTooManyConnections},
-          make_rotctld);
+      rotctld(line_config("Hamlib rotctld", kRotctldPort,
+                          protocol::RotctldSession::kTooManyConnections),
+              make_rotctld);
   // POST /api/settings persists to the flash slots (RAM only when the
   // program image would overlap them).
   hal::Storage* const storage = g_flash.region_free() ? &g_saver : nullptr;
@@ -361,15 +375,17 @@ void report_settings(const web::LoadOutcome& r) {
   http_config.max_clients = kHttpSlots;
   http_config.reject_message = web::HttpSession::kTooManyConnections;
   http_config.is_immutable = &in_program_flash;
+  http_config.settings = &settings;
+  http_config.max_event_streams =
+      std::min(kHttpEventStreams, static_cast<std::size_t>(settings.i(Id::kWebMaxEventStreams)));
   static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
       http_config, make_http);
   // Easycomm II/III for Easycomm trackers and Hamlib 202/204 (docs/protocols/easycomm.md).
   auto make_easycomm = [] { return protocol::EasycommSession(controller, ROTORD_VERSION); };
   static lwip_port::StaticService<protocol::EasycommSession, kEasycommSlots,
                                   decltype(make_easycomm)>
-      easycomm({"Easycomm II/III", kEasycommPort,
-                static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
-                protocol::EasycommSession::kTooManyConnections},
+      easycomm(line_config("Easycomm II/III", kEasycommPort,
+                           protocol::EasycommSession::kTooManyConnections),
                make_easycomm);
   lwip_port::TcpServer* const servers[] = {&wrc.server(), &gs232.server(), &rotctld.server(),
                                            &easycomm.server(), &http.server()};

@@ -194,13 +194,15 @@ TEST_F(WebApi, EventStreamSendsAtLeastFivePerSecondWhileMoving) {
 
 TEST_F(WebApi, TooManyConnectionsGetA503AndOthersKeepWorking) {
   start();
+  // Eight hosts (one host alone gets at most net.max_per_address, 6), each
+  // within its request deadline: the port is full.
   std::vector<std::unique_ptr<TcpClient>> held;
-  for (int n = 0; n < 8; ++n) {
-    held.push_back(std::make_unique<TcpClient>(port));
+  for (int n = 1; n <= 8; ++n) {
+    held.push_back(std::make_unique<TcpClient>(port, "127.0.0." + std::to_string(n)));
     held.back()->send("GET /api/sta");  // slow clients: half a request each
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  TcpClient extra(port);
+  TcpClient extra(port, "127.0.0.9");
   extra.wait_closed(3000);
   EXPECT_EQ(extra.recv_once(0).rfind("HTTP/1.1 503", 0), 0u);
   held.clear();

@@ -30,6 +30,7 @@ extern "C" {
 #include "lwip/udp.h"
 }
 #include "protocol/wrc_session.hpp"
+#include "settings/settings.hpp"
 
 // The options must be Debian's, the ones liblwip.so was built with (struct
 // layouts depend on them), not the Pico's ports/pico_w/config/lwipopts.h.
@@ -90,10 +91,14 @@ struct Client {
     pcb = nullptr;
   }
 
-  /// Call with the core lock held.
-  void connect(const ip_addr_t& addr, std::uint16_t port) {
+  /// Call with the core lock held. `source`: another host's address (a
+  /// netif of its own), as the per-address cap sees it.
+  void connect(const ip_addr_t& addr, std::uint16_t port, const ip_addr_t* source = nullptr) {
     pcb = tcp_new_ip_type(IPADDR_TYPE_V4);
     ASSERT_NE(pcb, nullptr);
+    if (source != nullptr) {
+      ASSERT_EQ(tcp_bind(pcb, source, 0), ERR_OK);
+    }
     tcp_arg(pcb, this);
     tcp_recv(pcb, &Client::on_recv);
     tcp_err(pcb, &Client::on_err);
@@ -124,7 +129,8 @@ bool in_asset(const void* data, std::size_t size) {
 /// A session for transport tests: 'F' starts a flood of kFloodBytes written
 /// from poll() in 200-byte writes (a counting pattern, so order is checked),
 /// 'Q' answers BYE and asks for the close, 'P' answers PONG, 'S' sends the
-/// asset between two copied lines.
+/// asset between two copied lines, 'E' turns it into an event stream (as
+/// GET /api/events does to an HTTP session).
 class TestSession final : public protocol::Session {
  public:
   static constexpr std::size_t kFloodBytes = 200000;
@@ -148,8 +154,10 @@ class TestSession final : public protocol::Session {
         out.write("BYE\n");
         close_ = true;
       }
+      if (ch == 'E') events_ = true;
     }
   }
+  bool is_event_stream() const override { return events_; }
   void poll(Millis, protocol::ByteSink& out) override {
     for (int i = 0; i < 4 && flood_left_ > 0; ++i) {
       char chunk[200];
@@ -168,6 +176,7 @@ class TestSession final : public protocol::Session {
   std::size_t flood_left_ = 0;
   std::size_t sent_ = 0;
   bool close_ = false;
+  bool events_ = false;
 };
 
 auto make_test_session() {
@@ -257,11 +266,11 @@ class LwipTransportTest : public ::testing::Test {
     return std::make_unique<Served>(*this);
   }
 
-  Client& connect() {
+  Client& connect(const ip_addr_t* source = nullptr) {
     Client& c = clients_[client_count_++];
     {
       CoreLock lock;
-      c.connect(addr_, server_->port());
+      c.connect(addr_, server_->port(), source);
     }
     EXPECT_TRUE(wait([&] { return c.connected || c.reset; }));
     return c;
@@ -447,6 +456,132 @@ TEST_F(LwipTransportTest, WithoutTheImmutablePredicateALargeWriteDropsTheClient)
   CoreLock lock;
   EXPECT_EQ(service.server().stats().dropped_backlog, 1u);
   EXPECT_EQ(service.server().client_count(), 0u);
+}
+
+// --- Admission: idle clients make room, per-address cap, event streams --------
+
+/// Other hosts: one more netif each (10.0.<n>.1/24), whose own address lwIP
+/// loops back, so a client bound to it reaches the server and back.
+class LwipAdmissionTest : public LwipTransportTest {
+ protected:
+  void SetUp() override {
+    LwipTransportTest::SetUp();
+    CoreLock lock;
+    for (std::size_t i = 0; i < hosts_.size(); ++i) {
+      ip4_addr_t a;
+      ip4_addr_t mask;
+      ip4_addr_t gw;
+      IP4_ADDR(&a, 10, 0, static_cast<u8_t>(i + 1), 1);
+      IP4_ADDR(&mask, 255, 255, 255, 0);
+      IP4_ADDR(&gw, 0, 0, 0, 0);
+      ip_addr_copy_from_ip4(host_addr_[i], a);
+      ASSERT_NE(netif_add(&hosts_[i], &a, &mask, &gw, nullptr, &init_netif, tcpip_input), nullptr);
+      netif_set_up(&hosts_[i]);
+      netif_set_link_up(&hosts_[i]);
+    }
+  }
+  void TearDown() override {
+    {
+      CoreLock lock;
+      for (netif& n : hosts_) netif_remove(&n);
+    }
+    LwipTransportTest::TearDown();
+  }
+  /// A client from host `n` (1..4); 0 is the server's own address.
+  Client& connect_from(std::size_t n) { return connect(n == 0 ? nullptr : &host_addr_[n - 1]); }
+  /// The Pico's loop polls every tick: the server always knows the time.
+  void advance(Millis ms) {
+    CoreLock lock;
+    now_ += ms;
+    server_->poll(now_);
+  }
+  bool pong(Client& c) {
+    c.received.clear();
+    send(c, "P");
+    return wait([&] { return c.received == "PONG\n" || c.reset || c.peer_closed; }) &&
+           c.received == "PONG\n";
+  }
+
+  settings::Settings settings_;  // net.idle_evict_s 60
+  std::array<netif, 4> hosts_{};
+  std::array<ip_addr_t, 4> host_addr_{};
+};
+
+TEST_F(LwipAdmissionTest, AFullPortServesANewcomerOnceAClientHasBeenIdleSixtySeconds) {
+  ServerConfig config = test_config(2);
+  config.settings = &settings_;
+  TestService service(config, make_test_session());
+  auto served = serve(service.server());
+  Client& a = connect_from(1);
+  ASSERT_TRUE(pong(a));
+  Client& b = connect_from(2);
+  ASSERT_TRUE(pong(b));
+  advance(30000);
+  ASSERT_TRUE(pong(b));  // b still talks
+  advance(29000);
+
+  Client& early = connect_from(3);
+  EXPECT_TRUE(wait([&] { return early.peer_closed || early.reset; }));
+  EXPECT_EQ(early.received, "busy\r\n");
+  advance(1000);  // a: 60 s without a byte
+  Client& newcomer = connect_from(3);
+  EXPECT_TRUE(pong(newcomer));
+  EXPECT_TRUE(wait([&] { return a.peer_closed; }));  // a FIN, not a reset
+  EXPECT_TRUE(pong(b));
+  CoreLock lock;
+  EXPECT_EQ(service.server().counters().refused_full, 1u);
+  EXPECT_EQ(service.server().counters().evicted_idle, 1u);
+  EXPECT_EQ(service.server().stats().rejected, 1u);
+  EXPECT_EQ(TestSession::live, 2);
+}
+
+TEST_F(LwipAdmissionTest, OneHostNeverTakesEverySlot) {
+  ServerConfig config = test_config(3);
+  config.settings = &settings_;  // net.max_per_address 6, kept below 3: 2
+  TestService service(config, make_test_session());
+  auto served = serve(service.server());
+  ASSERT_TRUE(pong(connect_from(1)));
+  ASSERT_TRUE(pong(connect_from(1)));
+  Client& third = connect_from(1);
+  EXPECT_TRUE(wait([&] { return third.peer_closed || third.reset; }));
+  EXPECT_EQ(third.received, "busy\r\n");
+  EXPECT_TRUE(pong(connect_from(2)));  // the last slot is another host's
+  CoreLock lock;
+  EXPECT_EQ(service.server().counters().refused_per_address, 1u);
+}
+
+TEST_F(LwipAdmissionTest, WhenEverySlotIsTakenTheOldestEventStreamMakesRoom) {
+  // The Pico's HTTP port: 4 slots, at most 2 event streams.
+  ServerConfig config = test_config(4);
+  config.settings = &settings_;
+  config.max_event_streams = 2;
+  TestService service(config, make_test_session());
+  auto served = serve(service.server());
+  Client& s1 = connect_from(1);
+  send(s1, "E");
+  ASSERT_TRUE(pong(s1));  // the test session still answers; the transport counts it apart
+  Client& s2 = connect_from(1);
+  send(s2, "E");
+  ASSERT_TRUE(pong(s2));
+  Client& r1 = connect_from(2);
+  ASSERT_TRUE(pong(r1));
+  Client& r2 = connect_from(3);
+  ASSERT_TRUE(pong(r2));
+  // Every slot taken, nobody idle: STOP from a fifth client still gets in.
+  Client& stop = connect_from(4);
+  EXPECT_TRUE(pong(stop));
+  EXPECT_TRUE(wait([&] { return s1.peer_closed; }));
+  EXPECT_FALSE(s2.peer_closed);
+  // Two streams again (s2, r1); a third (r2): the oldest (s2) gives way.
+  send(r1, "E");
+  ASSERT_TRUE(pong(r1));
+  EXPECT_FALSE(s2.peer_closed);
+  send(r2, "E");
+  EXPECT_TRUE(wait([&] { return s2.peer_closed; }));
+  EXPECT_TRUE(pong(stop));
+  CoreLock lock;
+  EXPECT_EQ(service.server().counters().evicted_event_stream, 2u);
+  EXPECT_EQ(service.server().client_count(), 3u);
 }
 
 // --- DHCP server for the setup access point ----------------------------------

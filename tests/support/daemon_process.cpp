@@ -168,8 +168,20 @@ DaemonProcess::~DaemonProcess() {
   if (!config_home_.empty()) std::filesystem::remove_all(config_home_, ignored);
 }
 
-TcpClient::TcpClient(int port) {
+TcpClient::TcpClient(int port) : TcpClient(port, "") {}
+
+TcpClient::TcpClient(int port, const std::string& source) {
   fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (!source.empty()) {
+    sockaddr_in local{};
+    local.sin_family = AF_INET;
+    if (::inet_pton(AF_INET, source.c_str(), &local.sin_addr) != 1 ||
+        ::bind(fd_, reinterpret_cast<sockaddr*>(&local), sizeof(local)) != 0) {
+      ::close(fd_);
+      fd_ = -1;
+      return;
+    }
+  }
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);

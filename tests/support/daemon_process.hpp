@@ -58,6 +58,9 @@ class DaemonProcess {
 class TcpClient {
  public:
   explicit TcpClient(int port);
+  /// From another loopback address (e.g. "127.0.0.2"): another host, as the
+  /// per-address limits and the allow-list see it.
+  TcpClient(int port, const std::string& source);
   ~TcpClient();
   TcpClient(const TcpClient&) = delete;
   TcpClient& operator=(const TcpClient&) = delete;

@@ -8,7 +8,12 @@ namespace rotord::testing {
 
 HttpResponse http(int port, const std::string& method, const std::string& path,
                   const std::string& body, const std::string& type) {
-  TcpClient c(port);
+  return http_from("", port, method, path, body, type);
+}
+
+HttpResponse http_from(const std::string& source, int port, const std::string& method,
+                       const std::string& path, const std::string& body, const std::string& type) {
+  TcpClient c(port, source);
   HttpResponse r;
   if (!c.connected()) return r;
   std::string req = method + " " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n";

@@ -412,7 +412,7 @@ TEST_F(HttpApi, SlowAndIdleClientsAreDropped) {
   StringSink sink;
   session.receive("GET /api/sta", sink);
   session.poll(r.now, sink);
-  r.run_ms(HttpSession::kRequestTimeoutMs + 100);
+  r.run_ms(HttpSession::kRequestDeadlineMs + 100);
   session.poll(r.now, sink);
   const auto rs = parse_responses(sink.data);
   ASSERT_EQ(rs.size(), 1u);
@@ -429,6 +429,93 @@ TEST_F(HttpApi, SlowAndIdleClientsAreDropped) {
   r.run_ms(HttpSession::kIdleTimeoutMs);
   idle.poll(r.now, sink2);
   EXPECT_TRUE(idle.wants_close());
+}
+
+TEST_F(HttpApi, ATricklingRequestGets408AtItsDeadlineWhateverItKeepsSending) {
+  // Issue 12: one header byte every 2 s used to restart a 10 s timeout for
+  // ever. The deadline runs from the first byte.
+  StringSink sink;
+  const std::string head = "GET /api/status HTTP/1.1\r\nX-Slow: " + std::string(200, 'a');
+  const Millis start = r.now;
+  std::size_t sent = 0;
+  while (!session.wants_close() && sent < head.size()) {
+    session.receive(head.substr(sent++, 1), sink);
+    for (int tick = 0; tick < 200 && !session.wants_close(); ++tick) {
+      r.run_ms(10);
+      session.poll(r.now, sink);
+    }
+  }
+  ASSERT_TRUE(session.wants_close());
+  EXPECT_LE(r.now - start, HttpSession::kRequestDeadlineMs + 2000);
+  const auto rs = parse_responses(sink.data);
+  ASSERT_EQ(rs.size(), 1u);
+  EXPECT_EQ(rs[0].status, 408);
+  EXPECT_NE(rs[0].body.find("not completed in time"), std::string::npos);
+}
+
+TEST_F(HttpApi, ABodyArrivingTooSlowlyGets408BeforeTheDeadline) {
+  StringSink sink;
+  session.receive(
+      "POST /api/settings HTTP/1.1\r\nContent-Type: application/json\r\n"
+      "Content-Length: 4000\r\n\r\n{",
+      sink);
+  const Millis start = r.now;
+  for (int second = 0; second < 10 && !session.wants_close(); ++second) {
+    for (int tick = 0; tick < 100 && !session.wants_close(); ++tick) {
+      r.run_ms(10);
+      session.poll(r.now, sink);
+    }
+    session.receive(" ", sink);  // a byte a second
+  }
+  ASSERT_TRUE(session.wants_close());
+  EXPECT_LT(r.now - start, HttpSession::kRequestDeadlineMs);
+  const auto rs = parse_responses(sink.data);
+  ASSERT_EQ(rs.size(), 1u);
+  EXPECT_EQ(rs[0].status, 408);
+  EXPECT_NE(rs[0].body.find("too slowly"), std::string::npos);
+}
+
+TEST_F(HttpApi, ABodyAtAnOrdinaryPaceIsServed) {
+  // 2 KB in 100-byte pieces every 100 ms (1 KB/s): slow, but well within the rate.
+  StringSink sink;
+  const std::string body = "{\"park.az_deg\": 12" + std::string(2000, ' ') + "}";
+  session.receive(
+      "POST /api/settings HTTP/1.1\r\nContent-Type: application/json\r\n"
+      "Content-Length: " +
+          std::to_string(body.size()) + "\r\n\r\n",
+      sink);
+  for (std::size_t sent = 0; sent < body.size(); sent += 100) {
+    for (int tick = 0; tick < 10; ++tick) {
+      r.run_ms(10);
+      session.poll(r.now, sink);
+    }
+    session.receive(body.substr(sent, 100), sink);
+  }
+  const auto rs = parse_responses(sink.data);
+  ASSERT_EQ(rs.size(), 1u) << sink.data;
+  EXPECT_EQ(rs[0].status, 200) << rs[0].body;
+}
+
+TEST_F(HttpApi, StrayLineEndsDoNotKeepAnIdleConnectionOpen) {
+  StringSink sink;
+  session.poll(r.now, sink);
+  for (int n = 0; n < 20 && !session.wants_close(); ++n) {
+    session.receive("\r\n", sink);
+    for (int tick = 0; tick < 100; ++tick) {
+      r.run_ms(10);
+      session.poll(r.now, sink);
+    }
+  }
+  EXPECT_TRUE(session.wants_close());
+}
+
+TEST_F(HttpApi, AnEventStreamSaysSoToItsTransport) {
+  StringSink sink;
+  EXPECT_FALSE(session.is_event_stream());
+  session.receive("GET /api/status HTTP/1.1\r\n\r\n", sink);
+  EXPECT_FALSE(session.is_event_stream());
+  session.receive("GET /api/events HTTP/1.1\r\n\r\n", sink);
+  EXPECT_TRUE(session.is_event_stream());
 }
 
 TEST_F(HttpApi, TimeoutsRunOnTheTransportsClockNotOnControllerTime) {
@@ -450,7 +537,7 @@ TEST_F(HttpApi, TimeoutsRunOnTheTransportsClockNotOnControllerTime) {
   EXPECT_FALSE(session.wants_close());
   idle.poll(10 + HttpSession::kIdleTimeoutMs + 10, sink);
   EXPECT_TRUE(idle.wants_close());
-  session.poll(10 + HttpSession::kRequestTimeoutMs + 10, sink);
+  session.poll(10 + HttpSession::kRequestDeadlineMs + 10, sink);
   EXPECT_TRUE(session.wants_close());
 }
 

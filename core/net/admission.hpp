@@ -1,0 +1,127 @@
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "access/peer.hpp"
+#include "util/time.hpp"
+
+namespace rotord::settings {
+class Settings;
+}
+
+namespace rotord::net {
+
+/// A client's network address, the key of the per-address cap: IPv6 as it
+/// is, IPv4 as ::ffff:a.b.c.d (so a v4-mapped client of a v6 socket is the
+/// same host as a plain IPv4 one).
+struct Address {
+  std::array<std::uint8_t, 16> bytes{};
+
+  static Address from_ipv4(std::uint32_t host_order);
+  static Address from_ipv6(const std::uint8_t (&network_order)[16]);
+  friend bool operator==(const Address&, const Address&) = default;
+};
+
+/// What a transport keeps of one open connection for the admission rule.
+struct ClientInfo {
+  access::Peer peer;          ///< for the allow-list (access.control_networks)
+  Address address;            ///< for the per-address cap
+  bool event_stream = false;  ///< an HTTP event stream (protocol::Session::is_event_stream)
+  Millis opened_ms = 0;
+  Millis last_receive_ms = 0;  ///< the last byte from the client, or opened_ms
+};
+
+/// The open connections of one server, as the transport holds them.
+class ClientList {
+ public:
+  virtual ~ClientList() = default;
+  virtual std::size_t size() const = 0;
+  /// nullptr: entry `i` is a free slot (the Pico's fixed slots).
+  virtual const ClientInfo* at(std::size_t i) const = 0;
+};
+
+/// Connection numbers of one server, in plain integers for /metrics. Each
+/// counts since the server started.
+struct ConnectionCounters {
+  std::uint32_t accepted = 0;
+  std::uint32_t refused_full = 0;          ///< full, nobody idle enough to drop: refused as before
+  std::uint32_t refused_per_address = 0;   ///< its host already had net.max_per_address
+  std::uint32_t evicted_idle = 0;          ///< dropped for a newcomer after net.idle_evict_s
+  std::uint32_t evicted_event_stream = 0;  ///< oldest event stream dropped (HTTP only)
+  std::uint32_t dropped_backlog = 0;       ///< stopped reading; its output overflowed
+};
+
+/// The fixed limits of one server; the rest is read from the settings at
+/// each decision, so a changed setting applies to the next newcomer.
+struct Limits {
+  /// Request and line clients (net.max_clients, clamped to the slots).
+  std::size_t max_clients = 8;
+  /// Every connection together, event streams included: the Pico's static
+  /// slots. Unbounded on Linux (the two limits bound the total there).
+  std::size_t slots = SIZE_MAX;
+  /// Event streams apart from max_clients; 0: the protocol has none.
+  std::size_t max_event_streams = 0;
+};
+
+/// Who gets a connection slot, shared by every transport (Linux asio, the Pico
+/// W's lwIP) so "STOP is never locked out" holds the same everywhere:
+///
+/// - only clients doing something count: a full port makes room by dropping
+///   the client idle longest, when it has been idle (no byte received) for
+///   net.idle_evict_s and is not on access.control_networks; otherwise the
+///   newcomer is refused in the protocol's own way, as before;
+/// - one host holds at most net.max_per_address of the request/line slots,
+///   and never all of them (the cap is kept below max_clients); at its cap a
+///   host's newcomer replaces that host's own client idle longest, allowed
+///   or not (a host that lost its connections without a close, e.g. a
+///   rebooted PC, gets back in); else it is refused;
+/// - HTTP event streams do not count against max_clients nor the per-address
+///   cap; they have their own limit, and a newer stream, or a newcomer
+///   finding every static slot taken, drops the oldest stream first.
+///
+/// No heap: it reads the transport's list in place.
+class Admission {
+ public:
+  struct Decision {
+    enum class Kind : std::uint8_t { kAdmit, kRefuseFull, kRefusePerAddress };
+    Kind kind = Kind::kAdmit;
+    /// kAdmit only: the entry to drop first to make room, or kNone.
+    std::size_t evict = kNone;
+  };
+  static constexpr std::size_t kNone = SIZE_MAX;
+
+  /// `settings` null: no per-address cap and no eviction (the old rule).
+  Admission(Limits limits, const settings::Settings* settings)
+      : limits_(limits), settings_(settings) {}
+
+  /// A client connects; counts the outcome.
+  Decision admit(const ClientList& clients, const ClientInfo& newcomer, Millis now);
+  /// Entry `self` has just become an event stream: the stream to drop to stay
+  /// within the limit (the oldest other one), or kNone; counts it.
+  std::size_t stream_started(const ClientList& clients, std::size_t self);
+
+  /// The per-address cap in force: net.max_per_address, below max_clients.
+  std::size_t per_address_cap() const;
+  /// net.idle_evict_s in ms; -1: never (no settings).
+  Millis idle_evict_ms() const;
+  /// On a non-empty access.control_networks: never dropped for a stranger.
+  bool control_listed(const access::Peer& peer) const;
+
+  const Limits& limits() const { return limits_; }
+  ConnectionCounters& counters() { return counters_; }
+  const ConnectionCounters& counters() const { return counters_; }
+
+ private:
+  /// The request/line client idle longest (idle at least idle_evict_ms), of
+  /// `only` when given; allow-listed ones only when `any_listed`.
+  std::size_t idlest(const ClientList& clients, const Address* only, bool any_listed,
+                     Millis now) const;
+  std::size_t oldest_stream(const ClientList& clients, std::size_t except) const;
+
+  Limits limits_;
+  const settings::Settings* settings_;
+  ConnectionCounters counters_;
+};
+
+}  // namespace rotord::net
