@@ -274,6 +274,7 @@ int Daemon::run() {
   controller_->begin(now_ms_);
   if (sim_) sim_->advance_to(now_ms_);
   wall_start_ = std::chrono::steady_clock::now();
+  ticks_.start(steady_us());
   if (clock_control_) clock_control_->start();
   schedule_tick();
   io_.run();
@@ -292,11 +293,19 @@ void Daemon::stop() {
   io_.stop();
 }
 
+std::int64_t Daemon::steady_us() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 void Daemon::schedule_tick() {
-  timer_.expires_after(std::chrono::milliseconds(kTickMs));
+  timer_.expires_at(std::chrono::steady_clock::time_point(
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::microseconds(ticks_.deadline_us()))));
   timer_.async_wait([this](std::error_code ec) {
     if (ec) return;
-    on_tick();
+    if (ticks_.poll(steady_us())) on_tick();
     schedule_tick();
   });
 }

@@ -6,6 +6,7 @@
 #include "clock_control.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
+#include "loop/tick_scheduler.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
@@ -48,8 +49,11 @@ class Daemon final : private web::RebootHook {
   /// Opens every --pty and --serial line the first time; after a controller
   /// restart only gives them sessions on the new controller (paths stay).
   bool attach_serial_lines(const std::vector<ServiceConfig>& services);
+  /// Sleeps until the scheduler's next deadline (start + n x kTickMs).
   void schedule_tick();
   void on_tick();
+  /// The steady clock in microseconds, the scheduler's time base.
+  static std::int64_t steady_us();
   void advance_simulation(Millis wall_ms);
   /// One control tick of the simulator at now_ms_ + kTickMs.
   void tick_simulation();
@@ -67,6 +71,8 @@ class Daemon final : private web::RebootHook {
   Options options_;
   asio::io_context io_;
   asio::steady_timer timer_;
+  /// The loop's wake-ups for the control tick, on an absolute schedule.
+  TickScheduler ticks_{kTickMs * 1000};
   asio::signal_set signals_;
   settings::Settings settings_;
   SystemWallClock wall_clock_;   ///< GET /api/status time_utc

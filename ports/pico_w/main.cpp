@@ -5,13 +5,15 @@
 // One loop, no interrupts into the core: pico_cyw43_arch_lwip_poll runs lwIP
 // only inside cyw43_arch_poll(), so network callbacks, sessions and the
 // control tick never run concurrently and the core needs no locks. The tick
-// is scheduled by absolute deadline and the loop sleeps only until the next
-// deadline, so network traffic delays a tick by at most one poll.
+// is scheduled by absolute deadline (TickScheduler) and the loop sleeps only
+// until the next deadline, so network traffic delays a tick by at most one
+// poll.
 #include <cstdio>
 #include <optional>
 
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
+#include "loop/tick_scheduler.hpp"
 #include "lwip_transport.hpp"
 #include "ma3_pio.hpp"
 #include "pico/binary_info.h"
@@ -387,9 +389,11 @@ void report_settings(const web::LoadOutcome& r) {
 
   // 5. The loop. Started after the blocking Wi-Fi chip init (firmware load).
   watchdog_enable(kWatchdogMs, true /* pause while a debugger halts the core */);
-  absolute_time_t next_tick = make_timeout_time_ms(kTickMs);
-  std::uint32_t late_ticks = 0;
-  std::uint32_t reported_late_ticks = 0;
+  // The n-th tick at start + n x kTickMs (loop/tick_scheduler.hpp): network
+  // traffic delays a tick but never shifts the ones after it.
+  static TickScheduler ticks(kTickMs * 1000);
+  ticks.start(static_cast<std::int64_t>(time_us_64()));
+  std::uint64_t reported_overruns = 0;
   std::uint32_t reported_usb_drops = 0;
   Millis next_report = now_ms() + 10'000;
   Millis reboot_at = 0;
@@ -399,7 +403,7 @@ void report_settings(const web::LoadOutcome& r) {
     rotord_usb_task();
     if (usb_link) usb_link->service();
     if (network) cyw43_arch_poll();
-    if (time_reached(next_tick)) {
+    if (ticks.poll(static_cast<std::int64_t>(time_us_64()))) {
       const Millis now = now_ms();
       controller.tick(now);
       api.poll(now);  // hold-to-move's dead-man, with or without a connection
@@ -423,18 +427,13 @@ void report_settings(const web::LoadOutcome& r) {
           for (;;) tight_loop_contents();
         }
       }
-      next_tick = delayed_by_ms(next_tick, kTickMs);
-      if (time_reached(next_tick)) {
-        // Fell a whole tick behind: resynchronise instead of running a burst
-        // of ticks back to back (the controller works from `now`, not counts).
-        ++late_ticks;
-        next_tick = make_timeout_time_ms(kTickMs);
-      }
       if (now >= next_report) {
-        if (late_ticks != reported_late_ticks)
-          std::printf("rotord: %lu late control ticks so far\n",
-                      static_cast<unsigned long>(late_ticks));
-        reported_late_ticks = late_ticks;
+        // Ticks skipped because the loop fell a whole period behind (the
+        // scheduler never runs a burst of catch-up ticks).
+        if (ticks.stats().overruns != reported_overruns)
+          std::printf("rotord: %lu control ticks skipped so far (loop overruns)\n",
+                      static_cast<unsigned long>(ticks.stats().overruns));
+        reported_overruns = ticks.stats().overruns;
         if (usb_link && usb_link->stats().dropped_replies != reported_usb_drops) {
           reported_usb_drops = usb_link->stats().dropped_replies;
           std::printf("rotord: USB: %lu replies dropped so far (the program stopped reading)\n",
@@ -443,6 +442,8 @@ void report_settings(const web::LoadOutcome& r) {
         next_report = now + 10'000;
       }
     }
+    const absolute_time_t next_tick =
+        from_us_since_boot(static_cast<std::uint64_t>(ticks.deadline_us()));
     if (network)
       cyw43_arch_wait_for_work_until(next_tick);
     else
