@@ -5,17 +5,55 @@
 #include <csignal>
 #include <cstdio>
 
+#include <cstring>
+
 #include "legacy_profile_guess.hpp"
+#include "safe_stop.hpp"
 #include "services.hpp"
 #include "sysfs_pwm.hpp"
 
 namespace rotord::linux_port {
+namespace {
 
-Daemon::Daemon(const Options& options)
-    : options_(options), timer_(io_), signals_(io_, SIGINT, SIGTERM) {}
+/// Every signal that ends a process by default and that it may catch: each
+/// one stops the motors before rotord exits. Left out are the ones the CPU
+/// raises for a fault in rotord itself (SIGSEGV, SIGBUS, SIGFPE, SIGILL,
+/// SIGTRAP, SIGSYS, SIGABRT): running on after those is undefined, so they
+/// end the process like `kill -9` (README, "Signals"). SIGPIPE is ignored.
+std::vector<int> terminating_signals() {
+  std::vector<int> signals = {SIGHUP,  SIGINT,  SIGQUIT,   SIGTERM, SIGUSR1, SIGUSR2,
+                              SIGALRM, SIGPOLL, SIGVTALRM, SIGPROF, SIGXCPU, SIGXFSZ};
+#ifdef SIGPWR
+  signals.push_back(SIGPWR);
+#endif
+#ifdef SIGSTKFLT
+  signals.push_back(SIGSTKFLT);
+#endif
+  for (int n = SIGRTMIN; n <= SIGRTMAX; ++n) signals.push_back(n);
+  return signals;
+}
+
+std::string signal_name(int signal) {
+  if (signal >= SIGRTMIN && signal <= SIGRTMAX)
+    return "SIGRTMIN+" + std::to_string(signal - SIGRTMIN);
+  const char* abbrev = ::sigabbrev_np(signal);
+  return abbrev != nullptr ? std::string("SIG") + abbrev : "signal " + std::to_string(signal);
+}
+
+}  // namespace
+
+Daemon::Daemon(const Options& options) : options_(options), timer_(io_), signals_(io_) {
+  // A write to a closed pipe or pty (a dropped SSH session's terminal, a
+  // pty's reader gone) fails with EPIPE instead of killing rotord mid-move;
+  // a SIGPIPE sent with kill is ignored too.
+  std::signal(SIGPIPE, SIG_IGN);
+  // Caught from now on: one arriving during start-up is handled as soon as
+  // the loop runs, and the outputs are off until then anyway.
+  for (const int signal : terminating_signals()) signals_.add(signal);
+}
 
 Daemon::~Daemon() {
-  if (controller_) controller_->shutdown();
+  stop_motors(controller_.get(), gpio_.get());
 }
 
 bool Daemon::setup() {
@@ -240,7 +278,7 @@ bool Daemon::request_reboot() {
 void Daemon::reboot() {
   reboot_pending_ = false;
   std::printf("rotord: restarting the controller\n");
-  controller_->shutdown();
+  stop_motors(controller_.get(), nullptr);
   servers_.clear();
   api_.reset();
   controller_.reset();
@@ -267,7 +305,7 @@ int Daemon::run() {
   if (!setup()) return 2;
   signals_.async_wait([this](std::error_code ec, int signal) {
     if (ec) return;
-    std::printf("rotord: signal %d, stopping the motors\n", signal);
+    std::printf("rotord: %s (%d), stopping the motors\n", signal_name(signal).c_str(), signal);
     std::fflush(stdout);
     stop();
   });
@@ -278,14 +316,29 @@ int Daemon::run() {
   if (clock_control_) clock_control_->start();
   schedule_tick();
   io_.run();
-  if (controller_) controller_->shutdown();
-  if (gpio_) gpio_->all_off();
-  std::printf("rotord: stopped\n");
+  stop_motors(controller_.get(), gpio_.get());
+  std::printf("rotord: stopped; outputs at the driver: %s\n", driver_outputs().c_str());
   return exit_code_;
 }
 
+std::string Daemon::driver_outputs() const {
+  // What the hardware was last given: the simulator's plant inputs, or the
+  // values written to the GPIO lines and PWM channels.
+  const bool has_el = controller_ && controller_->has_el();
+  DriveOutputs az;
+  DriveOutputs el;
+  if (sim_) {
+    az = sim_->outputs(AxisId::kAz);
+    el = sim_->outputs(AxisId::kEl);
+  } else if (gpio_) {
+    az = gpio_->written(AxisId::kAz);
+    el = gpio_->written(AxisId::kEl);
+  }
+  return describe_outputs(az, has_el ? &el : nullptr);
+}
+
 void Daemon::stop() {
-  if (controller_) controller_->shutdown();
+  stop_motors(controller_.get(), gpio_.get());
   save_changed_settings(true);  // a change still in its quiet time
   timer_.cancel();
   servers_.clear();

@@ -63,7 +63,10 @@ class Daemon final : private web::RebootHook {
   /// Work every wake-up does whatever the clock: sessions, saving, reboot.
   void serve(Millis wall_ms);
   Millis wall_ms() const;
+  /// Stops the motors (safe_stop.hpp), saves a pending change and ends the loop.
   void stop();
+  /// The outputs the simulator or the GPIO lines were last given, for the exit log.
+  std::string driver_outputs() const;
   /// Saves what the protocols changed (after the saver's quiet time, or at
   /// once when `now`), and says so.
   void save_changed_settings(bool now);

@@ -140,9 +140,14 @@ long long DaemonProcess::advance_ms(long long ms) {
   return -1;
 }
 
-int DaemonProcess::terminate() {
+void DaemonProcess::close_output() {
+  if (out_fd_ >= 0) ::close(out_fd_);
+  out_fd_ = -1;
+}
+
+int DaemonProcess::stop_with(int signal) {
   if (pid_ <= 0) return -1;
-  ::kill(pid_, SIGTERM);
+  ::kill(pid_, signal);
   int status = 0;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (std::chrono::steady_clock::now() < deadline) {
