@@ -184,9 +184,12 @@ bool Daemon::load_settings(const sim::Profile* profile) {
 bool Daemon::start_controller() {
   controller_ = std::make_unique<Controller>(settings_, axis_io(AxisId::kAz), axis_io(AxisId::kEl));
   if (gpio_ && gpio_->estop() != nullptr) controller_->attach_estop(gpio_->estop());
-  api_ =
-      std::make_unique<web::Api>(web::ApiContext{*controller_, saver_.get(), &defaults_, this,
-                                                 ROTORD_VERSION, &wall_clock_, host_name_.c_str()});
+  metrics_.ticks = &ticks_;
+  metrics_.saver = saver_.get();
+  metrics_.clock = &steady_clock_;
+  api_ = std::make_unique<web::Api>(web::ApiContext{*controller_, saver_.get(), &defaults_, this,
+                                                    ROTORD_VERSION, &wall_clock_,
+                                                    host_name_.c_str(), &metrics_});
 
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);
@@ -195,7 +198,8 @@ bool Daemon::start_controller() {
     return false;
   }
   const auto max_clients = static_cast<std::size_t>(settings_.i(settings::Id::kNetMaxClients));
-  std::vector<ServiceConfig> services = make_services(options_, *controller_, *api_, max_clients);
+  std::vector<ServiceConfig> services =
+      make_services(options_, *controller_, *api_, max_clients, metrics_);
   if (!attach_serial_lines(services)) return false;
   for (auto& service : services) {
     if (service.port == 0) continue;
@@ -251,6 +255,7 @@ bool Daemon::attach_serial_lines(const std::vector<ServiceConfig>& services) {
     }
     auto line = std::make_unique<SerialTransport>(io_, service->name, spec, service->serial_baud,
                                                   service->make_session);
+    line->count_replies(&metrics_, service->protocol);
     if (!line->open(error)) {
       std::fprintf(stderr, "rotord: %s: %s\n", service->name.c_str(), error.c_str());
       return false;
@@ -313,6 +318,7 @@ int Daemon::run() {
   if (sim_) sim_->advance_to(now_ms_);
   wall_start_ = std::chrono::steady_clock::now();
   ticks_.start(steady_us());
+  metrics_.start_us = steady_us();
   if (clock_control_) clock_control_->start();
   schedule_tick();
   io_.run();

@@ -7,6 +7,7 @@
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
 #include "loop/tick_scheduler.hpp"
+#include "metrics/registry.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
@@ -54,6 +55,11 @@ class Daemon final : private web::RebootHook {
   void on_tick();
   /// The steady clock in microseconds, the scheduler's time base.
   static std::int64_t steady_us();
+  /// The same clock for the core (GET /healthz: the age of the last tick).
+  class SteadyClock final : public hal::MonotonicClock {
+   public:
+    std::int64_t now_us() const override { return steady_us(); }
+  };
   void advance_simulation(Millis wall_ms);
   /// One control tick of the simulator at now_ms_ + kTickMs.
   void tick_simulation();
@@ -76,6 +82,10 @@ class Daemon final : private web::RebootHook {
   asio::steady_timer timer_;
   /// The loop's wake-ups for the control tick, on an absolute schedule.
   TickScheduler ticks_{kTickMs * 1000};
+  SteadyClock steady_clock_;
+  /// Connections, error replies, ticks and saves for GET /metrics; outlives
+  /// controller restarts, so counters only reset with the process.
+  metrics::Registry metrics_;
   asio::signal_set signals_;
   settings::Settings settings_;
   SystemWallClock wall_clock_;   ///< GET /api/status time_utc

@@ -251,6 +251,7 @@ void SerialTransport::close_line() {
 }
 
 void SerialTransport::write(std::string_view bytes) {
+  if (metrics_ != nullptr) metrics_->on_reply(protocol_, bytes);
   if (!line_.is_open()) {
     dropped_bytes_ += bytes.size();
     return;

@@ -9,8 +9,10 @@
 namespace rotord::linux_port {
 
 /// Every protocol the daemon serves on TCP, with its port from the options.
-/// A port of 0 leaves that service out.
+/// A port of 0 leaves that service out. Each counts its connections and
+/// error replies in `registry` under its protocol.
 std::vector<ServiceConfig> make_services(const Options& options, Controller& controller,
-                                         web::Api& api, std::size_t max_clients);
+                                         web::Api& api, std::size_t max_clients,
+                                         metrics::Registry& registry);
 
 }  // namespace rotord::linux_port

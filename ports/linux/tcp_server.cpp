@@ -30,12 +30,16 @@ class TcpServer::Connection final : public protocol::ByteSink,
     std::error_code ignored;
     socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
     session_->set_peer(peer_of(socket_));
+    if (metrics::Registry* m = server_.config_.metrics)
+      m->protocol(server_.config_.protocol).on_accept();
   }
 
   void start() { read(); }
 
   void write(std::string_view bytes) override {
     if (closing_) return;
+    if (metrics::Registry* m = server_.config_.metrics)
+      m->on_reply(server_.config_.protocol, bytes);
     if (pending_.size() + bytes.size() > kMaxBacklogBytes) {
       close();  // the client stopped reading; drop it rather than buffer forever
       return;
@@ -54,6 +58,8 @@ class TcpServer::Connection final : public protocol::ByteSink,
   void close() {
     if (closing_) return;
     closing_ = true;
+    if (metrics::Registry* m = server_.config_.metrics)
+      m->protocol(server_.config_.protocol).on_close();
     std::error_code ignored;
     socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
     socket_.close(ignored);
@@ -142,6 +148,7 @@ void TcpServer::accept() {
     if (ec == asio::error::operation_aborted) return;
     if (!ec) {
       if (connections_.size() >= config_.max_clients) {
+        if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_refuse();
         std::error_code ignored;
         asio::write(socket, asio::buffer(config_.reject_message), ignored);
         socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "metrics/registry.hpp"
 #include "protocol/session.hpp"
 
 namespace rotord::linux_port {
@@ -22,6 +23,10 @@ struct ServiceConfig {
   /// empty: TCP only. A service with port 0 can still be served on a pty.
   std::string key{};
   int serial_baud = 9600;  ///< default baud rate of --serial for this protocol
+  /// Where connections, refusals and error replies are counted (GET
+  /// /metrics), under `protocol`; nullptr counts nothing.
+  metrics::Registry* metrics = nullptr;
+  metrics::Protocol protocol = metrics::Protocol::kWrc;
 };
 
 /// Serves one protocol on one TCP port: a byte session per connection, all in
