@@ -18,6 +18,7 @@
 #include <string_view>
 #include <utility>
 
+#include "metrics/registry.hpp"
 #include "protocol/session.hpp"
 
 struct tcp_pcb;
@@ -78,6 +79,10 @@ struct ServerConfig {
   /// queued by reference and handed to lwIP without a copy, so a 20 KB page
   /// needs neither a 20 KB buffer nor a copy. nullptr: everything is copied.
   bool (*is_immutable)(const void* data, std::size_t size) = nullptr;
+  /// Where connections, refusals and error replies are counted (GET
+  /// /metrics), under `protocol`; nullptr counts nothing.
+  metrics::Registry* metrics = nullptr;
+  metrics::Protocol protocol = metrics::Protocol::kWrc;
 };
 
 /// Serves one protocol on one TCP port: a byte session per connection from a

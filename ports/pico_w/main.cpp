@@ -16,6 +16,7 @@
 #include "loop/tick_scheduler.hpp"
 #include "lwip_transport.hpp"
 #include "ma3_pio.hpp"
+#include "metrics/registry.hpp"
 #include "pico/binary_info.h"
 #include "pico/cyw43_arch.h"
 #include "pico/stdlib.h"
@@ -100,6 +101,13 @@ bool in_program_flash(const void* data, std::size_t size) {
   const auto begin = reinterpret_cast<std::uintptr_t>(data);
   return begin >= XIP_BASE && begin + size <= XIP_BASE + PICO_FLASH_SIZE_BYTES;
 }
+
+/// The loop's clock for GET /healthz (the age of the last tick): the same
+/// microsecond timer the tick schedule runs on.
+class PicoMonotonicClock final : public hal::MonotonicClock {
+ public:
+  std::int64_t now_us() const override { return static_cast<std::int64_t>(time_us_64()); }
+};
 
 /// POST /api/reboot: remembered here, done by the loop once the response is
 /// out (the hook runs inside the request).
@@ -320,6 +328,15 @@ void report_settings(const web::LoadOutcome& r) {
                 usb_port::personality_name(usb_personality));
   }
 
+  // GET /metrics and /healthz: what the loop and the transports count.
+  static metrics::Registry registry;
+  static PicoMonotonicClock monotonic_clock;
+  // The n-th tick at start + n x kTickMs (loop/tick_scheduler.hpp): network
+  // traffic delays a tick but never shifts the ones after it.
+  static TickScheduler ticks(kTickMs * 1000);
+  registry.ticks = &ticks;
+  registry.clock = &monotonic_clock;
+
   // 4. Network. Without the Wi-Fi chip the controller still runs (USB logs,
   // safety rules), it just takes no commands.
   const bool network = cyw43_arch_init() == 0;
@@ -334,28 +351,30 @@ void report_settings(const web::LoadOutcome& r) {
   auto make_wrc = [] { return protocol::WrcSession(controller, ROTORD_VERSION, &monitor_tap); };
   static lwip_port::StaticService<protocol::WrcSession, kWrcSlots, decltype(make_wrc)> wrc(
       {"WRC text protocol", kWrcPort, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
-       protocol::WrcSession::kTooManyConnections},
+       protocol::WrcSession::kTooManyConnections, nullptr, &registry, metrics::Protocol::kWrc},
       make_wrc);
   // Yaesu GS-232A/B (gs232.variant) for PstRotator, N1MM+, HRD, Hamlib 601/603.
   auto make_gs232 = [] { return protocol::Gs232Session(controller); };
   static lwip_port::StaticService<protocol::Gs232Session, kGs232Slots, decltype(make_gs232)> gs232(
       {"Yaesu GS-232", kGs232Port, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
-       protocol::Gs232Session::kTooManyConnections},
+       protocol::Gs232Session::kTooManyConnections, nullptr, &registry, metrics::Protocol::kGs232},
       make_gs232);
   // Hamlib rotctld for Gpredict, SatNOGS, rotctl -m 2 (docs/protocols/rotctld.md).
   auto make_rotctld = [] { return protocol::RotctldSession(controller, ROTORD_VERSION); };
   static lwip_port::StaticService<protocol::RotctldSession, kRotctldSlots, decltype(make_rotctld)>
       rotctld(
           {"Hamlib rotctld", kRotctldPort, static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
-           protocol::RotctldSession::kTooManyConnections},
+           protocol::RotctldSession::kTooManyConnections, nullptr, &registry,
+           metrics::Protocol::kRotctld},
           make_rotctld);
   // POST /api/settings persists to the flash slots (RAM only when the
   // program image would overlap them).
   hal::Storage* const storage = g_flash.region_free() ? &g_saver : nullptr;
   g_saver.begin();  // what was loaded (or deliberately not overwritten) counts as saved
+  if (storage != nullptr) registry.saver = &g_saver;
   static SntpWallClock wall_clock(&now_ms);  // time_utc once SNTP has answered
-  static web::Api api(
-      web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION, &wall_clock});
+  static web::Api api(web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION,
+                                      &wall_clock, nullptr, &registry});
   auto make_http = [] { return web::HttpSession(api); };
   lwip_port::ServerConfig http_config;
   http_config.name = "web UI and REST API";
@@ -363,6 +382,8 @@ void report_settings(const web::LoadOutcome& r) {
   http_config.max_clients = kHttpSlots;
   http_config.reject_message = web::HttpSession::kTooManyConnections;
   http_config.is_immutable = &in_program_flash;
+  http_config.metrics = &registry;
+  http_config.protocol = metrics::Protocol::kHttp;
   static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
       http_config, make_http);
   // Easycomm II/III for Easycomm trackers and Hamlib 202/204 (docs/protocols/easycomm.md).
@@ -371,7 +392,8 @@ void report_settings(const web::LoadOutcome& r) {
                                   decltype(make_easycomm)>
       easycomm({"Easycomm II/III", kEasycommPort,
                 static_cast<std::size_t>(settings.i(Id::kNetMaxClients)),
-                protocol::EasycommSession::kTooManyConnections},
+                protocol::EasycommSession::kTooManyConnections, nullptr, &registry,
+                metrics::Protocol::kEasycomm},
                make_easycomm);
   lwip_port::TcpServer* const servers[] = {&wrc.server(), &gs232.server(), &rotctld.server(),
                                            &easycomm.server(), &http.server()};
@@ -389,10 +411,8 @@ void report_settings(const web::LoadOutcome& r) {
 
   // 5. The loop. Started after the blocking Wi-Fi chip init (firmware load).
   watchdog_enable(kWatchdogMs, true /* pause while a debugger halts the core */);
-  // The n-th tick at start + n x kTickMs (loop/tick_scheduler.hpp): network
-  // traffic delays a tick but never shifts the ones after it.
-  static TickScheduler ticks(kTickMs * 1000);
   ticks.start(static_cast<std::int64_t>(time_us_64()));
+  registry.start_us = ticks.deadline_us() - kTickMs * 1000;
   std::uint64_t reported_overruns = 0;
   std::uint32_t reported_usb_drops = 0;
   Millis next_report = now_ms() + 10'000;
