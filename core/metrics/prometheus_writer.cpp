@@ -8,20 +8,23 @@ namespace rotord::metrics {
 PrometheusWriter& PrometheusWriter::family(std::string_view name, std::string_view type,
                                            std::string_view help) {
   family_ = name;
-  put("# HELP ");
-  put(name);
-  put(' ');
-  for (char c : help) {
-    // HELP text escapes only the backslash and the line feed.
-    if (c == '\\') {
-      put("\\\\");
-    } else if (c == '\n') {
-      put("\\n");
-    } else {
-      put(c);
+  if (with_help_) {
+    put("# HELP ");
+    put(name);
+    put(' ');
+    for (char c : help) {
+      // HELP text escapes only the backslash and the line feed.
+      if (c == '\\') {
+        put("\\\\");
+      } else if (c == '\n') {
+        put("\\n");
+      } else {
+        put(c);
+      }
     }
+    put('\n');
   }
-  put("\n# TYPE ");
+  put("# TYPE ");
   put(name);
   put(' ');
   put(type);

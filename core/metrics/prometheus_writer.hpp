@@ -25,7 +25,10 @@ class PrometheusWriter {
     std::string_view value;
   };
 
-  explicit PrometheusWriter(protocol::ByteSink& out) : out_(out) {}
+  /// `with_help` false leaves out the `# HELP` lines (optional in the
+  /// format): a third of the page, for the Pico W's small TCP buffers.
+  explicit PrometheusWriter(protocol::ByteSink& out, bool with_help = true)
+      : out_(out), with_help_(with_help) {}
   ~PrometheusWriter() { flush(); }
   PrometheusWriter(const PrometheusWriter&) = delete;
   PrometheusWriter& operator=(const PrometheusWriter&) = delete;
@@ -56,6 +59,7 @@ class PrometheusWriter {
   void flush();
 
   protocol::ByteSink& out_;
+  bool with_help_;
   std::string_view family_;
   char buf_[256];
   std::size_t len_ = 0;

@@ -71,6 +71,9 @@ class Registry {
   const hal::MonotonicClock* clock = nullptr;
   /// The clock's reading when the port started, for rotord_uptime_seconds.
   std::int64_t start_us = 0;
+  /// Whether GET /metrics carries the `# HELP` lines (about 3.8 KB of the
+  /// page's 11 KB); the Pico W leaves them out to fit its TCP buffers.
+  bool help_text = true;
 
  private:
   std::array<ProtocolCounters, kProtocolCount> protocols_{};

@@ -28,9 +28,10 @@ void Api::handle_metrics(const HttpRequest& request, protocol::ByteSink& out,
   // Written twice, first only counted for the Content-Length, so the page
   // never sits in RAM; one clock reading keeps both passes the same.
   const std::int64_t now_us = clock_now_us(ctx_.metrics);
+  const bool help = ctx_.metrics == nullptr || ctx_.metrics->help_text;
   CountingSink counter;
   {
-    metrics::PrometheusWriter w(counter);
+    metrics::PrometheusWriter w(counter, help);
     write_metrics(w, ctx_.controller, ctx_.metrics, ctx_.version, now_us);
   }
   ResponseOptions o = options;
@@ -38,7 +39,7 @@ void Api::handle_metrics(const HttpRequest& request, protocol::ByteSink& out,
   write_head(out, 200, "text/plain; version=0.0.4; charset=utf-8",
              static_cast<long>(counter.count()), o);
   if (options.head_only) return;
-  metrics::PrometheusWriter w(out);
+  metrics::PrometheusWriter w(out, help);
   write_metrics(w, ctx_.controller, ctx_.metrics, ctx_.version, now_us);
 }
 

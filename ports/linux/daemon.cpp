@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "legacy_profile_guess.hpp"
+#include "log.hpp"
 #include "safe_stop.hpp"
 #include "services.hpp"
 #include "sysfs_pwm.hpp"
@@ -62,34 +63,32 @@ bool Daemon::setup() {
   if (::gethostname(name, sizeof(name) - 1) == 0) host_name_ = name;
   if (options_.hw == "gpiod") {
     if (options_.speedup != 1.0 || options_.clock != "wall") {
-      std::fprintf(
-          stderr, "rotord: --speedup and --clock apply to the simulator only, not to --hw gpiod\n");
+      log::error("--speedup and --clock apply to the simulator only, not to --hw gpiod");
       return false;
     }
     defaults_ = settings_;  // no profile layer under real hardware
     if (!load_settings(nullptr)) return false;
     if (!open_gpiod()) return false;
-    std::printf("rotord %s: %s\n", ROTORD_VERSION, gpio_->summary().c_str());
+    log::info("rotord %s, %s", ROTORD_VERSION, gpio_->summary().c_str());
     if (!start_controller()) return false;
     gpio_->watch(io_);
-    std::printf("rotord: ready\n");
-    std::fflush(stdout);
+    log::info("ready");
     return true;
   }
   if (options_.hw != "sim") {
-    std::fprintf(stderr, "rotord: unknown --hw '%s' (sim or gpiod)\n", options_.hw.c_str());
+    log::error("unknown --hw '%s' (sim or gpiod)", options_.hw.c_str());
     return false;
   }
   const sim::Profile* profile = sim::find_profile(options_.sim_profile);
   if (profile == nullptr) {
-    std::fprintf(stderr, "rotord: unknown simulator profile '%s' (try g5500, ham4, spid)\n",
-                 options_.sim_profile.c_str());
+    log::error("unknown simulator profile '%s' (try g5500, ham4, spid)",
+               options_.sim_profile.c_str());
     return false;
   }
   for (const auto& o : profile->overrides) {
     const auto id = settings::find(o.key);
     if (!id || settings_.set(*id, o.value).error != Error::kOk) {
-      std::fprintf(stderr, "rotord: profile %s sets an invalid %s\n", profile->name, o.key);
+      log::error("profile %s sets an invalid %s", profile->name, o.key);
       return false;
     }
   }
@@ -97,17 +96,16 @@ bool Daemon::setup() {
   if (!load_settings(profile)) return false;
   sim_ = std::make_unique<sim::SimRotator>(*profile, options_.sim_seed);
   if (options_.clock == "manual") {
-    std::printf("rotord %s: simulated rotator '%s' (%s), manual clock (advance <ms> on stdin)\n",
-                ROTORD_VERSION, profile->name, profile->description);
+    log::info("rotord %s, simulated rotator '%s' (%s), manual clock (advance <ms> on stdin)",
+              ROTORD_VERSION, profile->name, profile->description);
     clock_control_ =
         std::make_unique<ClockControl>(io_, [this](Millis ms) { return advance_manual_clock(ms); });
   } else {
-    std::printf("rotord %s: simulated rotator '%s' (%s), speedup %g\n", ROTORD_VERSION,
-                profile->name, profile->description, options_.speedup);
+    log::info("rotord %s, simulated rotator '%s' (%s), speedup %g", ROTORD_VERSION, profile->name,
+              profile->description, options_.speedup);
   }
   if (!start_controller()) return false;
-  std::printf("rotord: ready\n");
-  std::fflush(stdout);
+  log::info("ready");
   return true;
 }
 
@@ -120,7 +118,7 @@ bool Daemon::open_gpiod() {
         GpiodHost{iio_root(), pwm_root(), i2c_dev_root(), &linux_i2c_kernel(), monotonic_ns},
         error);
   if (!gpio_) {
-    std::fprintf(stderr, "rotord: --hw gpiod: %s\n", error.c_str());
+    log::error("--hw gpiod: %s", error.c_str());
     return false;
   }
   return true;
@@ -135,7 +133,7 @@ bool Daemon::load_settings(const sim::Profile* profile) {
       options_.config_path.empty() ? FileStorage::default_path() : options_.config_path);
   if (const std::string why = storage_->unusable_reason(); !why.empty()) {
     // A FIFO would block the first read forever, before any port listens.
-    std::fprintf(stderr, "rotord: settings file %s %s\n", storage_->path().c_str(), why.c_str());
+    log::error("settings file %s %s", storage_->path().c_str(), why.c_str());
     return false;
   }
   // Heap is fine here (start-up, Linux); the Pico keeps this buffer static.
@@ -152,16 +150,15 @@ bool Daemon::load_settings(const sim::Profile* profile) {
   saver_->begin();  // only later changes are saved; a damaged file stays as it is
   switch (r.status) {
     case web::LoadOutcome::kNothingStored:
-      std::printf("rotord: no settings file at %s yet, using the defaults\n",
-                  storage_->path().c_str());
+      log::info("no settings file at %s yet, using the defaults", storage_->path().c_str());
       break;
     case web::LoadOutcome::kLoaded:
-      std::printf("rotord: settings loaded from %s\n", storage_->path().c_str());
+      log::info("settings loaded from %s", storage_->path().c_str());
       if (r.migrated) {
         const sim::Profile* from = guess ? guess->recognised() : nullptr;
-        std::printf(
-            "rotord: %s holds every setting (written before rotord kept only your changes); "
-            "read as your changes over %s%s; the next save keeps only those\n",
+        log::info(
+            "%s holds every setting (written before rotord kept only your changes); "
+            "read as your changes over %s%s; the next save keeps only those",
             storage_->path().c_str(), from != nullptr ? "the simulator profile " : "the defaults",
             from != nullptr ? from->name : "");
       }
@@ -169,12 +166,12 @@ bool Daemon::load_settings(const sim::Profile* profile) {
     case web::LoadOutcome::kCorrupt:
       // Keep running on the defaults, and keep the file: it may hold hours of
       // calibration that one wrong character made unreadable.
-      std::fprintf(stderr,
-                   "rotord: settings file %s is invalid (%s%s%s%s%s); running on the defaults. "
-                   "The file is left as it is; the next save keeps it as %s.bad\n",
-                   storage_->path().c_str(), r.key, r.key[0] != '\0' ? ": " : "", r.reason,
-                   storage_->last_error().empty() ? "" : ": ", storage_->last_error().c_str(),
-                   storage_->path().c_str());
+      log::error(
+          "settings file %s is invalid (%s%s%s%s%s); running on the defaults. "
+          "The file is left as it is; the next save keeps it as %s.bad",
+          storage_->path().c_str(), r.key, r.key[0] != '\0' ? ": " : "", r.reason,
+          storage_->last_error().empty() ? "" : ": ", storage_->last_error().c_str(),
+          storage_->path().c_str());
       storage_->keep_backup_before_next_save();
       break;
   }
@@ -194,7 +191,7 @@ bool Daemon::start_controller() {
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);
   if (ec) {
-    std::fprintf(stderr, "rotord: invalid bind address '%s'\n", options_.bind.c_str());
+    log::error("invalid bind address '%s'", options_.bind.c_str());
     return false;
   }
   const auto max_clients = static_cast<std::size_t>(settings_.i(settings::Id::kNetMaxClients));
@@ -206,12 +203,12 @@ bool Daemon::start_controller() {
     try {
       servers_.push_back(std::make_unique<TcpServer>(io_, bind, std::move(service)));
     } catch (const std::system_error& e) {
-      std::fprintf(stderr, "rotord: cannot listen on %s:%u: %s\n", options_.bind.c_str(),
-                   static_cast<unsigned>(service.port), e.what());
+      log::error("cannot listen on %s:%u: %s", options_.bind.c_str(),
+                 static_cast<unsigned>(service.port), e.what());
       return false;
     }
-    std::printf("rotord: %s listening on %s:%u\n", servers_.back()->name().c_str(),
-                options_.bind.c_str(), static_cast<unsigned>(servers_.back()->port()));
+    log::info("%s listening on %s:%u", servers_.back()->name().c_str(), options_.bind.c_str(),
+              static_cast<unsigned>(servers_.back()->port()));
   }
   return true;
 }
@@ -236,7 +233,7 @@ bool Daemon::attach_serial_lines(const std::vector<ServiceConfig>& services) {
     for (const auto& text : *texts) {
       auto spec = parse_serial_spec(text, pty, error);
       if (!spec) {
-        std::fprintf(stderr, "rotord: %s %s\n", pty ? "--pty" : "--serial", error.c_str());
+        log::error("%s %s", pty ? "--pty" : "--serial", error.c_str());
         return false;
       }
       specs.push_back(*spec);
@@ -249,23 +246,22 @@ bool Daemon::attach_serial_lines(const std::vector<ServiceConfig>& services) {
       for (const auto& s : services) {
         if (!s.key.empty()) known += (known.empty() ? "" : ", ") + s.key;
       }
-      std::fprintf(stderr, "rotord: unknown personality '%s' (known: %s)\n",
-                   spec.personality.c_str(), known.c_str());
+      log::error("unknown personality '%s' (known: %s)", spec.personality.c_str(), known.c_str());
       return false;
     }
     auto line = std::make_unique<SerialTransport>(io_, service->name, spec, service->serial_baud,
                                                   service->make_session);
     line->count_replies(&metrics_, service->protocol);
     if (!line->open(error)) {
-      std::fprintf(stderr, "rotord: %s: %s\n", service->name.c_str(), error.c_str());
+      log::error("%s: %s", service->name.c_str(), error.c_str());
       return false;
     }
     if (spec.pty) {
-      std::printf("rotord: %s on pty %s%s%s\n", service->name.c_str(), line->path().c_str(),
-                  spec.path.empty() ? "" : " linked from ", spec.path.c_str());
+      log::info("%s on pty %s%s%s", service->name.c_str(), line->path().c_str(),
+                spec.path.empty() ? "" : " linked from ", spec.path.c_str());
     } else {
-      std::printf("rotord: %s on serial %s at %d baud\n", service->name.c_str(),
-                  line->path().c_str(), line->baud());
+      log::info("%s on serial %s at %d baud", service->name.c_str(), line->path().c_str(),
+                line->baud());
     }
     serial_lines_.push_back(std::move(line));
   }
@@ -282,7 +278,7 @@ bool Daemon::request_reboot() {
 
 void Daemon::reboot() {
   reboot_pending_ = false;
-  std::printf("rotord: restarting the controller\n");
+  log::info("restarting the controller");
   stop_motors(controller_.get(), nullptr);
   servers_.clear();
   api_.reset();
@@ -302,16 +298,14 @@ void Daemon::reboot() {
     return;
   }
   controller_->begin(now_ms_);
-  std::printf("rotord: ready\n");
-  std::fflush(stdout);
+  log::info("ready");
 }
 
 int Daemon::run() {
   if (!setup()) return 2;
   signals_.async_wait([this](std::error_code ec, int signal) {
     if (ec) return;
-    std::printf("rotord: %s (%d), stopping the motors\n", signal_name(signal).c_str(), signal);
-    std::fflush(stdout);
+    log::info("%s (%d), stopping the motors", signal_name(signal).c_str(), signal);
     stop();
   });
   controller_->begin(now_ms_);
@@ -323,7 +317,12 @@ int Daemon::run() {
   schedule_tick();
   io_.run();
   stop_motors(controller_.get(), gpio_.get());
-  std::printf("rotord: stopped; outputs at the driver: %s\n", driver_outputs().c_str());
+  const std::string outputs = driver_outputs();
+  if (outputs.find('=') == std::string::npos) {
+    log::info("stopped; outputs at the driver: %s", outputs.c_str());
+  } else {
+    log::error("stopped; outputs at the driver STILL ON: %s", outputs.c_str());
+  }
   return exit_code_;
 }
 
@@ -364,9 +363,25 @@ void Daemon::schedule_tick() {
           std::chrono::microseconds(ticks_.deadline_us()))));
   timer_.async_wait([this](std::error_code ec) {
     if (ec) return;
-    if (ticks_.poll(steady_us())) on_tick();
+    const TickScheduler::Stats before = ticks_.stats();
+    if (ticks_.poll(steady_us())) {
+      report_late_tick(before);
+      on_tick();
+    }
     schedule_tick();
   });
+}
+
+void Daemon::report_late_tick(const TickScheduler::Stats& before) const {
+  const TickScheduler::Stats& now = ticks_.stats();
+  if (now.rebases != before.rebases) {
+    log::warn("the control loop stalled for %lld ms; tick schedule restarted",
+              static_cast<long long>(now.overruns - before.overruns) * kTickMs);
+  } else if (now.overruns != before.overruns && log::enabled(log::Level::kDebug)) {
+    log::debug("control tick late: %llu tick(s) skipped (%llu so far)",
+               static_cast<unsigned long long>(now.overruns - before.overruns),
+               static_cast<unsigned long long>(now.overruns));
+  }
 }
 
 Millis Daemon::wall_ms() const {
@@ -432,13 +447,13 @@ void Daemon::save_changed_settings(bool now) {
   if (!saver_) return;
   // Linux writes a small file: no need to wait for the rotator to stand.
   const SettingsSaver::Result r = now ? saver_->flush(now_ms_) : saver_->poll(now_ms_);
-  if (r == SettingsSaver::Result::kSaved) {
-    std::printf("rotord: settings saved to %s\n", storage_->path().c_str());
-    std::fflush(stdout);
+  if (r == SettingsSaver::Result::kUnchanged) {
+    log::debug("settings changed back to what %s holds; nothing written", storage_->path().c_str());
+  } else if (r == SettingsSaver::Result::kSaved) {
+    log::info("settings saved to %s", storage_->path().c_str());
   } else if (r == SettingsSaver::Result::kFailed) {
-    std::fprintf(stderr, "rotord: saving the settings to %s failed (%s); next try in %ld s\n",
-                 storage_->path().c_str(), storage_->last_error().c_str(),
-                 static_cast<long>(saver_->retry_delay_ms() / 1000));
+    log::error("saving the settings to %s failed (%s); next try in %ld s", storage_->path().c_str(),
+               storage_->last_error().c_str(), static_cast<long>(saver_->retry_delay_ms() / 1000));
   }
 }
 

@@ -53,6 +53,8 @@ class Daemon final : private web::RebootHook {
   /// Sleeps until the scheduler's next deadline (start + n x kTickMs).
   void schedule_tick();
   void on_tick();
+  /// Logs what the last poll of the tick schedule skipped (debug) or restarted (warning).
+  void report_late_tick(const TickScheduler::Stats& before) const;
   /// The steady clock in microseconds, the scheduler's time base.
   static std::int64_t steady_us();
   /// The same clock for the core (GET /healthz: the age of the last tick).

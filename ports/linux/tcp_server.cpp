@@ -3,6 +3,8 @@
 #include <array>
 #include <vector>
 
+#include "log.hpp"
+
 namespace rotord::linux_port {
 namespace {
 
@@ -19,6 +21,14 @@ access::Peer peer_of(const asio::ip::tcp::socket& socket) {
   return {access::Peer::Kind::kOther, 0};
 }
 
+/// "192.0.2.7:50214" for the logs.
+std::string describe(const asio::ip::tcp::socket& socket) {
+  std::error_code ec;
+  const asio::ip::tcp::endpoint peer = socket.remote_endpoint(ec);
+  if (ec) return "a client";
+  return peer.address().to_string() + ":" + std::to_string(peer.port());
+}
+
 }  // namespace
 
 class TcpServer::Connection final : public protocol::ByteSink,
@@ -32,6 +42,10 @@ class TcpServer::Connection final : public protocol::ByteSink,
     session_->set_peer(peer_of(socket_));
     if (metrics::Registry* m = server_.config_.metrics)
       m->protocol(server_.config_.protocol).on_accept();
+    if (log::enabled(log::Level::kDebug)) {
+      client_ = describe(socket_);
+      log::debug("%s: %s connected", server_.name().c_str(), client_.c_str());
+    }
   }
 
   void start() { read(); }
@@ -60,6 +74,8 @@ class TcpServer::Connection final : public protocol::ByteSink,
     closing_ = true;
     if (metrics::Registry* m = server_.config_.metrics)
       m->protocol(server_.config_.protocol).on_close();
+    if (!client_.empty())
+      log::debug("%s: %s disconnected", server_.name().c_str(), client_.c_str());
     std::error_code ignored;
     socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
     socket_.close(ignored);
@@ -119,6 +135,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
   bool writing_ = false;
   bool closing_ = false;
   bool close_requested_ = false;
+  std::string client_;  ///< "address:port", for debug logs only
 };
 
 TcpServer::TcpServer(asio::io_context& io, const asio::ip::address& bind, ServiceConfig config)
@@ -149,6 +166,9 @@ void TcpServer::accept() {
     if (!ec) {
       if (connections_.size() >= config_.max_clients) {
         if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_refuse();
+        if (log::enabled(log::Level::kDebug))
+          log::debug("%s: %s refused, %zu clients already", config_.name.c_str(),
+                     describe(socket).c_str(), connections_.size());
         std::error_code ignored;
         asio::write(socket, asio::buffer(config_.reject_message), ignored);
         socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);

@@ -336,6 +336,9 @@ void report_settings(const web::LoadOutcome& r) {
   static TickScheduler ticks(kTickMs * 1000);
   registry.ticks = &ticks;
   registry.clock = &monotonic_clock;
+  // Without the HELP lines the page is about 7 KB: it must pass through
+  // lwIP's send buffer (TCP_SND_BUF, 11.7 KB) and the 1 KiB output buffer.
+  registry.help_text = false;
 
   // 4. Network. Without the Wi-Fi chip the controller still runs (USB logs,
   // safety rules), it just takes no commands.

@@ -32,6 +32,9 @@ class DaemonProcess {
   const Ports& ports() const { return ports_; }
   /// Everything the daemon printed so far.
   const std::string& output() const { return output_; }
+  /// Reads the daemon's output until `text` appears in it (bounded by
+  /// timeout_ms, for liveness only); true when it did.
+  bool wait_for_output(const std::string& text, int timeout_ms = 10000);
   /// With `--clock manual` among the arguments: runs `ms` of controller time
   /// in the daemon and waits (bounded) until it has; returns the controller
   /// time after it, or -1.

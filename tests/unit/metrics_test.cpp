@@ -68,6 +68,16 @@ TEST(PrometheusWriter, EscapesHelpAndLabelValuesAndSpellsNonFiniteNumbers) {
             "m -Inf\n");
 }
 
+TEST(PrometheusWriter, HelpLinesCanBeLeftOut) {
+  StringSink sink;
+  {
+    PrometheusWriter w(sink, false);
+    w.family("m_total", "counter", "h");
+    w.integer({}, 3);
+  }
+  EXPECT_EQ(sink.data, "# TYPE m_total counter\nm_total 3\n");
+}
+
 TEST(PrometheusWriter, ALongLineCrossesTheBufferIntact) {
   const std::string long_value(1000, 'v');
   StringSink sink;
