@@ -37,7 +37,9 @@ struct ApiContext {
   const char* host_name = nullptr;
   /// What the port counts (connections, errors, ticks, saves) for GET
   /// /metrics and GET /healthz; nullptr: the controller's metrics only.
-  const metrics::Registry* metrics = nullptr;
+  /// Not const: the web's login and tokens count failures here
+  /// (ProtocolCounters::on_auth_failure under metrics::Protocol::kHttp).
+  metrics::Registry* metrics = nullptr;
 };
 
 /// The REST API (docs/web_api.md) on the controller's command API. One per
