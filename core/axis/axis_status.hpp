@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <cstdint>
 
 #include "axis/drive_outputs.hpp"
@@ -19,6 +20,10 @@ enum class AxisFault : std::uint8_t {
   kNoSensor,     ///< the configured sensor is not fitted
   kEstop,        ///< the emergency-stop input is (or was) active
 };
+/// Kinds of AxisFault, kNone included (kEstop must stay the last).
+inline constexpr std::size_t kAxisFaultKinds = static_cast<std::size_t>(AxisFault::kEstop) + 1;
+/// Kinds of AxisState (kFault must stay the last).
+inline constexpr std::size_t kAxisStates = static_cast<std::size_t>(AxisState::kFault) + 1;
 
 const char* axis_state_name(AxisState state);
 const char* axis_fault_name(AxisFault fault);

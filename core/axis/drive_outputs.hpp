@@ -20,6 +20,10 @@ enum class OutputChannel : std::uint8_t {
 
 inline constexpr std::size_t kOutputChannelCount = static_cast<std::size_t>(OutputChannel::kCount);
 
+/// The channels' names in the REST status, the metrics and the logs.
+inline constexpr const char* kOutputChannelNames[kOutputChannelCount] = {
+    "relay_cw", "relay_ccw", "speed_fast", "brake", "voltage_fast", "pwm_cw", "pwm_ccw"};
+
 struct DriveOutputs {
   std::array<float, kOutputChannelCount> value{};  // relays 0 or 1, PWM duty 0..1
 

@@ -45,6 +45,18 @@ void Controller::begin(Millis now) {
   az_.begin(now);
   if (has_el_) el_.begin(now);
   read_estop();
+  count_faults();
+}
+
+void Controller::count_faults() {
+  const AxisFault now_faults[kMaxAxes] = {az_.status().fault,
+                                          has_el_ ? el_.status().fault : AxisFault::kNone};
+  for (std::size_t n = 0; n < kMaxAxes; ++n) {
+    const AxisFault f = now_faults[n];
+    if (f != counted_fault_[n] && f != AxisFault::kNone)
+      ++faults_latched_[n][static_cast<std::size_t>(f)];
+    counted_fault_[n] = f;
+  }
 }
 
 void Controller::read_estop() {
@@ -72,6 +84,7 @@ void Controller::tick(Millis now) {
     mode_ = Mode::kIdle;
   if (mode_ != Mode::kIdle || s.moving()) last_activity_ms_ = now;
   park_when_idle_long_enough(now);
+  count_faults();
 }
 
 void Controller::note_command() {
@@ -186,6 +199,7 @@ Error Controller::reset() {
   if (estop_active_) return Error::kFaulted;  // released first, then RESET
   az_.clear_fault();
   el_.clear_fault();
+  count_faults();  // a fault that comes back after the reset counts again
   speed_pct_ = settings_.i(Id::kSpeedPct);
   az_.set_speed_pct(speed_pct_);
   el_.set_speed_pct(speed_pct_);

@@ -82,6 +82,13 @@ class Controller {
   Millis now() const { return now_; }
   settings::Settings& settings() { return settings_; }
 
+  /// Faults of `kind` latched on `axis` since the controller started (GET
+  /// /metrics: rotord_axis_faults_total, stalls among them).
+  std::uint32_t faults_latched(AxisId axis, AxisFault kind) const {
+    return faults_latched_[static_cast<std::size_t>(axis_index(axis))]
+                          [static_cast<std::size_t>(kind)];
+  }
+
   /// Resolves a compass azimuth to the unwrapped target go_to would use.
   std::optional<float> resolve_az(float az_deg, AzTarget mode) const;
 
@@ -92,6 +99,8 @@ class Controller {
   void note_command();
   void park_when_idle_long_enough(Millis now);
   void read_estop();
+  /// Counts each fault an axis latched since the last call.
+  void count_faults();
 
   settings::Settings& settings_;
   hal::DigitalIn* estop_ = nullptr;
@@ -105,8 +114,10 @@ class Controller {
   Mode mode_ = Mode::kIdle;
   int speed_pct_ = 50;
   Millis now_ = 0;
-  Millis last_activity_ms_ = 0;  // last command, or last tick with motion
-  bool auto_parked_ = false;     // parked for being idle; no command since
+  Millis last_activity_ms_ = 0;                      // last command, or last tick with motion
+  bool auto_parked_ = false;                         // parked for being idle; no command since
+  std::array<AxisFault, kMaxAxes> counted_fault_{};  // each axis's fault, as last counted
+  std::array<std::array<std::uint32_t, kAxisFaultKinds>, kMaxAxes> faults_latched_{};
 };
 
 }  // namespace rotord

@@ -29,7 +29,10 @@ long SettingsSaver::load(char* buf, std::size_t capacity) {
 }
 
 bool SettingsSaver::save(std::string_view document) {
-  if (!storage_.save(document)) return false;
+  if (!storage_.save(document)) {
+    ++failures_;
+    return false;
+  }
   // The REST API saves the settings as they are now: that revision is stored.
   remember_stored(document);
   clean_revision_ = seen_revision_ = settings_.revision();
@@ -88,6 +91,7 @@ SettingsSaver::Result SettingsSaver::write(Millis now) {
     }
   }
   // The settings stay in RAM and in force; try again later, less often.
+  ++failures_;
   retry_delay_ms_ = retry_delay_ms_ == 0 ? kFirstRetryMs : retry_delay_ms_ * 2;
   if (retry_delay_ms_ > kMaxRetryMs) retry_delay_ms_ = kMaxRetryMs;
   retry_at_ = now + retry_delay_ms_;

@@ -66,7 +66,10 @@ class SettingsSaver final : public hal::Storage {
   bool pending() const { return settings_.revision() != clean_revision_; }
   /// Pause before the next attempt after a failure (0: none failed).
   Millis retry_delay_ms() const { return retry_delay_ms_; }
+  /// Documents written since start (the REST API's saves and this saver's).
   std::uint32_t writes() const { return writes_; }
+  /// Writes that failed since start (each retry counts again).
+  std::uint32_t failures() const { return failures_; }
 
  private:
   Result write(Millis now);
@@ -87,6 +90,7 @@ class SettingsSaver final : public hal::Storage {
   std::size_t stored_length_ = 0;
   std::uint32_t stored_crc_ = 0;
   std::uint32_t writes_ = 0;
+  std::uint32_t failures_ = 0;
 };
 
 }  // namespace rotord

@@ -44,6 +44,10 @@ void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
              !origin_allowed(request.origin, request.host, api_.settings())) {
     // A cross-site request: another site's page in the operator's browser.
     send_error(out, 403, "cross-site request refused (Origin is not this controller)", options);
+  } else if (request.path == "/metrics") {
+    api_.handle_metrics(request, out, options);
+  } else if (request.path == "/healthz") {
+    api_.handle_health(request, out, options);
   } else if (request.path.substr(0, 5) == "/api/") {
     switch (api_.handle(request, out, options)) {
       case Api::Outcome::kStartEvents:

@@ -77,11 +77,9 @@ void write_axis(JsonWriter& w, const AxisStatus& a, int sensor) {
       .member("switch_ccw", a.switch_ccw)
       .member("coast_s", a.coast_s)
       .member("moves", a.moves);
-  static constexpr const char* kOutputs[] = {"relay_cw",     "relay_ccw", "speed_fast", "brake",
-                                             "voltage_fast", "pwm_cw",    "pwm_ccw"};
-  static_assert(sizeof(kOutputs) / sizeof(kOutputs[0]) == kOutputChannelCount);
   w.key("outputs").begin_object();
-  for (std::size_t n = 0; n < kOutputChannelCount; ++n) w.member(kOutputs[n], a.outputs.value[n]);
+  for (std::size_t n = 0; n < kOutputChannelCount; ++n)
+    w.member(kOutputChannelNames[n], a.outputs.value[n]);
   w.end_object().end_object();
 }
 

@@ -4,6 +4,7 @@
 
 #include "hal/storage.hpp"
 #include "hal/wall_clock.hpp"
+#include "metrics/registry.hpp"
 #include "rotator/controller.hpp"
 #include "web/http_request.hpp"
 #include "web/http_response.hpp"
@@ -34,6 +35,11 @@ struct ApiContext {
   /// The host's own name (Linux: gethostname), a name the web may be reached
   /// by besides net.hostname (host_check.hpp); nullptr on the Pico W.
   const char* host_name = nullptr;
+  /// What the port counts (connections, errors, ticks, saves) for GET
+  /// /metrics and GET /healthz; nullptr: the controller's metrics only.
+  /// Not const: the web's login and tokens count failures here
+  /// (ProtocolCounters::on_auth_failure under metrics::Protocol::kHttp).
+  metrics::Registry* metrics = nullptr;
 };
 
 /// The REST API (docs/web_api.md) on the controller's command API. One per
@@ -58,6 +64,13 @@ class Api {
   /// response head of an event stream went out and events follow (poll).
   Outcome handle(const HttpRequest& request, protocol::ByteSink& out,
                  const ResponseOptions& options);
+
+  /// GET /metrics (Prometheus text format) and GET /healthz; any other
+  /// method answers 405 (web_api_observability.cpp).
+  void handle_metrics(const HttpRequest& request, protocol::ByteSink& out,
+                      const ResponseOptions& options);
+  void handle_health(const HttpRequest& request, protocol::ByteSink& out,
+                     const ResponseOptions& options);
 
   /// Called by the port on every pass of its loop with the transport's
   /// (wall) clock, whether or not a client is connected: a hold-to-move

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "log.hpp"
+
 namespace rotord::linux_port {
 
 ClockControl::ClockControl(asio::io_context& io, Advance advance)
@@ -20,7 +22,7 @@ void ClockControl::read_next() {
                            if (ec) {
                              // End of input: the clock stays where it is.
                              if (ec != asio::error::operation_aborted)
-                               std::fprintf(stderr, "rotord: clock control input closed\n");
+                               log::warn("clock control input closed");
                              return;
                            }
                            std::string line = buffer_.substr(0, n - 1);
@@ -36,13 +38,12 @@ void ClockControl::handle(const std::string& line) {
     char* end = nullptr;
     const long long v = std::strtoll(line.c_str() + 8, &end, 10);
     if (end == line.c_str() + 8 || *end != '\0' || v < 0 || v > kMaxAdvanceMs) {
-      std::fprintf(stderr, "rotord: clock: 'advance' takes 0..%lld ms\n",
-                   static_cast<long long>(kMaxAdvanceMs));
+      log::warn("clock: 'advance' takes 0..%lld ms", static_cast<long long>(kMaxAdvanceMs));
       return;
     }
     ms = v;
   } else if (line != "now") {
-    std::fprintf(stderr, "rotord: clock: unknown command (advance <ms>, now)\n");
+    log::warn("clock: unknown command (advance <ms>, now)");
     return;
   }
   // A client's command written before this line (a Hamlib rotctl that sent
@@ -52,8 +53,7 @@ void ClockControl::handle(const std::string& line) {
   // then the speculative read it starts) before advancing.
   after_queued_handlers(kHandlerHops, [this, ms] {
     const Millis now = advance_(ms);
-    std::printf("rotord: clock %lld\n", static_cast<long long>(now));
-    std::fflush(stdout);
+    log::reply("clock %lld", static_cast<long long>(now));
   });
 }
 

@@ -5,17 +5,56 @@
 #include <csignal>
 #include <cstdio>
 
+#include <cstring>
+
 #include "legacy_profile_guess.hpp"
+#include "log.hpp"
+#include "safe_stop.hpp"
 #include "services.hpp"
 #include "sysfs_pwm.hpp"
 
 namespace rotord::linux_port {
+namespace {
 
-Daemon::Daemon(const Options& options)
-    : options_(options), timer_(io_), signals_(io_, SIGINT, SIGTERM) {}
+/// Every signal that ends a process by default and that it may catch: each
+/// one stops the motors before rotord exits. Left out are the ones the CPU
+/// raises for a fault in rotord itself (SIGSEGV, SIGBUS, SIGFPE, SIGILL,
+/// SIGTRAP, SIGSYS, SIGABRT): running on after those is undefined, so they
+/// end the process like `kill -9` (README, "Signals"). SIGPIPE is ignored.
+std::vector<int> terminating_signals() {
+  std::vector<int> signals = {SIGHUP,  SIGINT,  SIGQUIT,   SIGTERM, SIGUSR1, SIGUSR2,
+                              SIGALRM, SIGPOLL, SIGVTALRM, SIGPROF, SIGXCPU, SIGXFSZ};
+#ifdef SIGPWR
+  signals.push_back(SIGPWR);
+#endif
+#ifdef SIGSTKFLT
+  signals.push_back(SIGSTKFLT);
+#endif
+  for (int n = SIGRTMIN; n <= SIGRTMAX; ++n) signals.push_back(n);
+  return signals;
+}
+
+std::string signal_name(int signal) {
+  if (signal >= SIGRTMIN && signal <= SIGRTMAX)
+    return "SIGRTMIN+" + std::to_string(signal - SIGRTMIN);
+  const char* abbrev = ::sigabbrev_np(signal);
+  return abbrev != nullptr ? std::string("SIG") + abbrev : "signal " + std::to_string(signal);
+}
+
+}  // namespace
+
+Daemon::Daemon(const Options& options) : options_(options), timer_(io_), signals_(io_) {
+  // A write to a closed pipe or pty (a dropped SSH session's terminal, a
+  // pty's reader gone) fails with EPIPE instead of killing rotord mid-move;
+  // a SIGPIPE sent with kill is ignored too.
+  std::signal(SIGPIPE, SIG_IGN);
+  // Caught from now on: one arriving during start-up is handled as soon as
+  // the loop runs, and the outputs are off until then anyway.
+  for (const int signal : terminating_signals()) signals_.add(signal);
+}
 
 Daemon::~Daemon() {
-  if (controller_) controller_->shutdown();
+  stop_motors(controller_.get(), gpio_.get());
 }
 
 bool Daemon::setup() {
@@ -24,34 +63,32 @@ bool Daemon::setup() {
   if (::gethostname(name, sizeof(name) - 1) == 0) host_name_ = name;
   if (options_.hw == "gpiod") {
     if (options_.speedup != 1.0 || options_.clock != "wall") {
-      std::fprintf(
-          stderr, "rotord: --speedup and --clock apply to the simulator only, not to --hw gpiod\n");
+      log::error("--speedup and --clock apply to the simulator only, not to --hw gpiod");
       return false;
     }
     defaults_ = settings_;  // no profile layer under real hardware
     if (!load_settings(nullptr)) return false;
     if (!open_gpiod()) return false;
-    std::printf("rotord %s: %s\n", ROTORD_VERSION, gpio_->summary().c_str());
+    log::info("rotord %s, %s", ROTORD_VERSION, gpio_->summary().c_str());
     if (!start_controller()) return false;
     gpio_->watch(io_);
-    std::printf("rotord: ready\n");
-    std::fflush(stdout);
+    log::info("ready");
     return true;
   }
   if (options_.hw != "sim") {
-    std::fprintf(stderr, "rotord: unknown --hw '%s' (sim or gpiod)\n", options_.hw.c_str());
+    log::error("unknown --hw '%s' (sim or gpiod)", options_.hw.c_str());
     return false;
   }
   const sim::Profile* profile = sim::find_profile(options_.sim_profile);
   if (profile == nullptr) {
-    std::fprintf(stderr, "rotord: unknown simulator profile '%s' (try g5500, ham4, spid)\n",
-                 options_.sim_profile.c_str());
+    log::error("unknown simulator profile '%s' (try g5500, ham4, spid)",
+               options_.sim_profile.c_str());
     return false;
   }
   for (const auto& o : profile->overrides) {
     const auto id = settings::find(o.key);
     if (!id || settings_.set(*id, o.value).error != Error::kOk) {
-      std::fprintf(stderr, "rotord: profile %s sets an invalid %s\n", profile->name, o.key);
+      log::error("profile %s sets an invalid %s", profile->name, o.key);
       return false;
     }
   }
@@ -59,17 +96,16 @@ bool Daemon::setup() {
   if (!load_settings(profile)) return false;
   sim_ = std::make_unique<sim::SimRotator>(*profile, options_.sim_seed);
   if (options_.clock == "manual") {
-    std::printf("rotord %s: simulated rotator '%s' (%s), manual clock (advance <ms> on stdin)\n",
-                ROTORD_VERSION, profile->name, profile->description);
+    log::info("rotord %s, simulated rotator '%s' (%s), manual clock (advance <ms> on stdin)",
+              ROTORD_VERSION, profile->name, profile->description);
     clock_control_ =
         std::make_unique<ClockControl>(io_, [this](Millis ms) { return advance_manual_clock(ms); });
   } else {
-    std::printf("rotord %s: simulated rotator '%s' (%s), speedup %g\n", ROTORD_VERSION,
-                profile->name, profile->description, options_.speedup);
+    log::info("rotord %s, simulated rotator '%s' (%s), speedup %g", ROTORD_VERSION, profile->name,
+              profile->description, options_.speedup);
   }
   if (!start_controller()) return false;
-  std::printf("rotord: ready\n");
-  std::fflush(stdout);
+  log::info("ready");
   return true;
 }
 
@@ -82,7 +118,7 @@ bool Daemon::open_gpiod() {
         GpiodHost{iio_root(), pwm_root(), i2c_dev_root(), &linux_i2c_kernel(), monotonic_ns},
         error);
   if (!gpio_) {
-    std::fprintf(stderr, "rotord: --hw gpiod: %s\n", error.c_str());
+    log::error("--hw gpiod: %s", error.c_str());
     return false;
   }
   return true;
@@ -97,7 +133,7 @@ bool Daemon::load_settings(const sim::Profile* profile) {
       options_.config_path.empty() ? FileStorage::default_path() : options_.config_path);
   if (const std::string why = storage_->unusable_reason(); !why.empty()) {
     // A FIFO would block the first read forever, before any port listens.
-    std::fprintf(stderr, "rotord: settings file %s %s\n", storage_->path().c_str(), why.c_str());
+    log::error("settings file %s %s", storage_->path().c_str(), why.c_str());
     return false;
   }
   // Heap is fine here (start-up, Linux); the Pico keeps this buffer static.
@@ -114,16 +150,15 @@ bool Daemon::load_settings(const sim::Profile* profile) {
   saver_->begin();  // only later changes are saved; a damaged file stays as it is
   switch (r.status) {
     case web::LoadOutcome::kNothingStored:
-      std::printf("rotord: no settings file at %s yet, using the defaults\n",
-                  storage_->path().c_str());
+      log::info("no settings file at %s yet, using the defaults", storage_->path().c_str());
       break;
     case web::LoadOutcome::kLoaded:
-      std::printf("rotord: settings loaded from %s\n", storage_->path().c_str());
+      log::info("settings loaded from %s", storage_->path().c_str());
       if (r.migrated) {
         const sim::Profile* from = guess ? guess->recognised() : nullptr;
-        std::printf(
-            "rotord: %s holds every setting (written before rotord kept only your changes); "
-            "read as your changes over %s%s; the next save keeps only those\n",
+        log::info(
+            "%s holds every setting (written before rotord kept only your changes); "
+            "read as your changes over %s%s; the next save keeps only those",
             storage_->path().c_str(), from != nullptr ? "the simulator profile " : "the defaults",
             from != nullptr ? from->name : "");
       }
@@ -131,12 +166,12 @@ bool Daemon::load_settings(const sim::Profile* profile) {
     case web::LoadOutcome::kCorrupt:
       // Keep running on the defaults, and keep the file: it may hold hours of
       // calibration that one wrong character made unreadable.
-      std::fprintf(stderr,
-                   "rotord: settings file %s is invalid (%s%s%s%s%s); running on the defaults. "
-                   "The file is left as it is; the next save keeps it as %s.bad\n",
-                   storage_->path().c_str(), r.key, r.key[0] != '\0' ? ": " : "", r.reason,
-                   storage_->last_error().empty() ? "" : ": ", storage_->last_error().c_str(),
-                   storage_->path().c_str());
+      log::error(
+          "settings file %s is invalid (%s%s%s%s%s); running on the defaults. "
+          "The file is left as it is; the next save keeps it as %s.bad",
+          storage_->path().c_str(), r.key, r.key[0] != '\0' ? ": " : "", r.reason,
+          storage_->last_error().empty() ? "" : ": ", storage_->last_error().c_str(),
+          storage_->path().c_str());
       storage_->keep_backup_before_next_save();
       break;
   }
@@ -146,29 +181,33 @@ bool Daemon::load_settings(const sim::Profile* profile) {
 bool Daemon::start_controller() {
   controller_ = std::make_unique<Controller>(settings_, axis_io(AxisId::kAz), axis_io(AxisId::kEl));
   if (gpio_ && gpio_->estop() != nullptr) controller_->attach_estop(gpio_->estop());
-  api_ =
-      std::make_unique<web::Api>(web::ApiContext{*controller_, saver_.get(), &defaults_, this,
-                                                 ROTORD_VERSION, &wall_clock_, host_name_.c_str()});
+  metrics_.ticks = &ticks_;
+  metrics_.saver = saver_.get();
+  metrics_.clock = &steady_clock_;
+  api_ = std::make_unique<web::Api>(web::ApiContext{*controller_, saver_.get(), &defaults_, this,
+                                                    ROTORD_VERSION, &wall_clock_,
+                                                    host_name_.c_str(), &metrics_});
 
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);
   if (ec) {
-    std::fprintf(stderr, "rotord: invalid bind address '%s'\n", options_.bind.c_str());
+    log::error("invalid bind address '%s'", options_.bind.c_str());
     return false;
   }
-  std::vector<ServiceConfig> services = make_services(options_, *controller_, *api_, settings_);
+  std::vector<ServiceConfig> services =
+      make_services(options_, *controller_, *api_, settings_, metrics_);
   if (!attach_serial_lines(services)) return false;
   for (auto& service : services) {
     if (service.port == 0) continue;
     try {
       servers_.push_back(std::make_unique<TcpServer>(io_, bind, std::move(service)));
     } catch (const std::system_error& e) {
-      std::fprintf(stderr, "rotord: cannot listen on %s:%u: %s\n", options_.bind.c_str(),
-                   static_cast<unsigned>(service.port), e.what());
+      log::error("cannot listen on %s:%u: %s", options_.bind.c_str(),
+                 static_cast<unsigned>(service.port), e.what());
       return false;
     }
-    std::printf("rotord: %s listening on %s:%u\n", servers_.back()->name().c_str(),
-                options_.bind.c_str(), static_cast<unsigned>(servers_.back()->port()));
+    log::info("%s listening on %s:%u", servers_.back()->name().c_str(), options_.bind.c_str(),
+              static_cast<unsigned>(servers_.back()->port()));
   }
   return true;
 }
@@ -193,7 +232,7 @@ bool Daemon::attach_serial_lines(const std::vector<ServiceConfig>& services) {
     for (const auto& text : *texts) {
       auto spec = parse_serial_spec(text, pty, error);
       if (!spec) {
-        std::fprintf(stderr, "rotord: %s %s\n", pty ? "--pty" : "--serial", error.c_str());
+        log::error("%s %s", pty ? "--pty" : "--serial", error.c_str());
         return false;
       }
       specs.push_back(*spec);
@@ -206,22 +245,22 @@ bool Daemon::attach_serial_lines(const std::vector<ServiceConfig>& services) {
       for (const auto& s : services) {
         if (!s.key.empty()) known += (known.empty() ? "" : ", ") + s.key;
       }
-      std::fprintf(stderr, "rotord: unknown personality '%s' (known: %s)\n",
-                   spec.personality.c_str(), known.c_str());
+      log::error("unknown personality '%s' (known: %s)", spec.personality.c_str(), known.c_str());
       return false;
     }
     auto line = std::make_unique<SerialTransport>(io_, service->name, spec, service->serial_baud,
                                                   service->make_session);
+    line->count_replies(&metrics_, service->protocol);
     if (!line->open(error)) {
-      std::fprintf(stderr, "rotord: %s: %s\n", service->name.c_str(), error.c_str());
+      log::error("%s: %s", service->name.c_str(), error.c_str());
       return false;
     }
     if (spec.pty) {
-      std::printf("rotord: %s on pty %s%s%s\n", service->name.c_str(), line->path().c_str(),
-                  spec.path.empty() ? "" : " linked from ", spec.path.c_str());
+      log::info("%s on pty %s%s%s", service->name.c_str(), line->path().c_str(),
+                spec.path.empty() ? "" : " linked from ", spec.path.c_str());
     } else {
-      std::printf("rotord: %s on serial %s at %d baud\n", service->name.c_str(),
-                  line->path().c_str(), line->baud());
+      log::info("%s on serial %s at %d baud", service->name.c_str(), line->path().c_str(),
+                line->baud());
     }
     serial_lines_.push_back(std::move(line));
   }
@@ -238,8 +277,8 @@ bool Daemon::request_reboot() {
 
 void Daemon::reboot() {
   reboot_pending_ = false;
-  std::printf("rotord: restarting the controller\n");
-  controller_->shutdown();
+  log::info("restarting the controller");
+  stop_motors(controller_.get(), nullptr);
   servers_.clear();
   api_.reset();
   controller_.reset();
@@ -258,32 +297,52 @@ void Daemon::reboot() {
     return;
   }
   controller_->begin(now_ms_);
-  std::printf("rotord: ready\n");
-  std::fflush(stdout);
+  log::info("ready");
 }
 
 int Daemon::run() {
   if (!setup()) return 2;
   signals_.async_wait([this](std::error_code ec, int signal) {
     if (ec) return;
-    std::printf("rotord: signal %d, stopping the motors\n", signal);
-    std::fflush(stdout);
+    log::info("%s (%d), stopping the motors", signal_name(signal).c_str(), signal);
     stop();
   });
   controller_->begin(now_ms_);
   if (sim_) sim_->advance_to(now_ms_);
   wall_start_ = std::chrono::steady_clock::now();
+  ticks_.start(steady_us());
+  metrics_.start_us = steady_us();
   if (clock_control_) clock_control_->start();
   schedule_tick();
   io_.run();
-  if (controller_) controller_->shutdown();
-  if (gpio_) gpio_->all_off();
-  std::printf("rotord: stopped\n");
+  stop_motors(controller_.get(), gpio_.get());
+  const std::string outputs = driver_outputs();
+  if (outputs.find('=') == std::string::npos) {
+    log::info("stopped; outputs at the driver: %s", outputs.c_str());
+  } else {
+    log::error("stopped; outputs at the driver STILL ON: %s", outputs.c_str());
+  }
   return exit_code_;
 }
 
+std::string Daemon::driver_outputs() const {
+  // What the hardware was last given: the simulator's plant inputs, or the
+  // values written to the GPIO lines and PWM channels.
+  const bool has_el = controller_ && controller_->has_el();
+  DriveOutputs az;
+  DriveOutputs el;
+  if (sim_) {
+    az = sim_->outputs(AxisId::kAz);
+    el = sim_->outputs(AxisId::kEl);
+  } else if (gpio_) {
+    az = gpio_->written(AxisId::kAz);
+    el = gpio_->written(AxisId::kEl);
+  }
+  return describe_outputs(az, has_el ? &el : nullptr);
+}
+
 void Daemon::stop() {
-  if (controller_) controller_->shutdown();
+  stop_motors(controller_.get(), gpio_.get());
   save_changed_settings(true);  // a change still in its quiet time
   timer_.cancel();
   servers_.clear();
@@ -291,13 +350,37 @@ void Daemon::stop() {
   io_.stop();
 }
 
+std::int64_t Daemon::steady_us() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 void Daemon::schedule_tick() {
-  timer_.expires_after(std::chrono::milliseconds(kTickMs));
+  timer_.expires_at(std::chrono::steady_clock::time_point(
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::microseconds(ticks_.deadline_us()))));
   timer_.async_wait([this](std::error_code ec) {
     if (ec) return;
-    on_tick();
+    const TickScheduler::Stats before = ticks_.stats();
+    if (ticks_.poll(steady_us())) {
+      report_late_tick(before);
+      on_tick();
+    }
     schedule_tick();
   });
+}
+
+void Daemon::report_late_tick(const TickScheduler::Stats& before) const {
+  const TickScheduler::Stats& now = ticks_.stats();
+  if (now.rebases != before.rebases) {
+    log::warn("the control loop stalled for %lld ms; tick schedule restarted",
+              static_cast<long long>(now.overruns - before.overruns) * kTickMs);
+  } else if (now.overruns != before.overruns && log::enabled(log::Level::kDebug)) {
+    log::debug("control tick late: %llu tick(s) skipped (%llu so far)",
+               static_cast<unsigned long long>(now.overruns - before.overruns),
+               static_cast<unsigned long long>(now.overruns));
+  }
 }
 
 Millis Daemon::wall_ms() const {
@@ -363,13 +446,13 @@ void Daemon::save_changed_settings(bool now) {
   if (!saver_) return;
   // Linux writes a small file: no need to wait for the rotator to stand.
   const SettingsSaver::Result r = now ? saver_->flush(now_ms_) : saver_->poll(now_ms_);
-  if (r == SettingsSaver::Result::kSaved) {
-    std::printf("rotord: settings saved to %s\n", storage_->path().c_str());
-    std::fflush(stdout);
+  if (r == SettingsSaver::Result::kUnchanged) {
+    log::debug("settings changed back to what %s holds; nothing written", storage_->path().c_str());
+  } else if (r == SettingsSaver::Result::kSaved) {
+    log::info("settings saved to %s", storage_->path().c_str());
   } else if (r == SettingsSaver::Result::kFailed) {
-    std::fprintf(stderr, "rotord: saving the settings to %s failed (%s); next try in %ld s\n",
-                 storage_->path().c_str(), storage_->last_error().c_str(),
-                 static_cast<long>(saver_->retry_delay_ms() / 1000));
+    log::error("saving the settings to %s failed (%s); next try in %ld s", storage_->path().c_str(),
+               storage_->last_error().c_str(), static_cast<long>(saver_->retry_delay_ms() / 1000));
   }
 }
 

@@ -6,6 +6,8 @@
 #include "clock_control.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
+#include "loop/tick_scheduler.hpp"
+#include "metrics/registry.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
@@ -48,8 +50,18 @@ class Daemon final : private web::RebootHook {
   /// Opens every --pty and --serial line the first time; after a controller
   /// restart only gives them sessions on the new controller (paths stay).
   bool attach_serial_lines(const std::vector<ServiceConfig>& services);
+  /// Sleeps until the scheduler's next deadline (start + n x kTickMs).
   void schedule_tick();
   void on_tick();
+  /// Logs what the last poll of the tick schedule skipped (debug) or restarted (warning).
+  void report_late_tick(const TickScheduler::Stats& before) const;
+  /// The steady clock in microseconds, the scheduler's time base.
+  static std::int64_t steady_us();
+  /// The same clock for the core (GET /healthz: the age of the last tick).
+  class SteadyClock final : public hal::MonotonicClock {
+   public:
+    std::int64_t now_us() const override { return steady_us(); }
+  };
   void advance_simulation(Millis wall_ms);
   /// One control tick of the simulator at now_ms_ + kTickMs.
   void tick_simulation();
@@ -59,7 +71,10 @@ class Daemon final : private web::RebootHook {
   /// Work every wake-up does whatever the clock: sessions, saving, reboot.
   void serve(Millis wall_ms);
   Millis wall_ms() const;
+  /// Stops the motors (safe_stop.hpp), saves a pending change and ends the loop.
   void stop();
+  /// The outputs the simulator or the GPIO lines were last given, for the exit log.
+  std::string driver_outputs() const;
   /// Saves what the protocols changed (after the saver's quiet time, or at
   /// once when `now`), and says so.
   void save_changed_settings(bool now);
@@ -67,6 +82,12 @@ class Daemon final : private web::RebootHook {
   Options options_;
   asio::io_context io_;
   asio::steady_timer timer_;
+  /// The loop's wake-ups for the control tick, on an absolute schedule.
+  TickScheduler ticks_{kTickMs * 1000};
+  SteadyClock steady_clock_;
+  /// Connections, error replies, ticks and saves for GET /metrics; outlives
+  /// controller restarts, so counters only reset with the process.
+  metrics::Registry metrics_;
   asio::signal_set signals_;
   settings::Settings settings_;
   SystemWallClock wall_clock_;   ///< GET /api/status time_utc

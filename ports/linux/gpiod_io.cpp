@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "axis/axis_config.hpp"
+#include "log.hpp"
 #include "sensors/magnetometer.hpp"
 #include "sysfs_pwm.hpp"
 
@@ -134,7 +135,7 @@ void GpiodDriveSink::write(std::size_t channel, float value) {
     written_[channel] = value > 0.0f ? 1.0f : 0.0f;
   } else if (!error_reported_) {
     error_reported_ = true;
-    std::fprintf(stderr, "rotord: gpiod: writing an output line failed\n");
+    log::error("gpiod: writing an output line failed");
   }
 }
 
@@ -152,8 +153,7 @@ void GpiodDriveSink::all_off() {
 bool GpiodSwitch::active() {
   const int v = line_->get_active();
   if (v < 0) {
-    if (!error_reported_)
-      std::fprintf(stderr, "rotord: gpiod: reading %s failed; it reads as not active\n", key_);
+    if (!error_reported_) log::warn("gpiod: reading %s failed; it reads as not active", key_);
     error_reported_ = true;
     return false;
   }
@@ -343,8 +343,7 @@ void GpiodRotator::sample() {
   for (AxisHw* a : {&az_, &el_}) {
     if (!a->pot) continue;
     const bool ok = a->pot->sample();
-    if (!ok && !a->pot_error_reported)
-      std::fprintf(stderr, "rotord: %s\n", a->pot->last_error().c_str());
+    if (!ok && !a->pot_error_reported) log::warn("%s", a->pot->last_error().c_str());
     a->pot_error_reported = !ok;
   }
 }

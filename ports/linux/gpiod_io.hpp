@@ -29,6 +29,13 @@ class GpiodDriveSink final : public DriveSink {
   void apply(const DriveOutputs& outputs) override;
   /// Every mapped line inactive, written whatever the last value was.
   void all_off();
+  /// What was last written successfully (relays 0/1, PWM duty): what the
+  /// hardware holds as far as the driver knows, for the exit report.
+  DriveOutputs written() const {
+    DriveOutputs o;
+    o.value = written_;
+    return o;
+  }
 
  private:
   void write(std::size_t channel, float value);
@@ -87,6 +94,10 @@ class GpiodRotator {
   /// Once per control tick, before it: one conversion per pot.
   void sample();
   void all_off();
+  /// The outputs of `axis` as last written to the lines and PWM channels.
+  DriveOutputs written(AxisId id) const {
+    return id == AxisId::kEl ? el_.drive.written() : az_.drive.written();
+  }
   /// What was opened, one line per axis, for the start-up log.
   const std::string& summary() const { return summary_; }
 

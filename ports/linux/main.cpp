@@ -1,6 +1,7 @@
 #include <CLI/CLI.hpp>
 
 #include "daemon.hpp"
+#include "log.hpp"
 
 int main(int argc, char** argv) {
   rotord::linux_port::Options o;
@@ -54,7 +55,20 @@ int main(int argc, char** argv) {
                  "easycomm:/dev/ttyUSB0:19200. Repeatable")
       ->take_all()
       ->allow_extra_args(false);
+  app.add_option("--log-level", o.log_level,
+                 "Least important messages logged: error, warn, info or debug (connections, "
+                 "late ticks)")
+      ->check(CLI::IsMember({"error", "warn", "info", "debug"}))
+      ->capture_default_str();
+  app.add_option("--log-format", o.log_format,
+                 "text (\"rotord: ...\" lines) or json (one object per line: time, level, msg)")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  namespace log = rotord::linux_port::log;
+  log::Level level = log::Level::kInfo;
+  log::parse_level(o.log_level, level);
+  log::configure(level, o.log_format == "json" ? log::Format::kJson : log::Format::kText);
   rotord::linux_port::Daemon daemon(o);
   return daemon.run();
 }

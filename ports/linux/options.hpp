@@ -22,6 +22,8 @@ struct Options {
   int seed_port = 0;
   std::vector<std::string> ptys;     ///< --pty PERSONALITY[:LINK]
   std::vector<std::string> serials;  ///< --serial PERSONALITY:DEVICE[:BAUD]
+  std::string log_level = "info";    ///< error, warn, info or debug (log.hpp)
+  std::string log_format = "text";   ///< text or json
 };
 
 }  // namespace rotord::linux_port

@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "log.hpp"
+
 namespace rotord::linux_port {
 namespace {
 
@@ -221,9 +223,8 @@ void SerialTransport::read() {
 
 void SerialTransport::on_line_error(const std::error_code& ec) {
   if (!reported_failure_) {
-    std::fprintf(stderr, "rotord: %s on %s: %s; retrying every %lld ms\n", name_.c_str(),
-                 path_.c_str(), ec.message().c_str(),
-                 static_cast<long long>(kReopenInterval.count()));
+    log::warn("%s on %s: %s; retrying every %lld ms", name_.c_str(), path_.c_str(),
+              ec.message().c_str(), static_cast<long long>(kReopenInterval.count()));
     reported_failure_ = true;
   }
   // A pty keeps its master (only a read failed); a device is reopened, so an
@@ -239,8 +240,7 @@ void SerialTransport::schedule_reopen() {
     if (spec_.pty) return read();
     std::string error;
     if (!open_device(error)) return schedule_reopen();
-    std::printf("rotord: %s on %s again\n", name_.c_str(), path_.c_str());
-    std::fflush(stdout);
+    log::info("%s on %s again", name_.c_str(), path_.c_str());
   });
 }
 
@@ -251,6 +251,7 @@ void SerialTransport::close_line() {
 }
 
 void SerialTransport::write(std::string_view bytes) {
+  if (metrics_ != nullptr) metrics_->on_reply(protocol_, bytes);
   if (!line_.is_open()) {
     dropped_bytes_ += bytes.size();
     return;

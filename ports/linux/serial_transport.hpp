@@ -58,6 +58,11 @@ class SerialTransport final : private protocol::ByteSink {
   /// Gives the session its chance to send unsolicited output.
   void poll(Millis now);
   std::size_t dropped_bytes() const { return dropped_bytes_; }
+  /// Counts the session's error replies under `protocol` (GET /metrics).
+  void count_replies(metrics::Registry* registry, metrics::Protocol protocol) {
+    metrics_ = registry;
+    protocol_ = protocol;
+  }
 
  private:
   void write(std::string_view bytes) override;
@@ -83,6 +88,8 @@ class SerialTransport final : private protocol::ByteSink {
   asio::steady_timer retry_timer_;
   std::array<char, kReadChunkBytes> buffer_{};
   std::size_t dropped_bytes_ = 0;
+  metrics::Registry* metrics_ = nullptr;
+  metrics::Protocol protocol_ = metrics::Protocol::kWrc;
   bool reported_failure_ = false;
   /// Guards handlers that run after destruction began (the loop outlives us).
   std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);

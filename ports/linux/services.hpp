@@ -11,8 +11,10 @@ namespace rotord::linux_port {
 /// Every protocol the daemon serves on TCP, with its port from the options.
 /// A port of 0 leaves that service out. Connection limits come from
 /// `settings` (net.max_clients, web.max_event_streams at start-up; the
-/// admission rule reads the rest at each newcomer).
+/// admission rule reads the rest at each newcomer). Each counts its
+/// connections and error replies in `registry` under its protocol.
 std::vector<ServiceConfig> make_services(const Options& options, Controller& controller,
-                                         web::Api& api, const settings::Settings& settings);
+                                         web::Api& api, const settings::Settings& settings,
+                                         metrics::Registry& registry);
 
 }  // namespace rotord::linux_port

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "host_path.hpp"
+#include "log.hpp"
 
 namespace rotord::linux_port {
 namespace {
@@ -83,8 +84,7 @@ void SysfsPwm::set_duty(float duty) {
     error_reported_ = false;
   } else if (!error_reported_) {
     error_reported_ = true;
-    std::fprintf(stderr, "rotord: writing %s/duty_cycle failed: %s\n", dir_.c_str(),
-                 std::strerror(errno));
+    log::warn("writing %s/duty_cycle failed: %s", dir_.c_str(), std::strerror(errno));
   }
 }
 

@@ -4,6 +4,8 @@
 #include <array>
 #include <vector>
 
+#include "log.hpp"
+
 namespace rotord::linux_port {
 namespace {
 
@@ -32,6 +34,14 @@ net::Address address_of(const asio::ip::tcp::socket& socket) {
   return a;
 }
 
+/// "192.0.2.7:50214" for the logs.
+std::string describe(const asio::ip::tcp::socket& socket) {
+  std::error_code ec;
+  const asio::ip::tcp::endpoint peer = socket.remote_endpoint(ec);
+  if (ec) return "a client";
+  return peer.address().to_string() + ":" + std::to_string(peer.port());
+}
+
 }  // namespace
 
 class TcpServer::Connection final : public protocol::ByteSink,
@@ -41,6 +51,12 @@ class TcpServer::Connection final : public protocol::ByteSink,
       : server_(server), socket_(std::move(socket)), info_(info) {
     std::error_code ignored;
     socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
+    if (metrics::Registry* m = server_.config_.metrics)
+      m->protocol(server_.config_.protocol).on_accept();
+    if (log::enabled(log::Level::kDebug)) {
+      client_ = describe(socket_);
+      log::debug("%s: %s connected", server_.name().c_str(), client_.c_str());
+    }
   }
 
   void start(std::unique_ptr<protocol::Session> session) {
@@ -54,6 +70,8 @@ class TcpServer::Connection final : public protocol::ByteSink,
 
   void write(std::string_view bytes) override {
     if (closing_) return;
+    if (metrics::Registry* m = server_.config_.metrics)
+      m->on_reply(server_.config_.protocol, bytes);
     if (pending_.size() + bytes.size() > kMaxBacklogBytes) {
       // The client stopped reading; drop it rather than buffer forever.
       ++server_.admission_.counters().dropped_backlog;
@@ -74,6 +92,10 @@ class TcpServer::Connection final : public protocol::ByteSink,
   void close() {
     if (closing_) return;
     closing_ = true;
+    if (metrics::Registry* m = server_.config_.metrics)
+      m->protocol(server_.config_.protocol).on_close();
+    if (!client_.empty())
+      log::debug("%s: %s disconnected", server_.name().c_str(), client_.c_str());
     std::error_code ignored;
     socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
     socket_.close(ignored);
@@ -140,6 +162,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
   bool closing_ = false;
   bool close_requested_ = false;
   bool stream_seen_ = false;  ///< the session has become an event stream
+  std::string client_;        ///< "address:port", for debug logs only
 };
 
 /// The open connections as the admission rule reads them (a copy of the
@@ -198,6 +221,10 @@ void TcpServer::admit(asio::ip::tcp::socket socket) {
   const Snapshot snapshot(connections_);
   const net::Admission::Decision d = admission_.admit(snapshot, info, now_);
   if (d.kind != net::Admission::Decision::Kind::kAdmit) {
+    if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_refuse();
+    if (log::enabled(log::Level::kDebug))
+      log::debug("%s: %s refused, %zu clients already", config_.name.c_str(),
+                 describe(socket).c_str(), connections_.size());
     std::error_code ignored;
     asio::write(socket, asio::buffer(config_.reject_message), ignored);
     socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
@@ -206,7 +233,10 @@ void TcpServer::admit(asio::ip::tcp::socket socket) {
   }
   // The one making room goes without a word: none of the protocols has a
   // message for it, and a client that was really idle will just reconnect.
-  if (d.evict != net::Admission::kNone) snapshot.connection(d.evict)->close();
+  if (d.evict != net::Admission::kNone) {
+    if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_evict();
+    snapshot.connection(d.evict)->close();
+  }
   connections_.push_back(std::make_shared<Connection>(*this, std::move(socket), info));
   connections_.back()->start(config_.make_session());
 }
@@ -221,7 +251,9 @@ void TcpServer::stream_started(Connection* connection) {
     if (snapshot.connection(i) == connection) self = i;
   }
   const std::size_t victim = admission_.stream_started(snapshot, self);
-  if (victim != net::Admission::kNone) snapshot.connection(victim)->close();
+  if (victim == net::Admission::kNone) return;
+  if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_evict();
+  snapshot.connection(victim)->close();
 }
 
 void TcpServer::remove(Connection* connection) {

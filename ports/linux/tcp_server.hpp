@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "metrics/registry.hpp"
 #include "net/admission.hpp"
 #include "protocol/session.hpp"
 #include "settings/settings.hpp"
@@ -29,6 +30,10 @@ struct ServiceConfig {
   /// net.idle_evict_s, net.max_per_address, access.control_networks, read at
   /// each newcomer; null: a full port refuses, as before issue 12.
   const settings::Settings* settings = nullptr;
+  /// Where connections, refusals and error replies are counted (GET
+  /// /metrics), under `protocol`; nullptr counts nothing.
+  metrics::Registry* metrics = nullptr;
+  metrics::Protocol protocol = metrics::Protocol::kWrc;
 };
 
 /// Serves one protocol on one TCP port: a byte session per connection, all in

@@ -85,6 +85,8 @@ struct TcpServer::Glue {
     if (session == nullptr) return reject(*server, pcb);
 
     ++server->stats_.accepted;
+    if (metrics::Registry* m = server->config_.metrics)
+      m->protocol(server->config_.protocol).on_accept();
     c->server_ = server;
     c->pcb_ = pcb;
     c->session_ = session;
@@ -106,6 +108,8 @@ struct TcpServer::Glue {
   /// Linux port does, so the user sees why instead of a bare reset.
   static err_t reject(TcpServer& server, tcp_pcb* pcb) {
     ++server.stats_.rejected;
+    if (metrics::Registry* m = server.config_.metrics)
+      m->protocol(server.config_.protocol).on_refuse();
     detach(pcb);
     const std::string_view msg = server.config_.reject_message;
     if (!msg.empty() && msg.size() <= tcp_sndbuf(pcb)) {
@@ -174,6 +178,8 @@ struct TcpServer::Glue {
 
 void TcpServer::Connection::write(std::string_view bytes) {
   if (pcb_ == nullptr || overflow_ || bytes.empty()) return;
+  if (metrics::Registry* m = server_->config_.metrics)
+    m->on_reply(server_->config_.protocol, bytes);
   const auto immutable = server_->config_.is_immutable;
   if (bytes.size() >= kMinReferenceBytes && immutable != nullptr &&
       immutable(bytes.data(), bytes.size())) {
@@ -368,7 +374,10 @@ err_t TcpServer::drop(Connection& c) {
 }
 
 void TcpServer::release(Connection& c) {
-  if (c.session_ != nullptr) sessions_.release(c.index_);
+  if (c.session_ != nullptr) {
+    sessions_.release(c.index_);
+    if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_close();
+  }
   c.session_ = nullptr;
   c.pcb_ = nullptr;
   c.info_ = {};

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <utility>
 
+#include "metrics/registry.hpp"
 #include "net/admission.hpp"
 #include "protocol/session.hpp"
 
@@ -85,6 +86,10 @@ struct ServerConfig {
   /// HTTP: event streams apart from max_clients. They share the static slots,
   /// so a newcomer finding every slot taken drops the oldest stream first.
   std::size_t max_event_streams = 0;
+  /// Where connections, refusals and error replies are counted (GET
+  /// /metrics), under `protocol`; nullptr counts nothing.
+  metrics::Registry* metrics = nullptr;
+  metrics::Protocol protocol = metrics::Protocol::kWrc;
 };
 
 /// Serves one protocol on one TCP port: a byte session per connection from a

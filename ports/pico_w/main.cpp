@@ -5,8 +5,9 @@
 // One loop, no interrupts into the core: pico_cyw43_arch_lwip_poll runs lwIP
 // only inside cyw43_arch_poll(), so network callbacks, sessions and the
 // control tick never run concurrently and the core needs no locks. The tick
-// is scheduled by absolute deadline and the loop sleeps only until the next
-// deadline, so network traffic delays a tick by at most one poll.
+// is scheduled by absolute deadline (TickScheduler) and the loop sleeps only
+// until the next deadline, so network traffic delays a tick by at most one
+// poll.
 #include <algorithm>
 #include <cstdio>
 #include <optional>
@@ -14,8 +15,10 @@
 
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
+#include "loop/tick_scheduler.hpp"
 #include "lwip_transport.hpp"
 #include "ma3_pio.hpp"
+#include "metrics/registry.hpp"
 #include "pico/binary_info.h"
 #include "pico/cyw43_arch.h"
 #include "pico/stdlib.h"
@@ -104,6 +107,13 @@ bool in_program_flash(const void* data, std::size_t size) {
   const auto begin = reinterpret_cast<std::uintptr_t>(data);
   return begin >= XIP_BASE && begin + size <= XIP_BASE + PICO_FLASH_SIZE_BYTES;
 }
+
+/// The loop's clock for GET /healthz (the age of the last tick): the same
+/// microsecond timer the tick schedule runs on.
+class PicoMonotonicClock final : public hal::MonotonicClock {
+ public:
+  std::int64_t now_us() const override { return static_cast<std::int64_t>(time_us_64()); }
+};
 
 /// POST /api/reboot: remembered here, done by the loop once the response is
 /// out (the hook runs inside the request).
@@ -324,6 +334,18 @@ void report_settings(const web::LoadOutcome& r) {
                 usb_port::personality_name(usb_personality));
   }
 
+  // GET /metrics and /healthz: what the loop and the transports count.
+  static metrics::Registry registry;
+  static PicoMonotonicClock monotonic_clock;
+  // The n-th tick at start + n x kTickMs (loop/tick_scheduler.hpp): network
+  // traffic delays a tick but never shifts the ones after it.
+  static TickScheduler ticks(kTickMs * 1000);
+  registry.ticks = &ticks;
+  registry.clock = &monotonic_clock;
+  // Without the HELP lines the page is about 7 KB: it must pass through
+  // lwIP's send buffer (TCP_SND_BUF, 11.7 KB) and the 1 KiB output buffer.
+  registry.help_text = false;
+
   // 4. Network. Without the Wi-Fi chip the controller still runs (USB logs,
   // safety rules), it just takes no commands.
   const bool network = cyw43_arch_init() == 0;
@@ -338,36 +360,43 @@ void report_settings(const web::LoadOutcome& r) {
   auto make_wrc = [] { return protocol::WrcSession(controller, ROTORD_VERSION, &monitor_tap); };
   // Every server admits by net/admission.hpp with the live settings (idle
   // eviction, per-address cap, allow-list), as on Linux.
-  auto line_config = [&settings](const char* name, std::uint16_t port, std::string_view busy) {
+  auto line_config = [&settings](const char* name, std::uint16_t port, std::string_view busy,
+                                 metrics::Protocol protocol) {
     lwip_port::ServerConfig config;
     config.name = name;
     config.port = port;
     config.max_clients = static_cast<std::size_t>(settings.i(Id::kNetMaxClients));
     config.reject_message = busy;
     config.settings = &settings;
+    config.metrics = &registry;
+    config.protocol = protocol;
     return config;
   };
   static lwip_port::StaticService<protocol::WrcSession, kWrcSlots, decltype(make_wrc)> wrc(
-      line_config("WRC text protocol", kWrcPort, protocol::WrcSession::kTooManyConnections),
+      line_config("WRC text protocol", kWrcPort, protocol::WrcSession::kTooManyConnections,
+                  metrics::Protocol::kWrc),
       make_wrc);
   // Yaesu GS-232A/B (gs232.variant) for PstRotator, N1MM+, HRD, Hamlib 601/603.
   auto make_gs232 = [] { return protocol::Gs232Session(controller); };
   static lwip_port::StaticService<protocol::Gs232Session, kGs232Slots, decltype(make_gs232)> gs232(
-      line_config("Yaesu GS-232", kGs232Port, protocol::Gs232Session::kTooManyConnections),
+      line_config("Yaesu GS-232", kGs232Port, protocol::Gs232Session::kTooManyConnections,
+                  metrics::Protocol::kGs232),
       make_gs232);
   // Hamlib rotctld for Gpredict, SatNOGS, rotctl -m 2 (docs/protocols/rotctld.md).
   auto make_rotctld = [] { return protocol::RotctldSession(controller, ROTORD_VERSION); };
   static lwip_port::StaticService<protocol::RotctldSession, kRotctldSlots, decltype(make_rotctld)>
-      rotctld(line_config("Hamlib rotctld", kRotctldPort,
-                          protocol::RotctldSession::kTooManyConnections),
-              make_rotctld);
+      rotctld(
+          line_config("Hamlib rotctld", kRotctldPort, protocol::RotctldSession::kTooManyConnections,
+                      metrics::Protocol::kRotctld),
+          make_rotctld);
   // POST /api/settings persists to the flash slots (RAM only when the
   // program image would overlap them).
   hal::Storage* const storage = g_flash.region_free() ? &g_saver : nullptr;
   g_saver.begin();  // what was loaded (or deliberately not overwritten) counts as saved
+  if (storage != nullptr) registry.saver = &g_saver;
   static SntpWallClock wall_clock(&now_ms);  // time_utc once SNTP has answered
-  static web::Api api(
-      web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION, &wall_clock});
+  static web::Api api(web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION,
+                                      &wall_clock, nullptr, &registry});
   auto make_http = [] { return web::HttpSession(api); };
   lwip_port::ServerConfig http_config;
   http_config.name = "web UI and REST API";
@@ -378,15 +407,18 @@ void report_settings(const web::LoadOutcome& r) {
   http_config.settings = &settings;
   http_config.max_event_streams =
       std::min(kHttpEventStreams, static_cast<std::size_t>(settings.i(Id::kWebMaxEventStreams)));
+  http_config.metrics = &registry;
+  http_config.protocol = metrics::Protocol::kHttp;
   static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
       http_config, make_http);
   // Easycomm II/III for Easycomm trackers and Hamlib 202/204 (docs/protocols/easycomm.md).
   auto make_easycomm = [] { return protocol::EasycommSession(controller, ROTORD_VERSION); };
   static lwip_port::StaticService<protocol::EasycommSession, kEasycommSlots,
                                   decltype(make_easycomm)>
-      easycomm(line_config("Easycomm II/III", kEasycommPort,
-                           protocol::EasycommSession::kTooManyConnections),
-               make_easycomm);
+      easycomm(
+          line_config("Easycomm II/III", kEasycommPort,
+                      protocol::EasycommSession::kTooManyConnections, metrics::Protocol::kEasycomm),
+          make_easycomm);
   lwip_port::TcpServer* const servers[] = {&wrc.server(), &gs232.server(), &rotctld.server(),
                                            &easycomm.server(), &http.server()};
   if (network) {
@@ -403,9 +435,9 @@ void report_settings(const web::LoadOutcome& r) {
 
   // 5. The loop. Started after the blocking Wi-Fi chip init (firmware load).
   watchdog_enable(kWatchdogMs, true /* pause while a debugger halts the core */);
-  absolute_time_t next_tick = make_timeout_time_ms(kTickMs);
-  std::uint32_t late_ticks = 0;
-  std::uint32_t reported_late_ticks = 0;
+  ticks.start(static_cast<std::int64_t>(time_us_64()));
+  registry.start_us = ticks.deadline_us() - kTickMs * 1000;
+  std::uint64_t reported_overruns = 0;
   std::uint32_t reported_usb_drops = 0;
   Millis next_report = now_ms() + 10'000;
   Millis reboot_at = 0;
@@ -415,7 +447,7 @@ void report_settings(const web::LoadOutcome& r) {
     rotord_usb_task();
     if (usb_link) usb_link->service();
     if (network) cyw43_arch_poll();
-    if (time_reached(next_tick)) {
+    if (ticks.poll(static_cast<std::int64_t>(time_us_64()))) {
       const Millis now = now_ms();
       controller.tick(now);
       api.poll(now);  // hold-to-move's dead-man, with or without a connection
@@ -439,18 +471,13 @@ void report_settings(const web::LoadOutcome& r) {
           for (;;) tight_loop_contents();
         }
       }
-      next_tick = delayed_by_ms(next_tick, kTickMs);
-      if (time_reached(next_tick)) {
-        // Fell a whole tick behind: resynchronise instead of running a burst
-        // of ticks back to back (the controller works from `now`, not counts).
-        ++late_ticks;
-        next_tick = make_timeout_time_ms(kTickMs);
-      }
       if (now >= next_report) {
-        if (late_ticks != reported_late_ticks)
-          std::printf("rotord: %lu late control ticks so far\n",
-                      static_cast<unsigned long>(late_ticks));
-        reported_late_ticks = late_ticks;
+        // Ticks skipped because the loop fell a whole period behind (the
+        // scheduler never runs a burst of catch-up ticks).
+        if (ticks.stats().overruns != reported_overruns)
+          std::printf("rotord: %lu control ticks skipped so far (loop overruns)\n",
+                      static_cast<unsigned long>(ticks.stats().overruns));
+        reported_overruns = ticks.stats().overruns;
         if (usb_link && usb_link->stats().dropped_replies != reported_usb_drops) {
           reported_usb_drops = usb_link->stats().dropped_replies;
           std::printf("rotord: USB: %lu replies dropped so far (the program stopped reading)\n",
@@ -459,6 +486,8 @@ void report_settings(const web::LoadOutcome& r) {
         next_report = now + 10'000;
       }
     }
+    const absolute_time_t next_tick =
+        from_us_since_boot(static_cast<std::uint64_t>(ticks.deadline_us()));
     if (network)
       cyw43_arch_wait_for_work_until(next_tick);
     else

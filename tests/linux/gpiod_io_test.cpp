@@ -8,6 +8,7 @@
 #include "fake_i2c_kernel.hpp"
 #include "fake_sysfs.hpp"
 #include "rotator/controller.hpp"
+#include "safe_stop.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sensors.hpp"
 
@@ -132,6 +133,43 @@ TEST_F(GpiodIoTest, OutputsAreOffAtShutdownAndAfterRelease) {
     EXPECT_TRUE(board->lines[out].released) << out;
   }
   EXPECT_TRUE(board->closed);
+}
+
+TEST_F(GpiodIoTest, TheSignalPathStopsTheMotorsAndDrivesEveryLineOff) {
+  // What rotord does on SIGTERM, SIGHUP, SIGQUIT, ... (safe_stop.hpp): the
+  // controller's STOP, all outputs off through the drive sink, then every
+  // line written inactive once more; the exit log reads the lines' state.
+  set(Id::kAzDrive, 1);  // relay_two_speed: the speed line too
+  set(Id::kAzHasBrake, 1);
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  Controller c(s, hw->io(AxisId::kAz), hw->io(AxisId::kEl));
+  c.begin(now);
+  ASSERT_EQ(c.go_to(400.0f, std::nullopt), Error::kOk);
+  run_ms(c, *hw, 3000);
+  ASSERT_TRUE(board->output_active(kAzCw));
+  ASSERT_TRUE(board->output_active(kAzBrake));
+  ASSERT_NE(describe_outputs(hw->written(AxisId::kAz), nullptr), "az off");
+
+  stop_motors(&c, hw.get());
+  for (int out : {kAzCw, kAzCcw, kAzSpeed, kAzBrake})
+    EXPECT_FALSE(board->output_active(out)) << out;
+  EXPECT_EQ(c.status().mode, Mode::kIdle);
+  EXPECT_FALSE(c.status().az.has_target);  // stopped, not paused: nothing resumes
+  EXPECT_EQ(describe_outputs(hw->written(AxisId::kAz), nullptr), "az off");
+  run_ms(c, *hw, 1000);
+  EXPECT_FALSE(board->output_active(kAzCw));
+}
+
+TEST_F(GpiodIoTest, TheExitLogNamesEveryOutputStillOn) {
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  Controller c(s, hw->io(AxisId::kAz), hw->io(AxisId::kEl));
+  c.begin(now);
+  ASSERT_EQ(c.move(AxisId::kAz, Direction::kCw), Error::kOk);
+  run_ms(c, *hw, 500);
+  ASSERT_TRUE(board->output_active(kAzCw));
+  EXPECT_EQ(describe_outputs(hw->written(AxisId::kAz), nullptr), "az relay_cw=1");
 }
 
 TEST_F(GpiodIoTest, TheEmergencyStopLineCutsTheRelaysAndLatches) {

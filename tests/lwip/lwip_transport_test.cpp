@@ -333,6 +333,36 @@ TEST_F(LwipTransportTest, ServesWrcCommandsOverTcp) {
   EXPECT_EQ(wrc.server().client_count(), 1u);
 }
 
+TEST_F(LwipTransportTest, ConnectionsRefusalsAndErrorRepliesAreCountedForMetrics) {
+  // What GET /metrics reports on the Pico W (metrics/registry.hpp).
+  testing::FakeRotator rotator(false);
+  metrics::Registry registry;
+  auto make = [&rotator] { return protocol::WrcSession(*rotator.controller, "test"); };
+  lwip_port::ServerConfig config{"WRC", 0, 1, protocol::WrcSession::kTooManyConnections};
+  config.metrics = &registry;
+  config.protocol = metrics::Protocol::kWrc;
+  StaticService<protocol::WrcSession, 1, decltype(make)> wrc(config, make);
+  auto served = serve(wrc.server());
+  const metrics::ProtocolCounters& counted = registry.protocol(metrics::Protocol::kWrc);
+
+  Client& a = connect();
+  send(a, "AZ?\r\nBOGUS\r\nAZ 9999\r\n");
+  EXPECT_TRUE(wait([&] { return a.received.find("AZIMUTH") != std::string::npos; }));
+  Client& b = connect();  // one slot: refused
+  EXPECT_TRUE(wait([&] { return b.peer_closed || b.reset; }));
+  {
+    CoreLock lock;
+    EXPECT_EQ(counted.open, 1u);
+    EXPECT_EQ(counted.accepted, 1u);
+    EXPECT_EQ(counted.refused, 1u);
+    EXPECT_EQ(counted.errors, 2u);
+    a.detach_and_close();
+  }
+  EXPECT_TRUE(wait([&] { return counted.open == 0; }));
+  CoreLock lock;
+  EXPECT_EQ(registry.protocol(metrics::Protocol::kHttp).accepted, 0u);
+}
+
 TEST_F(LwipTransportTest, RefusesClientsOverTheLimitWithTheRejectMessage) {
   TestService service(test_config(2, "ERROR TOO MANY CONNECTIONS\r\n"), make_test_session());
   auto served = serve(service.server());

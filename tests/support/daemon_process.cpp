@@ -100,7 +100,9 @@ bool DaemonProcess::spawn(const std::vector<std::string>& extra_args) {
       read_output(0);
       return false;
     }
-    if (output_.find("rotord: ready") != std::string::npos) {
+    // "ready" in either --log-format.
+    if (output_.find("rotord: ready") != std::string::npos ||
+        output_.find("\"msg\":\"ready\"") != std::string::npos) {
       ready_ = true;
       return true;
     }
@@ -118,6 +120,15 @@ void DaemonProcess::read_output(int timeout_ms) {
     if (n <= 0) break;
     output_.append(buf, static_cast<std::size_t>(n));
   }
+}
+
+bool DaemonProcess::wait_for_output(const std::string& text, int timeout_ms) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  while (output_.find(text) == std::string::npos) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    read_output(50);
+  }
+  return true;
 }
 
 long long DaemonProcess::advance_ms(long long ms) {
@@ -140,9 +151,14 @@ long long DaemonProcess::advance_ms(long long ms) {
   return -1;
 }
 
-int DaemonProcess::terminate() {
+void DaemonProcess::close_output() {
+  if (out_fd_ >= 0) ::close(out_fd_);
+  out_fd_ = -1;
+}
+
+int DaemonProcess::stop_with(int signal) {
   if (pid_ <= 0) return -1;
-  ::kill(pid_, SIGTERM);
+  ::kill(pid_, signal);
   int status = 0;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (std::chrono::steady_clock::now() < deadline) {

@@ -1,4 +1,5 @@
 #pragma once
+#include <signal.h>
 #include <sys/types.h>
 
 #include <string>
@@ -31,12 +32,21 @@ class DaemonProcess {
   const Ports& ports() const { return ports_; }
   /// Everything the daemon printed so far.
   const std::string& output() const { return output_; }
+  /// Reads the daemon's output until `text` appears in it (bounded by
+  /// timeout_ms, for liveness only); true when it did.
+  bool wait_for_output(const std::string& text, int timeout_ms = 10000);
   /// With `--clock manual` among the arguments: runs `ms` of controller time
   /// in the daemon and waits (bounded) until it has; returns the controller
   /// time after it, or -1.
   long long advance_ms(long long ms);
   /// Sends SIGTERM and waits; returns the exit status (or -1).
-  int terminate();
+  int terminate() { return stop_with(SIGTERM); }
+  /// Sends `signal` and waits (bounded) for the process to end; returns its
+  /// exit status, 128 + the signal that killed it, or -1 when it did not end.
+  int stop_with(int signal);
+  /// Closes the reading end of the daemon's output: it now writes into a
+  /// pipe nobody reads (a dropped SSH session's terminal).
+  void close_output();
   pid_t pid() const { return pid_; }
 
  private:

@@ -1,0 +1,39 @@
+#pragma once
+// rotord's log on Linux: --log-level error|warn|info|debug, --log-format
+// text|json. Text lines are "rotord: <message>" as they always were (info
+// and debug on standard output, warnings and errors on standard error, so
+// journald and a terminal tell them apart); JSON is one object per line on
+// the same streams:
+//   {"time":"2026-11-24T10:15:00.123Z","level":"info","msg":"ready"}
+// One process-wide setting, made once by main() before anything logs.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace rotord::linux_port::log {
+
+enum class Level : std::uint8_t { kError, kWarn, kInfo, kDebug };
+enum class Format : std::uint8_t { kText, kJson };
+
+/// "error", "warn", "info", "debug" (and "warning"); false for anything else.
+bool parse_level(std::string_view text, Level& level);
+const char* level_name(Level level);
+
+void configure(Level level, Format format);
+/// Whether a message at `level` is written (skip building costly ones).
+bool enabled(Level level);
+
+/// One line as it goes out, without the line end: the text form or the
+/// JSON object, `unix_ms` its time. Exposed for tests.
+std::string format_line(Format format, Level level, std::string_view message, std::int64_t unix_ms);
+
+/// printf-style; the message has no "rotord: " prefix and no line end.
+void error(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+void warn(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+void info(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+void debug(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+/// An answer on standard output whatever --log-level says, written as an
+/// info line: the manual clock's replies, which a test waits for.
+void reply(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
+}  // namespace rotord::linux_port::log
