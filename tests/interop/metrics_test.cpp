@@ -65,13 +65,16 @@ TEST_F(MetricsEndpoint, CountersFollowWhatClientsDo) {
   EXPECT_EQ(wrc.ask("AZ 9999\n"), "ERROR INVALID AZIMUTH");
   EXPECT_EQ(wrc.ask("BOGUS\n"), "ERROR INVALID COMMAND");
   ASSERT_GT(daemon->advance_ms(3000), 0);
-  // Seven more clients fill the WRC limit (net.max_clients 8); a ninth is refused.
+  // Seven more clients from seven other hosts (one host holds at most
+  // net.max_per_address) fill the WRC limit (net.max_clients 8); a ninth,
+  // with nobody idle for net.idle_evict_s, is refused.
   std::vector<std::unique_ptr<TcpClient>> others;
   for (int n = 0; n < 7; ++n) {
-    others.push_back(std::make_unique<TcpClient>(daemon->ports().wrc));
+    others.push_back(
+        std::make_unique<TcpClient>(daemon->ports().wrc, "127.0.0." + std::to_string(n + 2)));
     ASSERT_EQ(others.back()->ask("AZ?\n").substr(0, 5), "OK AZ");
   }
-  TcpClient refused(daemon->ports().wrc);
+  TcpClient refused(daemon->ports().wrc, "127.0.0.20");
   std::string line;
   ASSERT_TRUE(refused.read_line(line));
   ASSERT_EQ(line, "ERROR TOO MANY CONNECTIONS");
