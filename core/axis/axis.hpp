@@ -1,37 +1,31 @@
 #pragma once
-#include <array>
-#include <optional>
-
 #include "axis/axis_config.hpp"
 #include "axis/axis_id.hpp"
 #include "axis/axis_io.hpp"
 #include "axis/axis_status.hpp"
+#include "axis/position_tracker.hpp"
 #include "axis/sequencer.hpp"
-#include "sensors/ma3_sensor.hpp"
-#include "sensors/mag_sensor.hpp"
-#include "sensors/pot_sensor.hpp"
 #include "util/error.hpp"
 #include "util/time.hpp"
 
 namespace rotord {
 
-/// One rotator axis: reads its sensor, runs the motion state machine
-/// (idle, starting, moving, stopping, reversing, fault) and writes its drive
-/// outputs. The safety rules live here, so they hold whatever the command
+/// One rotator axis: runs the motion state machine (idle, starting, moving,
+/// stopping, reversing, fault) on the position its PositionTracker reads, and
+/// writes its drive outputs. The safety rules live here, so they hold whatever the command
 /// source: never past a soft limit or an active limit switch, reversal only
 /// through stop and a dead time, stall / sensor faults latch and stop.
 ///
 /// No heap, no exceptions: everything is fixed-size members.
 class Axis {
  public:
-  /// A reading may be missing this long before the sensor is declared lost.
-  static constexpr Millis kSensorGraceMs = 250;
-  /// Consecutive implausible readings tolerated (rejected) before a fault.
-  static constexpr int kJumpRejectLimit = 5;
   /// Extra moves allowed to correct a go-to that ended outside tolerance.
   static constexpr int kMaxCorrections = 2;
 
   Axis(AxisId id, const AxisIo& io);
+  // The tracker refers to this axis's io and configuration.
+  Axis(const Axis&) = delete;
+  Axis& operator=(const Axis&) = delete;
 
   void configure(const AxisConfig& cfg);
   /// All outputs off, first sensor reading.
@@ -63,15 +57,10 @@ class Axis {
     Direction dir = Direction::kNone;
     Millis until = 0;
   };
-  struct Sample {
-    Millis t = 0;
-    float deg = 0.0f;
-  };
-
+  /// Reads the position; latches a sensor fault, voids a go-to whose frame
+  /// moved.
   void update_position(Millis now);
-  void read_switches();
-  float initial_unwrap(float sensor_deg) const;
-  float estimate_speed() const;
+  float pos_deg() const { return tracker_.position_deg(); }
   float stop_distance_deg() const;
   float commanded_duty(bool slow_zone) const;
   float expected_rate_deg_s(bool slow_zone) const;
@@ -84,16 +73,12 @@ class Axis {
   void drive_moving(Millis now);
   void finish_stop(Millis now);
   void latch_fault(AxisFault fault);
-  float reported_position_deg() const;
   void publish();
 
   AxisId id_;
   AxisIo io_;
   AxisConfig cfg_;
-  std::optional<PotSensor> pot_;
-  std::optional<Ma3Sensor> ma3_;
-  std::optional<MagSensor> mag_;
-  PositionSensor* sensor_ = nullptr;
+  PositionTracker tracker_;  // after io_ and cfg_, which it refers to
 
   AxisState state_ = AxisState::kIdle;
   AxisFault fault_ = AxisFault::kNone;
@@ -104,20 +89,6 @@ class Axis {
   DriveOutputs out_;
   int speed_pct_ = 50;
   float duty_ = 0.0f;
-
-  bool have_pos_ = false;
-  float pos_deg_ = 0.0f;     // user frame
-  float sensor_deg_ = 0.0f;  // unwrapped, sensor frame
-  float raw_ = 0.0f;
-  Millis bad_since_ = -1;
-  int jump_rejects_ = 0;
-  bool recalibrated_ = false;  // the calibration changed: accept the next reading
-  bool mag_answered_ = false;  // the last read got a sample from the chip
-  std::array<Sample, 32> history_{};
-  int history_head_ = 0;
-  int history_count_ = 0;
-
-  bool sw_cw_ = false, sw_ccw_ = false, t1_ = false, t2_ = false;
 
   Millis now_ = 0;
   Millis last_tick_ = 0;

@@ -1,0 +1,218 @@
+#include "axis/position_tracker.hpp"
+
+#include <cmath>
+
+#include "motion/angles.hpp"
+
+namespace rotord {
+namespace {
+
+/// True when the active sensor's calibration differs: the same shaft position
+/// then reads as another angle, in one step.
+bool sensor_frame_changed(const AxisConfig& a, const AxisConfig& b) {
+  if (a.sensor != b.sensor) return false;  // a new sensor starts afresh anyway
+  switch (b.sensor) {
+    case SensorType::kPot:
+      if (a.pot_cal.count != b.pot_cal.count) return true;
+      for (std::size_t n = 0; n < static_cast<std::size_t>(b.pot_cal.count); ++n)
+        if (a.pot_cal.points[n].counts != b.pot_cal.points[n].counts ||
+            a.pot_cal.points[n].deg != b.pot_cal.points[n].deg)
+          return true;
+      return false;
+    case SensorType::kMa3:
+      return a.ma3_zero_deg != b.ma3_zero_deg || a.ma3_reverse != b.ma3_reverse ||
+             a.ma3_bits != b.ma3_bits;
+    case SensorType::kMag:
+      return !(a.mag_cal == b.mag_cal) || a.mag_chip != b.mag_chip;
+  }
+  return false;
+}
+
+bool active(hal::DigitalIn* in) {
+  return in != nullptr && in->active();
+}
+
+}  // namespace
+
+PositionTracker::PositionTracker(const AxisIo& io, const AxisConfig& cfg) : io_(io), cfg_(cfg) {
+  if (io_.pot) pot_.emplace(*io_.pot);
+  if (io_.ma3) ma3_.emplace(*io_.ma3);
+  if (io_.i2c) mag_.emplace(*io_.i2c);
+}
+
+bool PositionTracker::configure(const AxisConfig& next) {
+  const float offset_change = next.offset_deg - cfg_.offset_deg;
+  // A recalibration (web page, GS-232 O/F) moves the reading in one step. The
+  // next reading is taken as it comes, not rejected as an implausible jump:
+  // that fault would latch, and no reset could clear it.
+  if (sensor_ != nullptr && have_pos_ && sensor_frame_changed(cfg_, next)) recalibrated_ = true;
+  if (pot_) pot_->configure(next.pot_cal, next.pot_filter);
+  if (ma3_) ma3_->configure(next.ma3_bits, next.ma3_zero_deg, next.ma3_reverse);
+  if (mag_) mag_->configure(next.mag_chip, next.mag_cal, next.mag_lowpass_ms);
+  PositionSensor* chosen = nullptr;
+  if (next.sensor == SensorType::kPot && pot_) chosen = &*pot_;
+  if (next.sensor == SensorType::kMa3 && ma3_) chosen = &*ma3_;
+  if (next.sensor == SensorType::kMag && mag_) chosen = &*mag_;
+  if (chosen != sensor_) {  // another sensor: start afresh
+    have_pos_ = false;
+    if (chosen != nullptr) chosen->restart();
+  }
+  sensor_ = chosen;
+  // A new offset moves the reported position; shift the history with it so the
+  // plausibility check does not take the change for a jump.
+  if (!have_pos_ || offset_change == 0.0f) return false;
+  pos_deg_ += offset_change;
+  for (auto& s : history_) s.deg += offset_change;
+  return true;
+}
+
+void PositionTracker::clear_errors() {
+  jump_rejects_ = 0;
+  bad_since_ = -1;
+}
+
+void PositionTracker::read_switches() {
+  sw_cw_ = active(io_.limit_cw);
+  sw_ccw_ = active(io_.limit_ccw);
+  t1_ = active(io_.t1);
+  t2_ = active(io_.t2);
+}
+
+float PositionTracker::initial_unwrap(float sensor_deg) const {
+  // A single-turn sensor repeats every 360 deg. At start-up pick the turn
+  // inside the travel; when the travel holds two candidates, the overlap
+  // threshold inputs decide (T1: beyond 360, T2: below 0), else the one in
+  // 0..360 wins.
+  const float lo = cfg_.min_deg - 5.0f;
+  const float hi = cfg_.max_deg + 5.0f;
+  float lowest = 0.0f, highest = 0.0f, compass = 0.0f;
+  bool any = false, in_compass = false;
+  for (int turn = -2; turn <= 3; ++turn) {
+    const float user = sensor_deg + cfg_.offset_deg + 360.0f * static_cast<float>(turn);
+    if (user < lo || user > hi) continue;
+    if (!any || user < lowest) lowest = user;
+    if (!any || user > highest) highest = user;
+    if (user >= 0.0f && user < 360.0f) {
+      compass = user;
+      in_compass = true;
+    }
+    any = true;
+  }
+  float user = sensor_deg + cfg_.offset_deg;
+  if (any) user = t1_ ? highest : t2_ ? lowest : in_compass ? compass : lowest;
+  return user - cfg_.offset_deg;
+}
+
+PositionTracker::Update PositionTracker::update(Millis now) {
+  Update u;
+  if (sensor_ == nullptr) return u;
+  const PositionReading r = sensor_->read(now);
+  raw_ = r.raw;
+  // A weak or distorted field still gives raw samples, which is what the
+  // magnetometer calibration needs; only a silent chip gives none.
+  mag_answered_ = r.ok || r.fault != SensorFault::kNoSignal;
+  if (!r.ok) {
+    if (bad_since_ < 0) bad_since_ = now;
+    if (now - bad_since_ >= kSensorGraceMs) {
+      u.fault = r.fault == SensorFault::kOutOfRange    ? AxisFault::kSensorRange
+                : r.fault == SensorFault::kImplausible ? AxisFault::kSensorJump
+                                                       : AxisFault::kSensorLost;
+    }
+    return u;
+  }
+  bad_since_ = -1;
+  float sensor_deg = r.deg;
+  if (sensor_->single_turn() && !cfg_.continuous) {
+    sensor_deg = have_pos_ ? unwrap_near(r.deg, sensor_deg_) : initial_unwrap(r.deg);
+    // After a recalibration stay on the turn the axis was on, unless that
+    // turn is now outside the travel.
+    const float user = sensor_deg + cfg_.offset_deg;
+    if (recalibrated_ && (user < cfg_.min_deg - 5.0f || user > cfg_.max_deg + 5.0f))
+      sensor_deg = initial_unwrap(r.deg);
+  } else if (sensor_->single_turn()) {
+    sensor_deg = have_pos_ ? unwrap_near(r.deg, sensor_deg_) : r.deg;
+  }
+  const float pos = sensor_deg + cfg_.offset_deg;
+  if (recalibrated_) {
+    recalibrated_ = false;
+    jump_rejects_ = 0;
+    history_count_ = 0;  // the old samples are in the old frame
+    u.frame_changed = true;
+  } else if (have_pos_ && std::fabs(pos - pos_deg_) > cfg_.jump_deg) {
+    // Reject the sample; a real rotator cannot move this far in one tick.
+    if (++jump_rejects_ >= kJumpRejectLimit) u.fault = AxisFault::kSensorJump;
+    return u;
+  }
+  jump_rejects_ = 0;
+  sensor_deg_ = sensor_deg;
+  pos_deg_ = pos;
+  have_pos_ = true;
+  history_[static_cast<std::size_t>(history_head_)] = {now, pos};
+  history_head_ = (history_head_ + 1) % static_cast<int>(history_.size());
+  if (history_count_ < static_cast<int>(history_.size())) ++history_count_;
+  return u;
+}
+
+float PositionTracker::estimate_speed() const {
+  // Slope over the last ~300 ms: long enough to average ADC noise, short
+  // enough to follow a relay motor's spin-up.
+  if (history_count_ < 2) return 0.0f;
+  const int n = static_cast<int>(history_.size());
+  const Sample& newest = history_[static_cast<std::size_t>((history_head_ - 1 + n) % n)];
+  Sample oldest = newest;
+  for (int k = 2; k <= history_count_; ++k) {
+    const Sample& s = history_[static_cast<std::size_t>((history_head_ - k + n) % n)];
+    oldest = s;
+    if (newest.t - s.t >= 300) break;
+  }
+  const Millis dt = newest.t - oldest.t;
+  if (dt <= 0) return 0.0f;
+  return (newest.deg - oldest.deg) * 1000.0f / static_cast<float>(dt);
+}
+
+float PositionTracker::reported_position_deg() const {
+  // At rest on a range end a noisy sensor reads a little beyond it (-0.14 at
+  // the CCW stop, 450.16 at the CW one). Clients such as Hamlib refuse to
+  // send back a position outside the limits they were given, so an excess
+  // within the go-to tolerance is reported as the range end; a real
+  // overtravel beyond that stays visible.
+  if (pos_deg_ < cfg_.min_deg && pos_deg_ >= cfg_.min_deg - cfg_.tolerance_deg) return cfg_.min_deg;
+  if (pos_deg_ > cfg_.max_deg && pos_deg_ <= cfg_.max_deg + cfg_.tolerance_deg) return cfg_.max_deg;
+  return pos_deg_;
+}
+
+void PositionTracker::publish(AxisStatus& status) const {
+  status.position_valid = have_pos_;
+  status.position_deg = cfg_.continuous ? wrap_360(pos_deg_) : reported_position_deg();
+  status.raw = raw_;
+  status.raw_full_scale = 0.0f;
+  status.adc_ref_v = 0.0f;
+  status.mag_valid = false;
+  if (sensor_ != nullptr) {  // the configured sensor is fitted
+    switch (cfg_.sensor) {
+      case SensorType::kPot:
+        status.raw_full_scale = static_cast<float>(io_.pot->full_scale_counts());
+        status.adc_ref_v = io_.pot->reference_v();
+        break;
+      case SensorType::kMa3:
+        status.raw_full_scale = static_cast<float>(ma3_timing(cfg_.ma3_bits).counts);
+        break;
+      case SensorType::kMag: {
+        const MagSample& m = mag_->last_sample();
+        status.mag_valid = mag_answered_;
+        status.mag_x = m.x;
+        status.mag_y = m.y;
+        status.mag_z = m.z;
+        break;
+      }
+    }
+  }
+  status.switch_cw = sw_cw_;
+  status.switch_ccw = sw_ccw_;
+  status.limit_cw = sw_cw_ || (!cfg_.continuous && pos_deg_ >= cfg_.max_deg - cfg_.tolerance_deg);
+  status.limit_ccw = sw_ccw_ || (!cfg_.continuous && pos_deg_ <= cfg_.min_deg + cfg_.tolerance_deg);
+  status.t1 = t1_;
+  status.t2 = t2_;
+}
+
+}  // namespace rotord
