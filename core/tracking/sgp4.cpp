@@ -38,6 +38,8 @@ const char* sgp4_error_name(Sgp4Error error) {
       return "semi-latus rectum negative";
     case Sgp4Error::kDecayed:
       return "decayed";
+    case Sgp4Error::kNoTarget:
+      return "no target";
   }
   return "?";
 }

@@ -14,6 +14,7 @@ enum class Sgp4Error : std::uint8_t {
   kPerturbedEccentricity = 3,  ///< perturbed eccentricity outside [0, 1]
   kSemiLatusRectum = 4,        ///< semi-latus rectum negative
   kDecayed = 6,                ///< the orbit is below the Earth's surface
+  kNoTarget = 7,               ///< not SGP4's: nothing to propagate (SkyTarget)
 };
 
 const char* sgp4_error_name(Sgp4Error error);
