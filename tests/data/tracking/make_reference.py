@@ -12,6 +12,10 @@ writes and never need Python. Deterministic: fixed TLEs, places and times.
                   with its UT1 table).
   sun_moon.csv    topocentric apparent az/el of the Sun and the Moon from
                   PyEphem (pressure 0: no refraction).
+  passes.csv      passes above a minimum elevation: the ISS from skyfield's
+                  find_events (rise, culminate, set), each time refined by
+                  bisection / golden section on skyfield's elevation, the Sun and the Moon from
+                  PyEphem (centre of the disc, no refraction).
   places.csv      Maidenhead centres and great-circle bearings/distances on a
                   sphere of 6371.0088 km, by vector algebra (rotord uses
                   spherical trigonometry).
@@ -143,6 +147,99 @@ def sun_moon():
     return len(rows)
 
 
+def refine_crossing(sky, topos, ts, t, min_el, rising):
+    """find_events' times can be seconds off over a long window: bisect to 1 ms."""
+    el = lambda d: (sky - topos).at(ts.from_datetime(d)).altaz()[0].degrees - min_el
+    d = t.utc_datetime()
+    lo, hi = d - timedelta(seconds=60), d + timedelta(seconds=60)
+    assert (el(lo) < 0) == rising and (el(hi) < 0) != rising
+    while hi - lo > timedelta(milliseconds=1):
+        mid = lo + (hi - lo) / 2
+        if (el(mid) < 0) == rising:
+            lo = mid
+        else:
+            hi = mid
+    return lo + (hi - lo) / 2
+
+
+def refine_culmination(sky, topos, ts, t):
+    el = lambda d: (sky - topos).at(ts.from_datetime(d)).altaz()[0].degrees
+    d = t.utc_datetime()
+    a, b = d - timedelta(seconds=60), d + timedelta(seconds=60)
+    g = (math.sqrt(5) - 1) / 2
+    while b - a > timedelta(milliseconds=1):
+        c, e = b - (b - a) * g, a + (b - a) * g
+        if el(c) > el(e):
+            b = e
+        else:
+            a = c
+    m = a + (b - a) / 2
+    return m, el(m)
+
+
+def passes():
+    ts = load.timescale(builtin=True)
+    rows = []
+    l1, l2 = TLES['ISS']
+    sky = EarthSatellite(l1, l2, 'ISS', ts)
+    t0 = datetime(2019, 12, 9, 12, 0, tzinfo=timezone.utc)
+    t1 = t0 + timedelta(days=1)
+    for lat, lon, alt in OBSERVERS[:4]:
+        topos = wgs84.latlon(lat, lon, elevation_m=alt)
+        for min_el in (0.0, 10.0):
+            times, events = sky.find_events(topos, ts.from_datetime(t0), ts.from_datetime(t1),
+                                            altitude_degrees=min_el)
+            current = {}
+            for t, e in zip(times, events):
+                if e == 0:
+                    current = {'aos': t}
+                elif e == 1 and 'aos' in current:
+                    current['max'] = t
+                elif e == 2 and 'max' in current:
+                    culmination, alt_deg = refine_culmination(sky, topos, ts, current['max'])
+                    rows.append(('ISS', lat, lon, alt, min_el, t0, t1,
+                                 refine_crossing(sky, topos, ts, current['aos'], min_el, True),
+                                 refine_crossing(sky, topos, ts, t, min_el, False),
+                                 culmination, alt_deg))
+                    current = {}
+    # Sun and Moon: rising to setting of the disc's centre, no refraction.
+    s0 = datetime(2024, 3, 20, 0, 0, tzinfo=timezone.utc)
+    s1 = s0 + timedelta(days=2)
+    for lat, lon, alt in OBSERVERS[:3]:
+        for name, body in (('sun', ephem.Sun()), ('moon', ephem.Moon())):
+            obs = ephem.Observer()
+            obs.lat, obs.lon, obs.elevation = str(lat), str(lon), alt
+            obs.pressure = 0
+            obs.horizon = '0'
+            obs.date = ephem.Date(s0.replace(tzinfo=None))
+            while True:
+                rise = obs.next_rising(body, use_center=True)
+                if rise.datetime() > s1.replace(tzinfo=None):
+                    break
+                obs.date = rise
+                transit = obs.next_transit(body)
+                setting = obs.next_setting(body, use_center=True)
+                if setting.datetime() > s1.replace(tzinfo=None):
+                    break
+                obs.date = transit
+                body.compute(obs)
+                rows.append((name, lat, lon, alt, 0.0, s0, s1,
+                             rise.datetime().replace(tzinfo=timezone.utc),
+                             setting.datetime().replace(tzinfo=timezone.utc),
+                             transit.datetime().replace(tzinfo=timezone.utc),
+                             math.degrees(body.alt)))
+                obs.date = setting + ephem.minute
+    fmt = lambda d: d.strftime('%Y-%m-%dT%H:%M:%S.') + '%03dZ' % (d.microsecond // 1000)
+    with open(os.path.join(HERE, 'passes.csv'), 'w') as f:
+        f.write('target,lat_deg,lon_deg,alt_m,min_el_deg,from_utc,to_utc,aos_utc,los_utc,'
+                'max_el_utc,max_el_deg\n')
+        for r in rows:
+            f.write('%s,%.4f,%.4f,%.1f,%.1f,%s,%s,%s,%s,%s,%.5f\n' % (
+                r[0], r[1], r[2], r[3], r[4], fmt(r[5]), fmt(r[6]), fmt(r[7]), fmt(r[8]),
+                fmt(r[9]), r[10]))
+    return len(rows)
+
+
 def locator_centre(loc):
     loc = loc.upper()
     lon, lat = -180.0, -90.0
@@ -201,3 +298,4 @@ if __name__ == '__main__':
     print('satellites.csv', satellites())
     print('sun_moon.csv', sun_moon())
     print('places.csv', places())
+    print('passes.csv', passes())
