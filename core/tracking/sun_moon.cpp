@@ -134,7 +134,7 @@ double vsop_sum(const VsopTerm (&terms)[N], double tau) {
   return sum;
 }
 
-void sun_position(double t, double r[3]) {
+void sun_position(double t, const Nutation& n, double r[3]) {
   const double tau = t / 10.0;
   // Earth's heliocentric longitude and distance, then the Sun seen from the Earth.
   const double l =
@@ -143,7 +143,6 @@ void sun_position(double t, double r[3]) {
       1e-8;
   const double r_au = (vsop_sum(kR0, tau) + tau * vsop_sum(kR1, tau)) * 1e-8;
   const double arcsec = kDeg / 3600.0;
-  const Nutation n = nutation(t);
   // + 180 deg to geocentric, FK5 correction, nutation, aberration (-20.4898" / R).
   const double lon =
       std::fmod(l, 2.0 * kPi) + kPi - 0.09033 * arcsec + n.dpsi - 20.4898 * arcsec / r_au;
@@ -233,7 +232,42 @@ constexpr LatTerm kLat[] = {
     {4, 0, 0, -1, 1021},   {4, 0, -1, 1, 833},
 };
 
-void moon_position(double t, double r[3]) {
+/// cos(k x) and sin(k x) for k = 0..max.
+struct Multiples {
+  double c[5], s[5];
+  Multiples(double x, int max) {
+    c[0] = 1.0;
+    s[0] = 0.0;
+    c[1] = std::cos(x);
+    s[1] = std::sin(x);
+    for (int k = 2; k <= max; ++k) {
+      c[k] = c[k - 1] * c[1] - s[k - 1] * s[1];
+      s[k] = s[k - 1] * c[1] + c[k - 1] * s[1];
+    }
+  }
+  /// e^(i n x) for n = -max..max, multiplied into (re, im).
+  void times(int n, double& re, double& im) const {
+    if (n == 0) return;
+    const int k = n < 0 ? -n : n;
+    const double cr = c[k], ci = n < 0 ? -s[k] : s[k];
+    const double r = re * cr - im * ci;
+    im = re * ci + im * cr;
+    re = r;
+  }
+};
+
+void term_cos_sin(const Multiples& d, const Multiples& m, const Multiples& mp, const Multiples& f,
+                  int nd, int nm, int nmp, int nf, double& c, double& s) {
+  double re = 1.0, im = 0.0;
+  d.times(nd, re, im);
+  m.times(nm, re, im);
+  mp.times(nmp, re, im);
+  f.times(nf, re, im);
+  c = re;
+  s = im;
+}
+
+void moon_position(double t, const Nutation& n, double r[3]) {
   const double t2 = t * t, t3 = t2 * t, t4 = t3 * t;
   const double lp =
       218.3164477 + 481267.88123421 * t - 0.0015786 * t2 + t3 / 538841.0 - t4 / 65194000.0;
@@ -249,17 +283,23 @@ void moon_position(double t, double r[3]) {
   const double a3 = rad(313.45 + 481266.484 * t);
   const double e = 1.0 - 0.002516 * t - 0.0000074 * t2;
 
+  // Every argument is a sum of small multiples of D, M, M' and F: build
+  // e^(i k x) for each by complex multiplication once, then each term costs a
+  // few multiplications instead of a sine and a cosine (the M0+ has no FPU).
+  Multiples md(d, 4), mm(m, 2), mmp(mp, 4), mf(f, 3);
   double sl = 0.0, sr = 0.0, sb = 0.0;
   for (const LonDistTerm& k : kLonDist) {
-    const double arg = k.d * d + k.m * m + k.mp * mp + k.f * f;
+    double c, s;
+    term_cos_sin(md, mm, mmp, mf, k.d, k.m, k.mp, k.f, c, s);
     const double scale = k.m == 0 ? 1.0 : (k.m == 1 || k.m == -1 ? e : e * e);
-    sl += k.l * scale * std::sin(arg);
-    sr += k.r * scale * std::cos(arg);
+    sl += k.l * scale * s;
+    sr += k.r * scale * c;
   }
   for (const LatTerm& k : kLat) {
-    const double arg = k.d * d + k.m * m + k.mp * mp + k.f * f;
+    double c, s;
+    term_cos_sin(md, mm, mmp, mf, k.d, k.m, k.mp, k.f, c, s);
     const double scale = k.m == 0 ? 1.0 : (k.m == 1 || k.m == -1 ? e : e * e);
-    sb += k.b * scale * std::sin(arg);
+    sb += k.b * scale * s;
   }
   const double lp_rad = rad(lp);
   // Additive terms (Venus, Jupiter, the Earth's flattening).
@@ -267,7 +307,6 @@ void moon_position(double t, double r[3]) {
   sb += -2235 * std::sin(lp_rad) + 382 * std::sin(a3) + 175 * std::sin(a1 - f) +
         175 * std::sin(a1 + f) + 127 * std::sin(lp_rad - mp) - 115 * std::sin(lp_rad + mp);
 
-  const Nutation n = nutation(t);
   const double lon = lp_rad + sl * 1e-6 * kDeg + n.dpsi;
   const double lat = sb * 1e-6 * kDeg;
   const double dist_km = 385000.56 + sr / 1000.0;
@@ -278,10 +317,11 @@ void moon_position(double t, double r[3]) {
 
 void body_position_tod(Body body, double days_j2000_tt, double r_km[3]) {
   const double t = days_j2000_tt / 36525.0;
+  const Nutation n = nutation(t);
   if (body == Body::kSun) {
-    sun_position(t, r_km);
+    sun_position(t, n, r_km);
   } else {
-    moon_position(t, r_km);
+    moon_position(t, n, r_km);
   }
 }
 
@@ -291,24 +331,35 @@ double gast_rad(double days_j2000_ut1) {
 }
 
 EcefState body_ecef(Body body, std::int64_t unix_ms) {
-  constexpr double kDt_s = 60.0;
-  double r[2][3];
-  for (int k = 0; k < 2; ++k) {
-    const std::int64_t when = unix_ms + k * static_cast<std::int64_t>(kDt_s * 1000);
-    const double d_ut1 = days_since_j2000(when);
-    double tod[3];
-    body_position_tod(body, d_ut1 + kTtMinusUtc_s / 86400.0, tod);
-    const double g = gast_rad(d_ut1);
-    r[k][0] = std::cos(g) * tod[0] + std::sin(g) * tod[1];
-    r[k][1] = -std::sin(g) * tod[0] + std::cos(g) * tod[1];
-    r[k][2] = tod[2];
+  const double d_ut1 = days_since_j2000(unix_ms);
+  const double t = (d_ut1 + kTtMinusUtc_s / 86400.0) / 36525.0;
+  // One nutation for the position and the sidereal time (TT and UT1 differ by
+  // a minute: 1e-8 of a nutation period).
+  const Nutation n = nutation(t);
+  double tod[3];
+  if (body == Body::kSun) {
+    sun_position(t, n, tod);
+  } else {
+    moon_position(t, n, tod);
   }
-  EcefState s;
-  for (int i = 0; i < 3; ++i) {
-    s.r_km[i] = r[0][i];
-    s.v_km_s[i] = (r[1][i] - r[0][i]) / kDt_s;
-  }
-  return s;
+  // The body's own motion for the rates: a rotation about the ecliptic pole at
+  // its mean rate (Sun 0.9856, Moon 13.176 deg/day). Its eccentricity and the
+  // Moon's 5 deg inclination are ignored: under 0.3 % of the az/el rates, which
+  // the Earth's rotation dominates; one series evaluation instead of two.
+  constexpr double kDegPerDayToRadPerS = kDeg / 86400.0;
+  const double rate = (body == Body::kSun ? 0.9856474 : 13.176358) * kDegPerDayToRadPerS;
+  const double wy = -std::sin(n.eps) * rate, wz = std::cos(n.eps) * rate;  // the ecliptic pole
+  const double v_tod[3] = {wy * tod[2] - wz * tod[1], wz * tod[0], -wy * tod[0]};
+  const double g = gmst_rad(d_ut1) + n.dpsi * std::cos(n.eps);
+  const double c = std::cos(g), s = std::sin(g);
+  EcefState e;
+  e.r_km[0] = c * tod[0] + s * tod[1];
+  e.r_km[1] = -s * tod[0] + c * tod[1];
+  e.r_km[2] = tod[2];
+  e.v_km_s[0] = c * v_tod[0] + s * v_tod[1] + kEarthRotationRad_s * e.r_km[1];
+  e.v_km_s[1] = -s * v_tod[0] + c * v_tod[1] - kEarthRotationRad_s * e.r_km[0];
+  e.v_km_s[2] = v_tod[2];
+  return e;
 }
 
 }  // namespace rotord::tracking

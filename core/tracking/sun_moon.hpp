@@ -25,7 +25,8 @@ double gast_rad(double days_j2000_ut1);
 inline constexpr double kTtMinusUtc_s = 69.184;
 
 /// The body's Earth-fixed position and velocity at `unix_ms` (UTC taken as
-/// UT1; the velocity from a 60 s difference, for rates).
+/// UT1; the velocity, for rates, from the Earth's rotation and the body's mean
+/// motion along the ecliptic).
 EcefState body_ecef(Body body, std::int64_t unix_ms);
 
 }  // namespace rotord::tracking

@@ -128,6 +128,47 @@ TEST(TrackingGeometryTest, SunAndMoonWithinTheirTolerancesOfPyEphem) {
   EXPECT_LT(moon.el, 0.05);
 }
 
+/// Rates from the velocity against a central difference of the angles.
+void expect_rates_match_differences(SkyTarget& target, const Observer& observer, std::int64_t when,
+                                    std::int64_t half_ms, double tolerance, double abs_deg_s,
+                                    bool range_rate_too) {
+  LookAngles now, before, after;
+  ASSERT_EQ(target.look(when, observer, now), Sgp4Error::kOk);
+  ASSERT_EQ(target.look(when - half_ms, observer, before), Sgp4Error::kOk);
+  ASSERT_EQ(target.look(when + half_ms, observer, after), Sgp4Error::kOk);
+  const double dt_s = 2.0 * static_cast<double>(half_ms) / 1000.0;
+  double daz = after.az_deg - before.az_deg;
+  if (daz > 180.0) daz -= 360.0;
+  if (daz < -180.0) daz += 360.0;
+  const double az_rate = daz / dt_s, el_rate = (after.el_deg - before.el_deg) / dt_s;
+  const double range_rate = (after.range_km - before.range_km) / dt_s;
+  EXPECT_NEAR(now.az_rate_deg_s, az_rate, tolerance * std::fabs(az_rate) + abs_deg_s) << when;
+  EXPECT_NEAR(now.el_rate_deg_s, el_rate, tolerance * std::fabs(el_rate) + abs_deg_s) << when;
+  if (range_rate_too) {
+    EXPECT_NEAR(now.range_rate_km_s, range_rate, tolerance * std::fabs(range_rate) + 1e-4) << when;
+  }
+}
+
+TEST(TrackingGeometryTest, RatesAgreeWithTheChangeOfTheAngles) {
+  Tle tle;
+  ASSERT_TRUE(parse_tle(kTles[0].line1, kTles[0].line2, tle).ok());
+  SkyTarget iss, sun, moon;
+  ASSERT_EQ(iss.set_satellite(tle), Sgp4Error::kOk);
+  sun.set_body(Body::kSun);
+  moon.set_body(Body::kMoon);
+  const Observer boulder(Geodetic{40.015, -105.27, 1655.0});
+  std::int64_t pass = 0;
+  ASSERT_TRUE(parse_utc("2019-12-09T17:56:00Z", pass));  // the ISS is up, 30 deg
+  for (int i = 0; i < 6; ++i)
+    expect_rates_match_differences(iss, boulder, pass + i * 20'000, 100, 0.002, 1e-6, true);
+  // Sun and Moon: their own motion at its mean rate along the ecliptic, within
+  // 2e-5 deg/s (0.07 deg/h); no radial part, so no range rate check.
+  for (int i = 0; i < 6; ++i) {
+    expect_rates_match_differences(sun, boulder, pass + i * 3'600'000, 30'000, 0.0, 2e-5, false);
+    expect_rates_match_differences(moon, boulder, pass + i * 3'600'000, 30'000, 0.0, 2e-5, false);
+  }
+}
+
 TEST(TrackingGeometryTest, ObserverOnTheEquatorSeesTheZenithStraightUp) {
   // A point 1000 km above (0 N, 0 E) in the Earth-fixed frame.
   const Observer observer(Geodetic{0, 0, 0});
