@@ -25,7 +25,7 @@ struct LookAngles {
   double az_deg = 0;  ///< 0..360
   double el_deg = 0;
   double range_km = 0;
-  double range_rate_km_s = 0;  ///< positive when receding
+  double range_rate_km_s = 0;  ///< positive when receding (Sun/Moon: no radial part)
   double az_rate_deg_s = 0;
   double el_rate_deg_s = 0;
 };
