@@ -51,11 +51,15 @@ int prepare(const PredictOptions& o, Setup& s) {
   }
   std::ifstream in(o.tle_file, std::ios::binary);
   if (!in) return fail("--tle: cannot read '" + o.tle_file + "'");
+  // Read at most the limit plus one byte: a bigger file (or /dev/zero) is refused.
   std::string text;
-  text.resize(static_cast<std::size_t>(kMaxTleFileBytes) + 1);
-  in.read(text.data(), kMaxTleFileBytes + 1);
-  if (in.gcount() > kMaxTleFileBytes) return fail("--tle: '" + o.tle_file + "' is over 64 MiB");
-  text.resize(static_cast<std::size_t>(in.gcount()));
+  char chunk[65536];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > static_cast<std::size_t>(kMaxTleFileBytes))
+      return fail("--tle: '" + o.tle_file + "' is over 64 MiB");
+  }
+  if (in.bad()) return fail("--tle: cannot read '" + o.tle_file + "'");  // e.g. a directory
   tracking::Tle tle;
   const tracking::TleResult r = tracking::find_tle(text, o.name, tle);
   if (r.error == tracking::TleError::kNoElements) {

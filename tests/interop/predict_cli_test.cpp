@@ -169,6 +169,8 @@ TEST_F(PredictCli, BadInputGetsAMessageAndExitStatus2) {
   };
   const Case cases[] = {
       {"predict --tle " + dir_ + "/missing.tle" + where + when + " --step 60", "cannot read"},
+      {"predict --tle " + dir_ + where + when + " --step 60", "cannot read"},  // a directory
+      {"predict --tle /dev/zero" + where + when + " --step 60", "over 64 MiB"},
       {"predict --tle " + dir_ + "/bad.tle" + where + when + " --step 60", "checksum"},
       {"predict --tle " + dir_ + "/empty.tle" + where + when + " --step 60", "no two-line"},
       {"predict --tle " + tle_ + " --name NOSUCH" + where + when + " --step 60", "NOSUCH"},
