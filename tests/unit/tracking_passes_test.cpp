@@ -53,12 +53,21 @@ Found find_all(SkyTarget& target, const Observer& observer, std::int64_t from, s
   return f;
 }
 
-SkyTarget iss() {
+constexpr const char* kMolniya1 =
+    "1 08195U 75081A   06176.33215444  .00000099  00000-0  11873-3 0   813";
+constexpr const char* kMolniya2 =
+    "2 08195  64.1586 279.0717 6877146 264.7651  20.2257  2.00491383225656";
+
+SkyTarget from_tle(const char* line1, const char* line2) {
   Tle tle;
-  EXPECT_TRUE(parse_tle(kIss1, kIss2, tle).ok());
+  EXPECT_TRUE(parse_tle(line1, line2, tle).ok());
   SkyTarget t;
   EXPECT_EQ(t.set_satellite(tle), Sgp4Error::kOk);
   return t;
+}
+
+SkyTarget iss() {
+  return from_tle(kIss1, kIss2);
 }
 
 std::int64_t utc(std::string_view text) {
@@ -82,9 +91,12 @@ TEST(TrackingPassesTest, PassesMatchSkyfieldAndPyEphem) {
     std::string_view f[11];
     ASSERT_EQ(csv_fields(kPassesCsv[line], f, 11), 11u);
     SkyTarget target;
-    const bool satellite = f[0] == "ISS";
-    if (satellite) {
+    const bool leo = f[0] == "ISS";
+    const bool satellite = leo || f[0] == "MOLNIYA";
+    if (leo) {
       target = iss();
+    } else if (satellite) {
+      target = from_tle(kMolniya1, kMolniya2);
     } else {
       target.set_body(f[0] == "sun" ? Body::kSun : Body::kMoon);
     }
@@ -96,7 +108,9 @@ TEST(TrackingPassesTest, PassesMatchSkyfieldAndPyEphem) {
     for (int i = 0; i < found.count; ++i)
       if (std::llabs(found.passes[i].aos_ms - aos) < 60'000) match = &found.passes[i];
     ASSERT_NE(match, nullptr) << kPassesCsv[line];
-    const double edge_tolerance_s = satellite ? 1.0 : 5.0;
+    // Slower risers (Molniya near apogee, Sun, Moon) turn the same elevation
+    // difference into more seconds.
+    const double edge_tolerance_s = leo ? 1.0 : 5.0;
     const double aos_s = static_cast<double>(match->aos_ms - aos) / 1000.0;
     const double los_s = static_cast<double>(match->los_ms - utc(f[8])) / 1000.0;
     EXPECT_LT(std::fabs(aos_s), edge_tolerance_s) << kPassesCsv[line];
@@ -105,16 +119,17 @@ TEST(TrackingPassesTest, PassesMatchSkyfieldAndPyEphem) {
     EXPECT_LT(max_el_error, satellite ? 0.03 : 0.05) << kPassesCsv[line];
     // The Moon culminates up to minutes from its transit (its declination moves).
     const double max_s = static_cast<double>(match->max_el_ms - utc(f[9])) / 1000.0;
-    EXPECT_LT(std::fabs(max_s), satellite ? 2.0 : 600.0) << kPassesCsv[line];
+    EXPECT_LT(std::fabs(max_s), leo ? 2.0 : (satellite ? 120.0 : 600.0)) << kPassesCsv[line];
     EXPECT_FALSE(match->aos_clipped);
     EXPECT_FALSE(match->los_clipped);
-    const int k = satellite ? 0 : 1;
+    const int k = leo ? 0 : 1;
     worst_edge_s[k] = std::fmax(worst_edge_s[k], std::fmax(std::fabs(aos_s), std::fabs(los_s)));
     worst_max_el[k] = std::fmax(worst_max_el[k], max_el_error);
     ++compared;
   }
-  std::printf("%d passes: ISS AOS/LOS within %.2f s, max el %.4f deg; Sun/Moon %.2f s, %.4f deg\n",
-              compared, worst_edge_s[0], worst_max_el[0], worst_edge_s[1], worst_max_el[1]);
+  std::printf(
+      "%d passes: ISS AOS/LOS within %.2f s, max el %.4f deg; Molniya/Sun/Moon %.2f s, %.4f deg\n",
+      compared, worst_edge_s[0], worst_max_el[0], worst_edge_s[1], worst_max_el[1]);
   EXPECT_EQ(compared, static_cast<int>((kPassesCsv_count - 2) / kPassRowStride + 1));
   EXPECT_GE(compared, 12);
 }

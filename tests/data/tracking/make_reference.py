@@ -12,7 +12,7 @@ writes and never need Python. Deterministic: fixed TLEs, places and times.
                   with its UT1 table).
   sun_moon.csv    topocentric apparent az/el of the Sun and the Moon from
                   PyEphem (pressure 0: no refraction).
-  passes.csv      passes above a minimum elevation: the ISS from skyfield's
+  passes.csv      passes above a minimum elevation: the ISS and a Molniya from skyfield's
                   find_events (rise, culminate, set), each time refined by
                   bisection / golden section on skyfield's elevation, the Sun and the Moon from
                   PyEphem (centre of the disc, no refraction).
@@ -147,11 +147,11 @@ def sun_moon():
     return len(rows)
 
 
-def refine_crossing(sky, topos, ts, t, min_el, rising):
+def refine_crossing(sky, topos, ts, t, min_el, rising, bracket_s=60):
     """find_events' times can be seconds off over a long window: bisect to 1 ms."""
     el = lambda d: (sky - topos).at(ts.from_datetime(d)).altaz()[0].degrees - min_el
     d = t.utc_datetime()
-    lo, hi = d - timedelta(seconds=60), d + timedelta(seconds=60)
+    lo, hi = d - timedelta(seconds=bracket_s), d + timedelta(seconds=bracket_s)
     assert (el(lo) < 0) == rising and (el(hi) < 0) != rising
     while hi - lo > timedelta(milliseconds=1):
         mid = lo + (hi - lo) / 2
@@ -162,10 +162,10 @@ def refine_crossing(sky, topos, ts, t, min_el, rising):
     return lo + (hi - lo) / 2
 
 
-def refine_culmination(sky, topos, ts, t):
+def refine_culmination(sky, topos, ts, t, bracket_s=60):
     el = lambda d: (sky - topos).at(ts.from_datetime(d)).altaz()[0].degrees
     d = t.utc_datetime()
-    a, b = d - timedelta(seconds=60), d + timedelta(seconds=60)
+    a, b = d - timedelta(seconds=bracket_s), d + timedelta(seconds=bracket_s)
     g = (math.sqrt(5) - 1) / 2
     while b - a > timedelta(milliseconds=1):
         c, e = b - (b - a) * g, a + (b - a) * g
@@ -180,28 +180,36 @@ def refine_culmination(sky, topos, ts, t):
 def passes():
     ts = load.timescale(builtin=True)
     rows = []
-    l1, l2 = TLES['ISS']
-    sky = EarthSatellite(l1, l2, 'ISS', ts)
-    t0 = datetime(2019, 12, 9, 12, 0, tzinfo=timezone.utc)
-    t1 = t0 + timedelta(days=1)
-    for lat, lon, alt in OBSERVERS[:4]:
-        topos = wgs84.latlon(lat, lon, elevation_m=alt)
-        for min_el in (0.0, 10.0):
-            times, events = sky.find_events(topos, ts.from_datetime(t0), ts.from_datetime(t1),
-                                            altitude_degrees=min_el)
-            current = {}
-            for t, e in zip(times, events):
-                if e == 0:
-                    current = {'aos': t}
-                elif e == 1 and 'aos' in current:
-                    current['max'] = t
-                elif e == 2 and 'max' in current:
-                    culmination, alt_deg = refine_culmination(sky, topos, ts, current['max'])
-                    rows.append(('ISS', lat, lon, alt, min_el, t0, t1,
-                                 refine_crossing(sky, topos, ts, current['aos'], min_el, True),
-                                 refine_crossing(sky, topos, ts, t, min_el, False),
-                                 culmination, alt_deg))
-                    current = {}
+    plans = [
+        # name, window start, days, observers, minimum elevations, refinement bracket (s)
+        ('ISS', datetime(2019, 12, 9, 12, 0, tzinfo=timezone.utc), 1, OBSERVERS[:4], (0.0, 10.0), 60),
+        ('MOLNIYA', datetime(2006, 6, 25, 8, 0, tzinfo=timezone.utc), 1,
+         [OBSERVERS[0], OBSERVERS[1], OBSERVERS[3]], (10.0,), 600),
+    ]
+    for name, t0, days, observers, min_els, bracket in plans:
+        l1, l2 = TLES[name]
+        sky = EarthSatellite(l1, l2, name, ts)
+        t1 = t0 + timedelta(days=days)
+        for lat, lon, alt in observers:
+            topos = wgs84.latlon(lat, lon, elevation_m=alt)
+            for min_el in min_els:
+                times, events = sky.find_events(topos, ts.from_datetime(t0), ts.from_datetime(t1),
+                                                altitude_degrees=min_el)
+                current = {}
+                for t, e in zip(times, events):
+                    if e == 0:
+                        current = {'aos': t}
+                    elif e == 1 and 'aos' in current:
+                        current['max'] = t
+                    elif e == 2 and 'max' in current:
+                        culmination, alt_deg = refine_culmination(sky, topos, ts, current['max'],
+                                                                  bracket)
+                        rows.append((name, lat, lon, alt, min_el, t0, t1,
+                                     refine_crossing(sky, topos, ts, current['aos'], min_el, True,
+                                                     bracket),
+                                     refine_crossing(sky, topos, ts, t, min_el, False, bracket),
+                                     culmination, alt_deg))
+                        current = {}
     # Sun and Moon: rising to setting of the disc's centre, no refraction.
     s0 = datetime(2024, 3, 20, 0, 0, tzinfo=timezone.utc)
     s1 = s0 + timedelta(days=2)
