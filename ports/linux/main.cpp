@@ -2,6 +2,7 @@
 
 #include "daemon.hpp"
 #include "log.hpp"
+#include "predict_cli.hpp"
 
 int main(int argc, char** argv) {
   rotord::linux_port::Options o;
@@ -64,7 +65,21 @@ int main(int argc, char** argv) {
                  "text (\"rotord: ...\" lines) or json (one object per line: time, level, msg)")
       ->check(CLI::IsMember({"text", "json"}))
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  // Subcommands that use the tracking layer and exit, no daemon started.
+  rotord::linux_port::PredictOptions predict;
+  const auto commands = rotord::linux_port::add_predict_commands(app, predict);
+  app.require_subcommand(0, 1);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    // Bad input to predict/passes exits 2 (help stays 0); the daemon keeps CLI11's codes.
+    const bool subcommand =
+        argc > 1 && (std::string(argv[1]) == "predict" || std::string(argv[1]) == "passes");
+    return subcommand && rc != 0 ? 2 : rc;
+  }
+  if (commands.predict->parsed()) return rotord::linux_port::run_predict(predict);
+  if (commands.passes->parsed()) return rotord::linux_port::run_passes(predict);
   namespace log = rotord::linux_port::log;
   log::Level level = log::Level::kInfo;
   log::parse_level(o.log_level, level);

@@ -3,7 +3,8 @@
 #   tests/embedded/qemu-run.sh build-embedded/tests/embedded/m0_selftest [--gtest_filter=...]
 # Output and the exit status travel over ARM semihosting (newlib's librdimon).
 # Board: mps2-an385, see README.md. QEMU_TIMEOUT (seconds, default 300) bounds a
-# run that hangs; ctest has its own timeout on top.
+# run that hangs; ctest has its own timeout on top. QEMU_EXTRA_ARGS adds qemu
+# options (m0_tracking_timing: "-icount shift=0", one instruction per virtual ns).
 set -euo pipefail
 
 if [ $# -lt 1 ]; then
@@ -27,4 +28,4 @@ done
 # warns about a NIC without one; the tests use no network.
 exec timeout --kill-after=10 "${QEMU_TIMEOUT:-300}" \
   "$qemu" -M mps2-an385 -nodefaults -nographic -monitor none -serial null -nic user,restrict=on \
-  -semihosting-config "$semi" -kernel "$1"
+  ${QEMU_EXTRA_ARGS:-} -semihosting-config "$semi" -kernel "$1"

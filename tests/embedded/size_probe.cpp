@@ -12,6 +12,8 @@
 #include "protocol/wrc_session.hpp"
 #include "rotator/controller.hpp"
 #include "settings/settings.hpp"
+#include "tracking/pass_finder.hpp"
+#include "tracking/places.hpp"
 #endif
 
 extern "C" {
@@ -83,6 +85,11 @@ Controller g_controller{
     g_settings, AxisIo{&g_az_pot, nullptr, &g_az_cw, &g_az_ccw, nullptr, nullptr, &g_az_drive},
     AxisIo{nullptr, &g_el_ma3, &g_el_up, &g_el_down, nullptr, nullptr, &g_el_drive}};
 protocol::WrcSession g_wrc{g_controller, ROTORD_VERSION};
+// Tracking: a target from TLE lines as if uploaded, its look angles every
+// loop, a pass search a few evaluations per loop, a bearing to a locator.
+volatile char g_tle_lines[2][70];
+tracking::SkyTarget g_target;
+tracking::PassFinder g_passes;
 #endif
 
 }  // namespace
@@ -92,6 +99,22 @@ namespace {
 [[noreturn]] void firmware_main() {
 #ifndef ROTORD_SIZE_BASELINE
   g_controller.begin(g_millis);
+  char lines[2][70];
+  for (int l = 0; l < 2; ++l)
+    for (int i = 0; i < 70; ++i) lines[l][i] = g_tle_lines[l][i];
+  tracking::Tle tle;
+  if (tracking::parse_tle(std::string_view(lines[0], 69), std::string_view(lines[1], 69), tle).ok())
+    (void)g_target.set_satellite(tle);
+  else
+    g_target.set_body(g_rx == 's' ? tracking::Body::kSun : tracking::Body::kMoon);
+  const tracking::Observer observer(tracking::Geodetic{g_settings.get(settings::Id::kStationLatDeg),
+                                                       g_settings.get(settings::Id::kStationLonDeg),
+                                                       g_settings.get(settings::Id::kStationAltM)});
+  g_passes.start(g_target, observer, g_millis, g_millis + 86'400'000, 0.0);
+  tracking::LatLon place;
+  if (tracking::maidenhead_centre(std::string_view(lines[0], 6), place))
+    g_duty[7] = static_cast<float>(
+        tracking::great_circle({0.0, 0.0}, place, tracking::Path::kLong).azimuth_deg);
 #endif
   for (;;) {
     const char c = g_rx;
@@ -99,6 +122,11 @@ namespace {
     g_wrc.receive(std::string_view(&c, 1), g_uart);
     g_controller.tick(g_millis);
     g_wrc.poll(g_millis, g_uart);
+    tracking::LookAngles look;
+    if (g_target.look(g_millis, observer, look) == tracking::Sgp4Error::kOk)
+      g_duty[6] = static_cast<float>(look.az_deg);
+    if (g_passes.step(2) == tracking::PassFinder::Status::kFound)
+      g_duty[5] = static_cast<float>(g_passes.pass().max_el_deg);
 #else
     g_tx = c;
 #endif
