@@ -25,7 +25,8 @@
     groups.textContent = '';
     for (const g of schema.groups) {
       const fs = el('fieldset', {}, el('legend', {}, g));
-      for (const d of schema.settings.filter((s) => s.group === g)) {
+      // Hidden rows (the password and token hashes) have their own card.
+      for (const d of schema.settings.filter((s) => s.group === g && !s.hidden)) {
         const id = 'f-' + d.key;
         let input;
         if (d.type === 'bool') {
