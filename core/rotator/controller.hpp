@@ -1,5 +1,6 @@
 #pragma once
 #include <optional>
+#include "access/control_lock.hpp"
 
 #include "axis/axis.hpp"
 #include "input/manual_buttons.hpp"
@@ -81,6 +82,10 @@ class Controller {
   bool has_el() const { return has_el_; }
   Millis now() const { return now_; }
   settings::Settings& settings() { return settings_; }
+  /// The control lock (access/control_lock.hpp): every command source asks
+  /// it before a move or a setting change; STOP never does.
+  access::ControlLock& control_lock() { return control_lock_; }
+  const access::ControlLock& control_lock() const { return control_lock_; }
 
   /// Resolves a compass azimuth to the unwrapped target go_to would use.
   std::optional<float> resolve_az(float az_deg, AzTarget mode) const;
@@ -94,6 +99,7 @@ class Controller {
   void read_estop();
 
   settings::Settings& settings_;
+  access::ControlLock control_lock_;
   hal::DigitalIn* estop_ = nullptr;
   bool estop_active_ = false;
   Axis az_;

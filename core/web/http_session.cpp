@@ -10,11 +10,15 @@ namespace rotord::web {
 
 HttpSession::HttpSession(Api& api) : api_(api) {}
 
+HttpSession::~HttpSession() {
+  if (pending_) api_.abandon_pending(pending_ticket_);
+}
+
 void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
   // An event stream only talks; anything the client sends is ignored.
-  if (close_ || events_) return;
+  if (close_ || events_ || pending_) return;
   received_ = true;
-  while (!bytes.empty() && !close_ && !events_) {
+  while (!bytes.empty() && !close_ && !events_ && !pending_) {
     const auto status = parser_.feed(bytes);
     if (status == HttpRequestParser::Status::kNeedMore) break;
     if (status == HttpRequestParser::Status::kError) {
@@ -40,7 +44,11 @@ void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
     // A cross-site request: another site's page in the operator's browser.
     send_error(out, 403, "cross-site request refused (Origin is not this controller)", options);
   } else if (request.path.substr(0, 5) == "/api/") {
-    switch (api_.handle(request, out, options)) {
+    switch (api_.handle(request, out, options, peer())) {
+      case Api::Outcome::kPending:
+        pending_ = true;
+        pending_ticket_ = api_.pending_ticket();
+        return;
       case Api::Outcome::kStartEvents:
         events_ = true;
         out.write("retry: 1000\n\n");  // EventSource reconnects after 1 s
@@ -52,6 +60,13 @@ void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
       case Api::Outcome::kDone:
         break;
     }
+  } else if ((request.method == Method::kGet || request.method == Method::kHead) &&
+             !api_.page_allowed(request)) {
+    // Access control is on and nobody logged in: pages go to the login page.
+    ResponseOptions o = options;
+    const bool page = request.path == "/" || request.path.ends_with(".html");
+    o.extra_headers = page ? "Location: /login.html\r\n" : "";
+    send_error(out, page ? 303 : 401, "log in first", o);
   } else if (request.method == Method::kGet || request.method == Method::kHead) {
     serve_asset(request, options, out);
   } else {
@@ -94,6 +109,13 @@ void HttpSession::poll(Millis now, protocol::ByteSink& out) {
   received_ = false;
   now_ = now;
   if (close_) return;
+  if (pending_) {
+    if (api_.finish_pending(pending_ticket_, out, {false, false, {}})) {
+      pending_ = false;
+      close_ = true;
+    }
+    return;
+  }
   if (events_) {
     const RotatorStatus s = api_.controller().status();
     const bool changed =

@@ -31,6 +31,8 @@ class HttpSession final : public protocol::Session {
       "{\"error\":\"too many connections\"}";
 
   explicit HttpSession(Api& api);
+  /// A pending login's hash still completes (Api::abandon_pending).
+  ~HttpSession() override;
 
   void receive(std::string_view bytes, protocol::ByteSink& out) override;
   void poll(Millis now, protocol::ByteSink& out) override;
@@ -47,6 +49,11 @@ class HttpSession final : public protocol::Session {
   HttpRequestParser parser_;
   bool close_ = false;
   bool events_ = false;
+  // A login or a new password being hashed (Api::Outcome::kPending): the
+  // response goes out from poll(), the connection closes after it, and
+  // bytes that arrive meanwhile are dropped (no pipelining behind a login).
+  bool pending_ = false;
+  std::uint32_t pending_ticket_ = 0;
   // Timeouts and event periods run on the transport's clock, the `now` of
   // poll(), not on controller time: under `rotord --speedup N` a client must
   // still get its 5 s. Bytes are stamped at the next poll (a tick later).

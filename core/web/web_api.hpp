@@ -8,6 +8,7 @@
 #include "web/http_request.hpp"
 #include "web/http_response.hpp"
 #include "web/settings_json.hpp"
+#include "web/web_auth.hpp"
 
 namespace rotord::web {
 
@@ -34,6 +35,15 @@ struct ApiContext {
   /// The host's own name (Linux: gethostname), a name the web may be reached
   /// by besides net.hostname (host_check.hpp); nullptr on the Pico W.
   const char* host_name = nullptr;
+  /// Access control's cryptography (access/crypto.hpp); nullptr: none, and
+  /// a stored web password then refuses everything but STOP.
+  access::Crypto* crypto = nullptr;
+  /// PBKDF2 iterations of a new web password hash, and how many one slice
+  /// runs (per Api::poll, or Api::work in the Pico's idle time).
+  std::uint32_t pbkdf2_iterations = 100'000;
+  std::uint32_t pbkdf2_slice = 10'000;
+  /// Where logins, failed logins, tokens and the control lock are logged.
+  protocol::ByteSink* log = nullptr;
 };
 
 /// The REST API (docs/web_api.md) on the controller's command API. One per
@@ -48,16 +58,38 @@ class Api {
   /// The stored settings document (pretty-printed), with room to grow.
   static constexpr std::size_t kMaxDocumentBytes = 7168;
 
-  explicit Api(const ApiContext& context) : ctx_(context) {}
+  explicit Api(const ApiContext& context);
 
   const settings::Settings& settings() const { return ctx_.controller.settings(); }
   const char* host_name() const { return ctx_.host_name; }
 
-  enum class Outcome : unsigned char { kDone, kStartEvents, kClose };
-  /// Answers one request whose path starts with /api/. kStartEvents: the
-  /// response head of an event stream went out and events follow (poll).
+  enum class Outcome : unsigned char { kDone, kStartEvents, kClose, kPending };
+  /// Answers one request whose path starts with /api/, from `peer`.
+  /// kStartEvents: the response head of an event stream went out and events
+  /// follow (poll). kPending: a login or a new password is being hashed;
+  /// the session asks finish_pending() on each poll until it answers.
   Outcome handle(const HttpRequest& request, protocol::ByteSink& out,
-                 const ResponseOptions& options);
+                 const ResponseOptions& options, const access::Peer& peer = {});
+
+  /// The ticket of the request that just went kPending.
+  std::uint32_t pending_ticket() const { return auth_.job().ticket; }
+  /// Writes the pending request's response once its hash is done; false
+  /// while it is still being computed.
+  bool finish_pending(std::uint32_t ticket, protocol::ByteSink& out,
+                      const ResponseOptions& options);
+  /// The session of a pending request closed: its result is not waited for.
+  void abandon_pending(std::uint32_t ticket);
+  /// Whether a slow hash is being computed: the Pico's loop then calls
+  /// work() in its idle time instead of sleeping.
+  bool auth_busy() const {
+    return auth_.job().kind != WebAuth::JobKind::kNone && !auth_.job().completed;
+  }
+  /// One more slice of the slow hash (the port's idle time).
+  void work();
+
+  /// Whether a page (not /api/) may be served: access control is off, the
+  /// page is the login page's, or the caller logged in (or sent a token).
+  bool page_allowed(const HttpRequest& request);
 
   /// Called by the port on every pass of its loop with the transport's
   /// (wall) clock, whether or not a client is connected: a hold-to-move
@@ -67,14 +99,40 @@ class Api {
   /// The live state: GET /api/status and every event of /api/events.
   void write_status(JsonWriter& w) const;
   Controller& controller() { return ctx_.controller; }
+  WebAuth& auth() { return auth_; }
 
  private:
   void get_settings(protocol::ByteSink& out, const ResponseOptions& options);
-  void post_settings(std::string_view body, protocol::ByteSink& out,
-                     const ResponseOptions& options);
+  void post_settings(std::string_view body, protocol::ByteSink& out, const ResponseOptions& options,
+                     const Caller& caller);
   void reset_settings(protocol::ByteSink& out, const ResponseOptions& options);
   /// Persists the settings, or restores `backup_` when that fails.
   bool persist(protocol::ByteSink& out, const ResponseOptions& options);
+  /// Saves the settings; false (nothing answered) when that fails.
+  bool save();
+
+  // Access control's endpoints (auth_api.cpp).
+  Outcome login(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
+                const access::Peer& peer);
+  void logout(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
+  Outcome set_password(const HttpRequest& request, protocol::ByteSink& out,
+                       const ResponseOptions& options, const Caller& caller,
+                       const access::Peer& peer);
+  void get_auth(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
+  void get_tokens(protocol::ByteSink& out, const ResponseOptions& options);
+  void create_token(const HttpRequest& request, protocol::ByteSink& out,
+                    const ResponseOptions& options);
+  void revoke_token(const HttpRequest& request, protocol::ByteSink& out,
+                    const ResponseOptions& options);
+  void lock(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
+            Caller caller);
+  void unlock(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
+  /// Acts on a computed slow hash: a login's session, a password's storage.
+  void complete_job();
+  /// 423 with the lock's holder and time left.
+  void send_locked(protocol::ByteSink& out, const ResponseOptions& options);
+  /// The lock's state: {"held", "mine", "by", "remaining_s"}.
+  void write_lock(JsonWriter& w, const Caller* caller) const;
   void send_changed(protocol::ByteSink& out, const ResponseOptions& options,
                     const SettingSet& changed);
 
@@ -88,6 +146,7 @@ class Api {
   void arm_dead_man(AxisId axis, Millis hold_ms);
 
   ApiContext ctx_;
+  WebAuth auth_;
   Millis transport_now_ = 0;
   std::array<DeadMan, 2> dead_man_{};
   settings::Settings scratch_;

@@ -6,6 +6,7 @@
 #include "clock_control.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
+#include "mbed_crypto.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
@@ -69,8 +70,14 @@ class Daemon final : private web::RebootHook {
   asio::steady_timer timer_;
   asio::signal_set signals_;
   settings::Settings settings_;
-  SystemWallClock wall_clock_;   ///< GET /api/status time_utc
-  std::string host_name_;        ///< gethostname(): a name the web answers to
+  SystemWallClock wall_clock_;  ///< GET /api/status time_utc
+  std::string host_name_;       ///< gethostname(): a name the web answers to
+  MbedCrypto crypto_;           ///< access control: web password, sessions, tokens
+  /// Access control's log lines (logins, failed logins, tokens, the lock).
+  class StdoutLog final : public protocol::ByteSink {
+   public:
+    void write(std::string_view bytes) override;
+  } access_log_;
   settings::Settings defaults_;  ///< table defaults + the profile: what a reset restores
   std::unique_ptr<FileStorage> storage_;
   std::vector<char> saver_buf_;
