@@ -174,6 +174,8 @@
     build();
     show(v.body);
     if (st.status === 200) calibration.update(st.body);
+    rotordAccess.wire(msg);
+    rotordAccess.card($('access'), msg);
     rotord.live((status) => calibration.update(status));
   }
   start();
