@@ -17,6 +17,7 @@
 #include "pico/binary_info.h"
 #include "pico/cyw43_arch.h"
 #include "pico/stdlib.h"
+#include "pico_crypto.hpp"
 #include "pico_flash.hpp"
 #include "pico_hal.hpp"
 #include "protocol/easycomm_session.hpp"
@@ -70,6 +71,19 @@ constexpr std::uint16_t kHttpPort = 80;
 constexpr std::size_t kHttpSlots = 4;
 // POST /api/reboot answers first, then the watchdog resets the chip.
 constexpr Millis kRebootDelayMs = 300;
+// The web password's PBKDF2-HMAC-SHA256 (web_auth.hpp). Estimated, not
+// measured (no Pico W here): mbedtls's C SHA-256 on the Cortex-M0+ at
+// 125 MHz takes roughly 5000-7000 cycles per 64-byte block, and one
+// iteration hashes 4 blocks (HMAC's inner and outer pads and data), so
+// about 0.16-0.22 ms per iteration: 10 000 iterations are 1.6-2.2 s of CPU
+// per login or new password, run in slices of 4 iterations (under 1 ms)
+// in the loop's idle time, never delaying a tick by more than one slice.
+// A hash made on Linux (100 000 iterations) also verifies here, ten times
+// slower: set the password on the Pico itself.
+constexpr std::uint32_t kPbkdf2Iterations = 10'000;
+constexpr std::uint32_t kPbkdf2SliceIterations = 4;
+// A slice is started only when at least this much time is left before the tick.
+constexpr std::int64_t kSliceHeadroomUs = 2000;
 
 using settings::Id;
 using settings::kNoPin;
@@ -352,8 +366,16 @@ void report_settings(const web::LoadOutcome& r) {
   hal::Storage* const storage = g_flash.region_free() ? &g_saver : nullptr;
   g_saver.begin();  // what was loaded (or deliberately not overwritten) counts as saved
   static SntpWallClock wall_clock(&now_ms);  // time_utc once SNTP has answered
-  static web::Api api(
-      web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION, &wall_clock});
+  // Access control's crypto: seeded once here (its only heap allocation).
+  static PicoCrypto crypto;
+  if (!crypto.begin()) std::printf("rotord: mbedtls could not seed: web logins refused\n");
+  web::ApiContext api_context{controller, storage,        &g_defaults,
+                              &g_reboot,  ROTORD_VERSION, &wall_clock};
+  api_context.crypto = crypto.ready() ? &crypto : nullptr;
+  api_context.pbkdf2_iterations = kPbkdf2Iterations;
+  api_context.pbkdf2_slice = kPbkdf2SliceIterations;
+  api_context.log = &log_port;
+  static web::Api api(api_context);
   auto make_http = [] { return web::HttpSession(api); };
   lwip_port::ServerConfig http_config;
   http_config.name = "web UI and REST API";
@@ -443,6 +465,12 @@ void report_settings(const web::LoadOutcome& r) {
         next_report = now + 10'000;
       }
     }
+    // A login or a new password being hashed: its slices fill the time up to
+    // the next tick instead of sleeping (the tick is never late by more
+    // than one slice, and the watchdog is fed on every pass).
+    while (api.auth_busy() &&
+           absolute_time_diff_us(get_absolute_time(), next_tick) > kSliceHeadroomUs)
+      api.work();
     if (network)
       cyw43_arch_wait_for_work_until(next_tick);
     else
