@@ -81,11 +81,13 @@ const rotordAccess = (() => {
   }
 
   // --- settings page: password and tokens ------------------------------------
-  async function card(box, msg) {
+  async function card(box) {
     const r = await rotord.get('/api/auth');
     if (r.status !== 200) return;
     auth = r.body;
     box.textContent = '';
+    // Its own message line: the form's is at the end of a long page.
+    const msg = el('p', { id: 'access-msg', class: 'msg', role: 'status' });
     const legend = el('legend', {}, 'Access control');
     const state = el('p', { id: 'access-state' }, auth.enabled
       ? 'On: every page and REST call needs the login or a token (STOP never does).'
@@ -99,13 +101,13 @@ const rotordAccess = (() => {
       rotord.message(msg, 'hashing the password…', true);
       const s = await rotord.post('/api/password', { password: password.value });
       rotord.message(msg, s.status === 200 ? 'password set: access control is on' : (s.body && s.body.error) || `error ${s.status}`, s.status === 200);
-      if (s.status === 200) card(box, msg);
+      if (s.status === 200) card(box);
     });
     off.addEventListener('click', async () => {
       if (!confirm('Turn access control off? Anyone who can reach the controller may then use it.')) return;
       const s = await rotord.post('/api/password', { password: '' });
       rotord.message(msg, s.status === 200 ? 'access control is off' : (s.body && s.body.error) || `error ${s.status}`, s.status === 200);
-      if (s.status === 200) card(box, msg);
+      if (s.status === 200) card(box);
     });
     const list = el('ul', { id: 'tokens' });
     const shown = el('p', { id: 'new-token', class: 'token' });
@@ -123,7 +125,7 @@ const rotordAccess = (() => {
       }
     });
     box.append(legend, state, el('div', { class: 'access' }, password, set, off),
-      el('h3', {}, 'REST tokens'), list, el('div', { class: 'access' }, name, scope, add), shown);
+      el('h3', {}, 'REST tokens'), list, el('div', { class: 'access' }, name, scope, add), shown, msg);
     await tokens(list, msg);
   }
 

@@ -175,7 +175,7 @@
     show(v.body);
     if (st.status === 200) calibration.update(st.body);
     rotordAccess.wire(msg);
-    rotordAccess.card($('access'), msg);
+    rotordAccess.card($('access'));
     rotord.live((status) => calibration.update(status));
   }
   start();

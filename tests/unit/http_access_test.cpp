@@ -36,7 +36,7 @@ class HttpAccess : public ::testing::Test {
   ApiContext context() {
     ApiContext c{*r.controller, &storage, &defaults, nullptr, "9.9.9"};
     c.crypto = &crypto;
-    c.pbkdf2_iterations = 3000;  // the least a stored hash may have
+    c.pbkdf2_iterations = 3000;  // few (the least a stored hash may have is 1000): fast tests
     c.pbkdf2_slice = 1000;       // three polls per hash
     c.log = &log;
     return c;

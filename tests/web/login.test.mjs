@@ -8,7 +8,7 @@ import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import {
-  cleanup, launchBrowser, openPage, request, Rotord, screenshot, tempDir, until,
+  ARTIFACTS, cleanup, launchBrowser, openPage, request, Rotord, screenshot, tempDir, until,
 } from './harness.mjs';
 
 const PASSWORD = 'correct horse battery';
@@ -102,5 +102,38 @@ test('logging out ends the session', async () => {
   await page.waitForURL(rotord.url + '/login.html');
   const status = await page.evaluate(() => fetch('/api/status').then((r) => r.status));
   assert.equal(status, 401);
+  await page.context().close();
+});
+
+test('the settings page makes a token, shows it once, and lists it by name', async () => {
+  const page = await openPage(browser, rotord.url + '/');
+  await logIn(page, PASSWORD);
+  await page.waitForSelector('#conn.live');
+  await page.goto(rotord.url + '/settings.html');
+  await page.waitForSelector('#token-create');
+  // The hashes are not form fields.
+  assert.equal(await page.locator('[data-key="web.password"]').count(), 0);
+  assert.equal(await page.locator('[data-key="web.token_1"]').count(), 0);
+  await page.fill('#token-name', 'logger');
+  await page.selectOption('#token-scope', 'read');
+  await page.click('#token-create');
+  await until(async () => /rtd_[0-9a-f]{32}/.test(await page.textContent('#new-token')),
+    { what: 'the new token' });
+  const token = /rtd_[0-9a-f]{32}/.exec(await page.textContent('#new-token'))[0];
+  await until(async () => (await page.textContent('#tokens')).includes('logger (read)'),
+    { what: 'the token listed' });
+  await page.locator('#access').screenshot({ path: path.join(ARTIFACTS, 'settings-access.png') });
+  // It works from a script, read-only; the page never shows it again.
+  const status = await new Promise((resolve) => {
+    import('node:http').then(({ default: http }) => {
+      http.get(rotord.url + '/api/status', { headers: { Authorization: `Bearer ${token}` } },
+        (res) => { res.resume(); resolve(res.statusCode); });
+    });
+  });
+  assert.equal(status, 200);
+  await page.reload();
+  await page.waitForSelector('#token-create');
+  assert.equal((await page.content()).includes(token), false);
+  assert.deepEqual(page.errors.filter((e) => !e.includes('401')), []);
   await page.context().close();
 });
