@@ -72,14 +72,15 @@ constexpr std::size_t kHttpSlots = 4;
 // POST /api/reboot answers first, then the watchdog resets the chip.
 constexpr Millis kRebootDelayMs = 300;
 // The web password's PBKDF2-HMAC-SHA256 (web_auth.hpp). Estimated, not
-// measured (no Pico W here): mbedtls's C SHA-256 on the Cortex-M0+ at
-// 125 MHz takes roughly 5000-7000 cycles per 64-byte block, and one
-// iteration hashes 4 blocks (HMAC's inner and outer pads and data), so
-// about 0.16-0.22 ms per iteration: 10 000 iterations are 1.6-2.2 s of CPU
-// per login or new password, run in slices of 4 iterations (under 1 ms)
-// in the loop's idle time, never delaying a tick by more than one slice.
-// A hash made on Linux (100 000 iterations) also verifies here, ten times
-// slower: set the password on the Pico itself.
+// measured (no Pico W here): a SHA-256 block compiled for the Cortex-M0+
+// is about 90 instructions per round, 64 rounds, so some 6000-7500 cycles;
+// one PBKDF2 iteration hashes 4 blocks (HMAC's inner and outer pad and
+// data) plus mbedtls's md-layer overhead, about 0.2-0.26 ms at 125 MHz.
+// 10 000 iterations: 2-2.6 s of CPU per login or new password, run in
+// slices of 4 iterations (about 1 ms) in the loop's idle time, so a tick
+// is never late by more than one slice. A hash made on Linux (100 000
+// iterations) also verifies here, ten times slower: set the password on
+// the Pico itself.
 constexpr std::uint32_t kPbkdf2Iterations = 10'000;
 constexpr std::uint32_t kPbkdf2SliceIterations = 4;
 // A slice is started only when at least this much time is left before the tick.

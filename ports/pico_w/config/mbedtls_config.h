@@ -19,10 +19,11 @@
 #define MBEDTLS_AES_ROM_TABLES    // tables in flash, not 8 KB of RAM
 #define MBEDTLS_AES_FEWER_TABLES  // and only 2 KB of them
 
-// HMAC-SHA256 (the md layer); SHA-256 in its smaller form (flash over speed).
+// HMAC-SHA256 (the md layer). Not MBEDTLS_SHA256_SMALLER: its rolled loop
+// shuffles the working variables through RAM every round, and the password
+// hash's time per login matters more than a kilobyte of flash.
 #define MBEDTLS_MD_C
 #define MBEDTLS_SHA256_C
 #define MBEDTLS_SHA224_C  // mbedtls 3.x builds SHA-224 with SHA-256's code
-#define MBEDTLS_SHA256_SMALLER
 
 #endif  // ROTORD_MBEDTLS_CONFIG_H
