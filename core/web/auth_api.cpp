@@ -339,6 +339,22 @@ bool Api::page_allowed(const HttpRequest& request) {
   return auth_.identify(request, settings(), transport_now_).may_read();
 }
 
+bool Api::still_allowed(const Caller& caller) const {
+  if (!WebAuth::enabled(ctx_.controller.settings())) return true;
+  if (caller.kind == Caller::Kind::kSession) {
+    const access::WebSessions::Entry& e = auth_.sessions().at(caller.session);
+    return e.used && e.authenticated && e.expires > transport_now_ &&
+           std::memcmp(e.id.data(), caller.holder.key.data(), caller.holder.key.size()) == 0;
+  }
+  if (caller.kind == Caller::Kind::kToken) {
+    access::TokenRecord record;
+    return access::parse_token_record(ctx_.controller.settings().text(kTokenRows[caller.token]),
+                                      record) &&
+           std::memcmp(record.hash.data(), caller.holder.key.data(), caller.holder.key.size()) == 0;
+  }
+  return false;
+}
+
 void Api::get_auth(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options) {
   const bool enabled = WebAuth::enabled(settings());
   send_json(out, 200, options, [&](JsonWriter& w) {

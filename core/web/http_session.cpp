@@ -51,6 +51,7 @@ void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
         return;
       case Api::Outcome::kStartEvents:
         events_ = true;
+        stream_caller_ = api_.last_caller();
         out.write("retry: 1000\n\n");  // EventSource reconnects after 1 s
         send_event(now_, out);
         return;
@@ -117,6 +118,10 @@ void HttpSession::poll(Millis now, protocol::ByteSink& out) {
     return;
   }
   if (events_) {
+    if (!api_.still_allowed(stream_caller_)) {
+      close_ = true;  // logged out, expired, a new password, a revoked token
+      return;
+    }
     const RotatorStatus s = api_.controller().status();
     const bool changed =
         s.moving() != last_moving_ || s.any_fault() != last_fault_ || s.mode != last_mode_;

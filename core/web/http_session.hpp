@@ -54,6 +54,8 @@ class HttpSession final : public protocol::Session {
   // bytes that arrive meanwhile are dropped (no pipelining behind a login).
   bool pending_ = false;
   std::uint32_t pending_ticket_ = 0;
+  // Who opened the event stream: it ends when that login or token does.
+  Caller stream_caller_;
   // Timeouts and event periods run on the transport's clock, the `now` of
   // poll(), not on controller time: under `rotord --speedup N` a client must
   // still get its 5 s. Bytes are stamped at the next poll (a tick later).

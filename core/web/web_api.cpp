@@ -320,6 +320,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
 
   // Access control (docs/security.md).
   const Caller caller = auth_.identify(request, settings(), transport_now_);
+  last_caller_ = caller;
   if (WebAuth::enabled(settings()) && route->need != Need::kPublic) {
     ResponseOptions o = options;
     o.extra_headers = "WWW-Authenticate: Bearer realm=\"rotord\"\r\n";

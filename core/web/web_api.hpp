@@ -90,6 +90,12 @@ class Api {
   /// Whether a page (not /api/) may be served: access control is off, the
   /// page is the login page's, or the caller logged in (or sent a token).
   bool page_allowed(const HttpRequest& request);
+  /// Who sent the last request handle() answered (an event stream keeps it).
+  const Caller& last_caller() const { return last_caller_; }
+  /// Whether `caller` may still read: access control is off, or its
+  /// session is still logged in, or its token still stored. An event stream
+  /// ends when not (logout, expiry, a new password, a revoked token).
+  bool still_allowed(const Caller& caller) const;
 
   /// Called by the port on every pass of its loop with the transport's
   /// (wall) clock, whether or not a client is connected: a hold-to-move
@@ -147,6 +153,7 @@ class Api {
 
   ApiContext ctx_;
   WebAuth auth_;
+  Caller last_caller_;
   Millis transport_now_ = 0;
   std::array<DeadMan, 2> dead_man_{};
   settings::Settings scratch_;

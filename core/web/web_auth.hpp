@@ -70,6 +70,7 @@ class WebAuth {
   access::Crypto* crypto() { return config_.crypto; }
   const Config& config() const { return config_; }
   access::WebSessions& sessions() { return sessions_; }
+  const access::WebSessions& sessions() const { return sessions_; }
   access::LoginLimiter& limiter() { return limiter_; }
 
   /// One line to the log (printf-style, no newline).

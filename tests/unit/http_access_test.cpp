@@ -301,6 +301,19 @@ TEST_F(HttpAccess, OneHashAtATimeAndAnAbandonedLoginStillCounts) {
   EXPECT_EQ(post("/api/login", R"({"password":"correct horse"})").status, 200);
 }
 
+TEST_F(HttpAccess, AnEventStreamEndsWithItsLogin) {
+  const std::string cookie = turn_on();
+  HttpSession stream(api);
+  StringSink sink;
+  stream.receive(head("GET", "/api/events", cookie) + "\r\n", sink);
+  ASSERT_NE(sink.data.find("200 OK"), std::string::npos) << sink.data;
+  stream.poll(now += 1000, sink);
+  EXPECT_FALSE(stream.wants_close());
+  EXPECT_EQ(post("/api/logout", "{}", cookie).status, 200);
+  stream.poll(now += 1000, sink);
+  EXPECT_TRUE(stream.wants_close());
+}
+
 TEST_F(HttpAccess, TheSchemaHidesTheHashRowsFromTheForm) {
   const HttpResponse schema = get("/api/settings/schema");
   EXPECT_TRUE(has(schema, R"("key":"web.password","type":"password")")) << schema.body.substr(0, 0);
