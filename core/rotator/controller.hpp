@@ -1,7 +1,7 @@
 #pragma once
 #include <optional>
-#include "access/control_lock.hpp"
 
+#include "access/control_lock.hpp"
 #include "axis/axis.hpp"
 #include "input/manual_buttons.hpp"
 #include "settings/settings.hpp"
