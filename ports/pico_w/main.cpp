@@ -71,18 +71,18 @@ constexpr std::uint16_t kHttpPort = 80;
 constexpr std::size_t kHttpSlots = 4;
 // POST /api/reboot answers first, then the watchdog resets the chip.
 constexpr Millis kRebootDelayMs = 300;
-// The web password's PBKDF2-HMAC-SHA256 (web_auth.hpp). Estimated, not
-// measured (no Pico W here): a SHA-256 block compiled for the Cortex-M0+
-// is about 90 instructions per round, 64 rounds, so some 6000-7500 cycles;
-// one PBKDF2 iteration hashes 4 blocks (HMAC's inner and outer pad and
-// data) plus mbedtls's md-layer overhead, about 0.2-0.26 ms at 125 MHz.
-// 10 000 iterations: 2-2.6 s of CPU per login or new password, run in
-// slices of 4 iterations (about 1 ms) in the loop's idle time, so a tick
+// The web password's PBKDF2-HMAC-SHA256 (web_auth.hpp). One iteration is
+// about 29 300 instructions with the SDK's mbedtls 3.6 and this port's
+// mbedtls_config.h (counted under qemu -icount: tests/embedded, target
+// m0_pico_crypto), some 35 000-44 000 cycles on the Cortex-M0+ (1.2-1.5
+// cycles per instruction), 0.28-0.35 ms at 125 MHz. 5000 iterations: about
+// 1.5-1.8 s of CPU per login or new password (not measured on a chip), run
+// in slices of 3 iterations (about 1 ms) in the loop's idle time, so a tick
 // is never late by more than one slice. A hash made on Linux (100 000
-// iterations) also verifies here, ten times slower: set the password on
-// the Pico itself.
-constexpr std::uint32_t kPbkdf2Iterations = 10'000;
-constexpr std::uint32_t kPbkdf2SliceIterations = 4;
+// iterations) also verifies here, 20 times slower: set the password on the
+// Pico itself.
+constexpr std::uint32_t kPbkdf2Iterations = 5'000;
+constexpr std::uint32_t kPbkdf2SliceIterations = 3;
 // A slice is started only when at least this much time is left before the tick.
 constexpr std::int64_t kSliceHeadroomUs = 2000;
 
