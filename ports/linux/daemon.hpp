@@ -25,6 +25,8 @@ namespace rotord::linux_port {
 class Daemon final : private web::RebootHook {
  public:
   static constexpr Millis kTickMs = 10;
+  /// The most of a 10 ms pass a web login's password hash may take.
+  static constexpr std::chrono::milliseconds kHashBudget{3};
 
   explicit Daemon(const Options& options);
   ~Daemon();
