@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <cstring>
 
-#include "util/hex.hpp"
 #include "web/json_reader.hpp"
 #include "web/web_api.hpp"
 
