@@ -11,7 +11,7 @@ packages=(
   libasio-dev libcli11-dev nlohmann-json3-dev
   libhamlib-utils socat netcat-openbsd
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
-  liblwip-dev libgpiod-dev
+  liblwip-dev libgpiod-dev libmbedtls-dev
   prometheus
   clang libclang-rt-14-dev
   chromium

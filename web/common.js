@@ -15,6 +15,8 @@ const rotord = (() => {
       const r = await fetch(path, init);
       let parsed = null;
       try { parsed = await r.json(); } catch (e) { parsed = null; }
+      // Access control is on and the login ran out (or never was).
+      if (r.status === 401) location.replace('/login.html');
       return { status: r.status, body: parsed };
     } catch (e) {
       return { status: 0, body: { error: 'no connection to the controller' } };
@@ -47,7 +49,10 @@ const rotord = (() => {
       };
       source.onerror = () => {
         setConn('reconnecting…', 'lost');
-        if (source.readyState === EventSource.CLOSED) setTimeout(open, 2000);
+        if (source.readyState === EventSource.CLOSED) {
+          api('/api/auth');  // a 401 there goes to the login page
+          setTimeout(open, 2000);
+        }
       };
     }
     open();

@@ -207,8 +207,10 @@
     command('/api/goto', { az }, `going to ${az}°`);
   });
 
+  rotordAccess.wire(msg);
   rotord.live((s) => {
     last = s;
+    rotordAccess.update(s);
     if (!drawQueued) { drawQueued = true; requestAnimationFrame(draw); }
   });
   rotord.get('/api/status').then((r) => { if (r.status === 200 && !last) { last = r.body; draw(); } });

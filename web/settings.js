@@ -25,7 +25,8 @@
     groups.textContent = '';
     for (const g of schema.groups) {
       const fs = el('fieldset', {}, el('legend', {}, g));
-      for (const d of schema.settings.filter((s) => s.group === g)) {
+      // Hidden rows (the password and token hashes) have their own card.
+      for (const d of schema.settings.filter((s) => s.group === g && !s.hidden)) {
         const id = 'f-' + d.key;
         let input;
         if (d.type === 'bool') {
@@ -173,6 +174,8 @@
     build();
     show(v.body);
     if (st.status === 200) calibration.update(st.body);
+    rotordAccess.wire(msg);
+    rotordAccess.card($('access'));
     rotord.live((status) => calibration.update(status));
   }
   start();

@@ -186,7 +186,7 @@ void EasycommSession::run_token(std::string_view token, std::string_view& rest, 
   const bool changes_state = text::iequals(token, "PARK") || text::iequals(token, "RESET") ||
                              is("ML") || is("MR") || is("MU") || is("MD") || is("VL") || is("VR") ||
                              is("VU") || is("VD") || is("CW");
-  if (changes_state && !may_control(controller_.settings())) {
+  if (changes_state && !may_control(controller_)) {
     if (is("CW") && value.empty()) next_token(rest);  // the register, as its own token
     return alarm(out, "DENIED");
   }
@@ -264,7 +264,7 @@ void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
   } else if (request.stop_el && controller_.has_el()) {
     controller_.move(AxisId::kEl, Direction::kNone);
   }
-  if ((request.set_az_deg || request.set_el_deg) && !may_control(controller_.settings())) {
+  if ((request.set_az_deg || request.set_el_deg) && !may_control(controller_)) {
     alarm(out, "DENIED");
   } else if (request.set_az_deg || request.set_el_deg) {
     std::optional<float> el = request.set_el_deg;

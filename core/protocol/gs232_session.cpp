@@ -110,7 +110,7 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
   // controller's error to a read-only client (access.control_networks).
   // S, A and E (stop) are not among them.
   if (std::string_view("MWRLUDXTOFP").find(cmd) != std::string_view::npos &&
-      !may_control(controller_.settings()))
+      !may_control(controller_))
     return out.write(kError);
   if (cmd == 'M' || cmd == 'W') return position_command(cmd == 'W', rest, out);
 

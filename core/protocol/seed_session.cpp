@@ -104,8 +104,7 @@ void SeedSession::handle_line(std::string_view line, ByteSink& out) {
   }
   // Speed and turning: refused to a read-only client (access.control_networks).
   // E only arms this session; D is the stop and always works.
-  if ((is("S", 1) || is("R", 1)) && !may_control(controller_.settings()))
-    return error(out, "DENIED");
+  if ((is("S", 1) || is("R", 1)) && !may_control(controller_)) return error(out, "DENIED");
   if (is("S", 1)) {
     long pct = 0;
     if (!text::parse_int(arg, pct)) return error(out, "SYNTAX");

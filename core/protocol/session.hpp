@@ -42,11 +42,11 @@ class Session {
   const access::Peer& peer() const { return peer_; }
 
  protected:
-  /// Whether this client may change anything (access::may_control); line
-  /// protocols refuse every other command but STOP in their own way when not.
-  bool may_control(const settings::Settings& settings) const {
-    return access::may_control(settings, peer_);
-  }
+  /// Whether this client may change anything: its network is allowed
+  /// (access::may_control) and nobody holds the control lock (a line client
+  /// never can: the lock is taken through the web or REST). Line protocols
+  /// refuse every other command but STOP in their own way when not.
+  bool may_control(Controller& controller) const;
 
  private:
   access::Peer peer_;

@@ -134,11 +134,11 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
   // The commands that move the rotator or change a setting; a read-only
   // client (access.control_networks) gets an error for them. STOP is not
   // among them.
-  if (has_arg && !may_control(controller_.settings())) {
+  if (has_arg && !may_control(controller_)) {
     for (const char* word : {"AZ", "EL", "MOVE", "SPEED", "AZOFFSET"})
       if (is(word)) return reply.send(out, "ERROR NOT ALLOWED");
   }
-  if ((is("PARK") || is("RESET")) && !may_control(controller_.settings()))
+  if ((is("PARK") || is("RESET")) && !may_control(controller_))
     return reply.send(out, "ERROR NOT ALLOWED");
 
   if (is("AZ") && has_arg) {

@@ -1,6 +1,7 @@
 #pragma once
 #include <optional>
 
+#include "access/control_lock.hpp"
 #include "axis/axis.hpp"
 #include "input/manual_buttons.hpp"
 #include "settings/settings.hpp"
@@ -81,6 +82,10 @@ class Controller {
   bool has_el() const { return has_el_; }
   Millis now() const { return now_; }
   settings::Settings& settings() { return settings_; }
+  /// The control lock (access/control_lock.hpp): every command source asks
+  /// it before a move or a setting change; STOP never does.
+  access::ControlLock& control_lock() { return control_lock_; }
+  const access::ControlLock& control_lock() const { return control_lock_; }
 
   /// Faults of `kind` latched on `axis` since the controller started (GET
   /// /metrics: rotord_axis_faults_total, stalls among them).
@@ -103,6 +108,7 @@ class Controller {
   void count_faults();
 
   settings::Settings& settings_;
+  access::ControlLock control_lock_;
   hal::DigitalIn* estop_ = nullptr;
   bool estop_active_ = false;
   Axis az_;

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "access/api_token.hpp"
+#include "access/password_hash.hpp"
 #include "settings/gpiod_rules.hpp"
 #include "settings/network_list.hpp"
 #include "settings/pin_rules.hpp"
@@ -53,6 +55,8 @@ TextFormat text_format(Id id) {
   if (unit == "hostname") return TextFormat::kHostname;
   if (unit == "hostlist") return TextFormat::kHostList;
   if (unit == "networks") return TextFormat::kNetworks;
+  if (unit == "pwhash") return TextFormat::kPasswordHash;
+  if (unit == "token") return TextFormat::kTokenRecord;
   return TextFormat::kText;
 }
 
@@ -182,6 +186,21 @@ Rejection validate_text(Id id, std::string_view value) {
         return {Error::kInvalidArgument,
                 "IPv4 networks such as 192.168.1.0/24 or addresses such as 10.0.0.5, separated "
                 "by commas or spaces"};
+      break;
+    }
+    case TextFormat::kPasswordHash: {
+      access::PasswordHash ignored;
+      if (!access::parse_password_hash(value, ignored))
+        return {Error::kInvalidArgument,
+                "not a stored password hash: set the password with POST /api/password (or "
+                "on the settings page), or \"\" to turn access control off"};
+      break;
+    }
+    case TextFormat::kTokenRecord: {
+      access::TokenRecord ignored;
+      if (!access::parse_token_record(value, ignored))
+        return {Error::kInvalidArgument,
+                "not a stored token: make tokens with POST /api/tokens, or \"\" to revoke"};
       break;
     }
   }

@@ -23,7 +23,10 @@ enum class Type : std::uint8_t { kFloat, kInt, kBool, kEnum, kText };
 /// kWebOnly: written only through the web page and the REST API (behind
 /// the login when access control is on), never through a line protocol; the
 /// access rules themselves, so a client cannot widen its own rights.
-enum Flags : std::uint8_t { kNone = 0, kRestart = 1, kSecret = 2, kWebOnly = 4 };
+/// kHidden: not a field of the settings form; an endpoint of its own sets it
+/// (the web password through POST /api/password, tokens through
+/// /api/tokens), because the stored value is a hash, not what the user types.
+enum Flags : std::uint8_t { kNone = 0, kRestart = 1, kSecret = 2, kWebOnly = 4, kHidden = 8 };
 
 inline constexpr const char* kSecretMask = "********";
 
@@ -66,13 +69,15 @@ inline constexpr std::size_t kValueTextCapacity = kMaxTextBytes + 1 > 48 ? kMaxT
 
 /// What a text setting may hold, named in its row's unit column.
 enum class TextFormat : std::uint8_t {
-  kText,      ///< "": UTF-8 without control characters (an SSID)
-  kAscii,     ///< "ascii": printable ASCII (a WPA2 passphrase)
-  kIpv4,      ///< "ipv4": dotted quad, 0-255 each, no leading zeros
-  kLabel,     ///< "label": one DNS label (letters, digits, '-'), a host name without domain
-  kHostname,  ///< "hostname": dotted DNS labels, or a dotted quad
-  kHostList,  ///< "hostlist": host names separated by commas or spaces
-  kNetworks,  ///< "networks": IPv4 networks (a.b.c.d/n) or addresses, comma or space separated
+  kText,          ///< "": UTF-8 without control characters (an SSID)
+  kAscii,         ///< "ascii": printable ASCII (a WPA2 passphrase)
+  kIpv4,          ///< "ipv4": dotted quad, 0-255 each, no leading zeros
+  kLabel,         ///< "label": one DNS label (letters, digits, '-'), a host name without domain
+  kHostname,      ///< "hostname": dotted DNS labels, or a dotted quad
+  kHostList,      ///< "hostlist": host names separated by commas or spaces
+  kNetworks,      ///< "networks": IPv4 networks (a.b.c.d/n) or addresses, comma or space separated
+  kPasswordHash,  ///< "pwhash": a stored web password hash (access/password_hash.hpp)
+  kTokenRecord,   ///< "token": a stored REST token record (access/api_token.hpp)
 };
 
 /// One row of the settings table.

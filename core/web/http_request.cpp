@@ -41,6 +41,8 @@ void HttpRequestParser::reset() {
   content_length_ = 0;
   has_content_length_ = false;
   has_host_ = false;
+  has_cookie_ = false;
+  has_authorization_ = false;
   request_ = HttpRequest{};
   error_status_ = 0;
   error_message_ = "";
@@ -229,6 +231,18 @@ bool HttpRequestParser::parse_header(std::string_view name, std::string_view val
     request_.host = value;
   } else if (text::iequals(name, "Origin")) {
     request_.origin = value;
+  } else if (text::iequals(name, "Cookie")) {
+    // HTTP/1.1 browsers send one Cookie header; a second is ignored.
+    if (!has_cookie_) request_.cookie = value;
+    has_cookie_ = true;
+  } else if (text::iequals(name, "Authorization")) {
+    // Two credentials would leave it open which one counts.
+    if (has_authorization_) {
+      fail(400, "more than one Authorization header");
+      return false;
+    }
+    has_authorization_ = true;
+    request_.authorization = value;
   }
   return true;
 }

@@ -15,8 +15,10 @@ struct HttpRequest {
   bool keep_alive = true;
   bool json_body = false;  ///< Content-Type: application/json
   std::string_view if_none_match;
-  std::string_view host;    ///< the Host header as sent (name[:port]); empty when absent
-  std::string_view origin;  ///< the Origin header (scheme://host[:port]); empty when absent
+  std::string_view host;           ///< the Host header as sent (name[:port]); empty when absent
+  std::string_view origin;         ///< the Origin header (scheme://host[:port]); empty when absent
+  std::string_view cookie;         ///< the first Cookie header; empty when absent
+  std::string_view authorization;  ///< the Authorization header; empty when absent
   std::string_view body;
 };
 
@@ -71,6 +73,8 @@ class HttpRequestParser {
   std::size_t content_length_ = 0;
   bool has_content_length_ = false;
   bool has_host_ = false;
+  bool has_cookie_ = false;
+  bool has_authorization_ = false;
   HttpRequest request_;
   int error_status_ = 0;
   const char* error_message_ = "";

@@ -10,10 +10,14 @@ namespace rotord::web {
 
 HttpSession::HttpSession(Api& api) : api_(api) {}
 
+HttpSession::~HttpSession() {
+  if (pending_) api_.abandon_pending(pending_ticket_);
+}
+
 void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
   // An event stream only talks; anything the client sends is ignored.
-  if (close_ || events_) return;
-  while (!bytes.empty() && !close_ && !events_) {
+  if (close_ || events_ || pending_) return;
+  while (!bytes.empty() && !close_ && !events_ && !pending_) {
     const auto status = parser_.feed(bytes);
     if (status == HttpRequestParser::Status::kNeedMore) break;
     if (status == HttpRequestParser::Status::kError) {
@@ -44,14 +48,24 @@ void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
              !origin_allowed(request.origin, request.host, api_.settings())) {
     // A cross-site request: another site's page in the operator's browser.
     send_error(out, 403, "cross-site request refused (Origin is not this controller)", options);
+  } else if (request.path == "/metrics" && !api_.page_allowed(request)) {
+    // Positions, targets and who connects: a read token or a login when
+    // access control is on. /healthz says only ok or why not, and stays open
+    // to supervisors.
+    send_error(out, 401, "log in or send a read token first", options);
   } else if (request.path == "/metrics") {
     api_.handle_metrics(request, out, options);
   } else if (request.path == "/healthz") {
     api_.handle_health(request, out, options);
   } else if (request.path.substr(0, 5) == "/api/") {
-    switch (api_.handle(request, out, options)) {
+    switch (api_.handle(request, out, options, peer())) {
+      case Api::Outcome::kPending:
+        pending_ = true;
+        pending_ticket_ = api_.pending_ticket();
+        return;
       case Api::Outcome::kStartEvents:
         events_ = true;
+        stream_caller_ = api_.last_caller();
         out.write("retry: 1000\n\n");  // EventSource reconnects after 1 s
         send_event(now_, out);
         return;
@@ -61,6 +75,13 @@ void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
       case Api::Outcome::kDone:
         break;
     }
+  } else if ((request.method == Method::kGet || request.method == Method::kHead) &&
+             !api_.page_allowed(request)) {
+    // Access control is on and nobody logged in: pages go to the login page.
+    ResponseOptions o = options;
+    const bool page = request.path == "/" || request.path.ends_with(".html");
+    o.extra_headers = page ? "Location: /login.html\r\n" : "";
+    send_error(out, page ? 303 : 401, "log in first", o);
   } else if (request.method == Method::kGet || request.method == Method::kHead) {
     serve_asset(request, options, out);
   } else {
@@ -105,7 +126,18 @@ void HttpSession::poll(Millis now, protocol::ByteSink& out) {
   idle_restart_pending_ = request_start_pending_ = body_start_pending_ = false;
   now_ = now;
   if (close_) return;
+  if (pending_) {
+    if (api_.finish_pending(pending_ticket_, out, {false, false, {}})) {
+      pending_ = false;
+      close_ = true;
+    }
+    return;
+  }
   if (events_) {
+    if (!api_.still_allowed(stream_caller_)) {
+      close_ = true;  // logged out, expired, a new password, a revoked token
+      return;
+    }
     const RotatorStatus s = api_.controller().status();
     const bool changed =
         s.moving() != last_moving_ || s.any_fault() != last_fault_ || s.mode != last_mode_;

@@ -40,6 +40,8 @@ class HttpSession final : public protocol::Session {
       "{\"error\":\"too many connections\"}";
 
   explicit HttpSession(Api& api);
+  /// A pending login's hash still completes (Api::abandon_pending).
+  ~HttpSession() override;
 
   void receive(std::string_view bytes, protocol::ByteSink& out) override;
   void poll(Millis now, protocol::ByteSink& out) override;
@@ -61,6 +63,13 @@ class HttpSession final : public protocol::Session {
   /// its body too slow.
   void check_request_time(Millis now, protocol::ByteSink& out);
 
+  // A login or a new password being hashed (Api::Outcome::kPending): the
+  // response goes out from poll(), the connection closes after it, and
+  // bytes that arrive meanwhile are dropped (no pipelining behind a login).
+  bool pending_ = false;
+  std::uint32_t pending_ticket_ = 0;
+  // Who opened the event stream: it ends when that login or token does.
+  Caller stream_caller_;
   // Timeouts and event periods run on the transport's clock, the `now` of
   // poll(), not on controller time: under `rotord --speedup N` a client must
   // still get its 5 s. Events seen in receive() are stamped at the next poll

@@ -148,10 +148,10 @@ void write_settings(const settings::Settings& values, JsonWriter& out, Secrets s
 
 void write_settings_schema(const settings::Settings& defaults, JsonWriter& out) {
   static constexpr const char* kTypeNames[] = {"float", "int", "bool", "enum", "text"};
-  static constexpr const char* kFormatNames[] = {"text",     "ascii",    "ipv4",    "label",
-                                                 "hostname", "hostlist", "networks"};
+  static constexpr const char* kFormatNames[] = {
+      "text", "ascii", "ipv4", "label", "hostname", "hostlist", "networks", "pwhash", "token"};
   static_assert(sizeof(kFormatNames) / sizeof(kFormatNames[0]) ==
-                    static_cast<std::size_t>(settings::TextFormat::kNetworks) + 1,
+                    static_cast<std::size_t>(settings::TextFormat::kTokenRecord) + 1,
                 "a name for every text format");
   out.begin_object().key("groups").begin_array();
   for (std::size_t n = 0; n < settings::kCount; ++n) {
@@ -179,7 +179,10 @@ void write_settings_schema(const settings::Settings& defaults, JsonWriter& out) 
     out.key("choices").begin_array();
     for (int c = 0; c < settings::choice_count(id); ++c) out.string(settings::choice_name(id, c));
     out.end_array();
-    out.member("restart", (d.flags & settings::kRestart) != 0).end_object();
+    out.member("restart", (d.flags & settings::kRestart) != 0);
+    // Set through its own endpoint, not the form (settings::kHidden).
+    if ((d.flags & settings::kHidden) != 0) out.member("hidden", true);
+    out.end_object();
   }
   out.end_array().end_object();
   out.flush();

@@ -169,6 +169,11 @@ bool is_whole(double v) {
 
 }  // namespace
 
+Api::Api(const ApiContext& context)
+    : ctx_(context),
+      auth_(WebAuth::Config{context.crypto, context.pbkdf2_iterations, context.pbkdf2_slice,
+                            context.log}) {}
+
 void Api::write_status(JsonWriter& w) const {
   const Controller& c = ctx_.controller;
   const RotatorStatus s = c.status();
@@ -207,6 +212,8 @@ void Api::write_status(JsonWriter& w) const {
       .member("az", values.get(Id::kParkAzDeg))
       .member("el", values.get(Id::kParkElDeg))
       .end_object();
+  w.key("lock");
+  write_lock(w, nullptr);
   w.key("az");
   write_axis(w, s.az, values.i(Id::kAzSensor));
   w.key("el");
@@ -220,6 +227,13 @@ void Api::write_status(JsonWriter& w) const {
 
 void Api::poll(Millis transport_now) {
   transport_now_ = transport_now;
+  access::ControlLock& lock = ctx_.controller.control_lock();
+  if (lock.held() && transport_now >= lock.until()) {
+    lock.release();
+    auth_.log("rotord: control lock ran out");
+  }
+  auth_.sessions().expire(transport_now);
+  work();
   for (std::size_t n = 0; n < dead_man_.size(); ++n) {
     DeadMan& d = dead_man_[n];
     if (!d.armed || transport_now < d.until) continue;
@@ -239,19 +253,42 @@ void Api::arm_dead_man(AxisId axis, Millis hold_ms) {
 }
 
 Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
-                         const ResponseOptions& options) {
+                         const ResponseOptions& options, const access::Peer& peer) {
+  // Who may call each route once access control is on (web.password set):
+  // kPublic anyone, kRead a login or any token, kControl a login or a
+  // control token, kAdmin the web login only. `locked`: refused to all but
+  // the control lock's holder while it is held.
+  enum class Need : unsigned char { kPublic, kRead, kControl, kAdmin };
   struct Route {
     const char* path;
     bool post;
+    Need need;
+    bool locked;
   };
   static constexpr Route kRoutes[] = {
-      {"/api/status", false},        {"/api/events", false},
-      {"/api/settings", false},      {"/api/settings/schema", false},
-      {"/api/goto", true},           {"/api/move", true},
-      {"/api/stop", true},           {"/api/park", true},
-      {"/api/mode", true},           {"/api/reset", true},
-      {"/api/speed", true},          {"/api/settings", true},
-      {"/api/settings/reset", true}, {"/api/reboot", true},
+      {"/api/status", false, Need::kRead, false},
+      {"/api/events", false, Need::kRead, false},
+      {"/api/settings", false, Need::kRead, false},
+      {"/api/settings/schema", false, Need::kRead, false},
+      {"/api/auth", false, Need::kRead, false},
+      {"/api/tokens", false, Need::kAdmin, false},
+      {"/api/goto", true, Need::kControl, true},
+      {"/api/move", true, Need::kControl, true},
+      {"/api/stop", true, Need::kPublic, false},  // STOP: always, for anyone
+      {"/api/park", true, Need::kControl, true},
+      {"/api/mode", true, Need::kControl, true},
+      {"/api/reset", true, Need::kControl, true},
+      {"/api/speed", true, Need::kControl, true},
+      {"/api/settings", true, Need::kControl, true},
+      {"/api/settings/reset", true, Need::kAdmin, true},
+      {"/api/reboot", true, Need::kControl, true},
+      {"/api/login", true, Need::kPublic, false},
+      {"/api/logout", true, Need::kPublic, false},
+      {"/api/password", true, Need::kAdmin, false},
+      {"/api/tokens", true, Need::kAdmin, false},
+      {"/api/tokens/revoke", true, Need::kAdmin, false},
+      {"/api/lock", true, Need::kControl, false},
+      {"/api/unlock", true, Need::kControl, false},
   };
   const std::string_view path = request.path;
   const bool is_post = request.method == Method::kPost;
@@ -259,10 +296,12 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
   bool path_known = false;
   bool allows_get = false;
   bool allows_post = false;
+  const Route* route = nullptr;
   for (const Route& r : kRoutes) {
     if (path != r.path) continue;
     path_known = true;
     (r.post ? allows_post : allows_get) = true;
+    if (r.post == is_post) route = &r;
   }
   if (!path_known) {
     send_error(out, 404, "no such API endpoint", options);
@@ -274,6 +313,46 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
                       : allows_get              ? "Allow: GET, HEAD\r\n"
                                                 : "Allow: POST\r\n";
     send_error(out, 405, "method not allowed here", o);
+    return Outcome::kDone;
+  }
+
+  // Access control (docs/security.md).
+  const Caller caller = auth_.identify(request, settings(), transport_now_);
+  last_caller_ = caller;
+  if (WebAuth::enabled(settings()) && route->need != Need::kPublic) {
+    ResponseOptions o = options;
+    o.extra_headers = "WWW-Authenticate: Bearer realm=\"rotord\"\r\n";
+    if (ctx_.crypto == nullptr) {
+      send_error(out, 503, "a web password is set but this build has no cryptography", options);
+      return Outcome::kDone;
+    }
+    if (caller.kind == Caller::Kind::kBadToken) {
+      count_auth_failure(false);
+      char address[16];
+      auth_.log("rotord: unknown bearer token from %s refused", peer_text(peer, address));
+      send_error(out, 401, "unknown or revoked token", o);
+      return Outcome::kDone;
+    }
+    if (!caller.may_read()) {
+      count_auth_failure(false);
+      send_error(out, 401, "log in first (POST /api/login) or send a bearer token", o);
+      return Outcome::kDone;
+    }
+    if (route->need == Need::kControl && !caller.may_control()) {
+      count_auth_failure(false);
+      send_error(out, 403, "this token is read-only", options);
+      return Outcome::kDone;
+    }
+    if (route->need == Need::kAdmin && !caller.may_administer()) {
+      count_auth_failure(false);
+      send_error(out, 403, "tokens cannot do this: it needs the web login", options);
+      return Outcome::kDone;
+    }
+  }
+  const access::ControlLock& held = ctx_.controller.control_lock();
+  if (route->locked && held.held() && (!caller.can_hold_lock() || !held.held_by(caller.holder))) {
+    count_auth_failure(false);
+    send_locked(out, options);
     return Outcome::kDone;
   }
 
@@ -291,6 +370,10 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       return Outcome::kStartEvents;
     } else if (path == "/api/settings") {
       get_settings(out, options);
+    } else if (path == "/api/auth") {
+      get_auth(caller, out, options);
+    } else if (path == "/api/tokens") {
+      get_tokens(out, options);
     } else {
       send_json(out, 200, options, [this](JsonWriter& w) {
         write_settings_schema(ctx_.defaults != nullptr ? *ctx_.defaults : settings::Settings(), w);
@@ -476,7 +559,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       send_ok(out, options);
     }
   } else if (path == "/api/settings") {
-    post_settings(request.body, out, options);
+    post_settings(request.body, out, options, caller);
   } else if (path == "/api/settings/reset") {
     reset_settings(out, options);
   } else if (path == "/api/reboot") {
@@ -490,6 +573,20 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       w.begin_object().member("ok", true).member("rebooting", true).end_object();
     });
     return Outcome::kClose;
+  } else if (path == "/api/login") {
+    return login(request, out, options, peer);
+  } else if (path == "/api/logout") {
+    logout(caller, out, options);
+  } else if (path == "/api/password") {
+    return set_password(request, out, options, caller, peer);
+  } else if (path == "/api/tokens") {
+    create_token(request, out, options);
+  } else if (path == "/api/tokens/revoke") {
+    revoke_token(request, out, options);
+  } else if (path == "/api/lock") {
+    lock(request, out, options, caller);
+  } else if (path == "/api/unlock") {
+    unlock(caller, out, options);
   }
   return Outcome::kDone;
 }
@@ -500,8 +597,26 @@ void Api::get_settings(protocol::ByteSink& out, const ResponseOptions& options) 
 }
 
 void Api::post_settings(std::string_view body, protocol::ByteSink& out,
-                        const ResponseOptions& options) {
+                        const ResponseOptions& options, const Caller& caller) {
   settings::Settings& values = ctx_.controller.settings();
+  if (WebAuth::enabled(values) && !caller.may_administer()) {
+    // A control token changes the rotator's settings, never the access
+    // rules or a secret: it cannot widen its own rights.
+    JsonObjectReader reader(body);
+    std::string_view key;
+    JsonValue value;
+    while (reader.valid() && reader.next(key, value)) {
+      const std::optional<Id> id = settings::find(key);
+      if (id && !settings::line_writable(*id)) {
+        count_auth_failure(false);
+        char message[128];
+        std::snprintf(message, sizeof message, "%s needs the web login, not a token",
+                      settings::def(*id).key);
+        send_error(out, 403, message, options);
+        return;
+      }
+    }
+  }
   backup_ = values;
   const ApplyOutcome r = apply_settings_json(body, values, scratch_, errors_);
   if (r.status == ApplyOutcome::kBadJson) {
@@ -538,6 +653,9 @@ void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options
   SettingSet changed;
   for (std::size_t n = 0; n < settings::kCount; ++n) {
     const auto id = static_cast<Id>(n);
+    // The web password and the tokens stay: a reset must not open the
+    // controller to everyone (POST /api/password with "" does that).
+    if ((settings::def(id).flags & settings::kHidden) != 0) continue;
     if (!values.same_value(id, defaults)) {
       changed.set(n);
       values.copy_value(id, defaults);
@@ -551,14 +669,18 @@ void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options
   send_changed(out, options, changed);
 }
 
-bool Api::persist(protocol::ByteSink& out, const ResponseOptions& options) {
+bool Api::save() {
   if (ctx_.storage == nullptr) return true;
   // Only the user's layer over the defaults is stored (settings_layers.hpp).
   // scratch_ is free again here: post and reset are done with it.
   if (ctx_.defaults == nullptr) scratch_.reset_to_defaults();
   const settings::Settings& base = ctx_.defaults != nullptr ? *ctx_.defaults : scratch_;
-  if (save_settings(*ctx_.storage, ctx_.controller.settings(), base, document_, sizeof(document_)))
-    return true;
+  return save_settings(*ctx_.storage, ctx_.controller.settings(), base, document_,
+                       sizeof(document_));
+}
+
+bool Api::persist(protocol::ByteSink& out, const ResponseOptions& options) {
+  if (save()) return true;
   send_error(out, 500, "the settings could not be saved; nothing was changed", options);
   return false;
 }

@@ -9,6 +9,7 @@
 #include "web/http_request.hpp"
 #include "web/http_response.hpp"
 #include "web/settings_json.hpp"
+#include "web/web_auth.hpp"
 
 namespace rotord::web {
 
@@ -40,6 +41,15 @@ struct ApiContext {
   /// Not const: the web's login and tokens count failures here
   /// (ProtocolCounters::on_auth_failure under metrics::Protocol::kHttp).
   metrics::Registry* metrics = nullptr;
+  /// Access control's cryptography (access/crypto.hpp); nullptr: none, and
+  /// a stored web password then refuses everything but STOP.
+  access::Crypto* crypto = nullptr;
+  /// PBKDF2 iterations of a new web password hash, and how many one slice
+  /// runs (per Api::poll, or Api::work in the Pico's idle time).
+  std::uint32_t pbkdf2_iterations = 100'000;
+  std::uint32_t pbkdf2_slice = 10'000;
+  /// Where logins, failed logins, tokens and the control lock are logged.
+  protocol::ByteSink* log = nullptr;
 };
 
 /// The REST API (docs/web_api.md) on the controller's command API. One per
@@ -54,16 +64,44 @@ class Api {
   /// The stored settings document (pretty-printed), with room to grow.
   static constexpr std::size_t kMaxDocumentBytes = 7168;
 
-  explicit Api(const ApiContext& context) : ctx_(context) {}
+  explicit Api(const ApiContext& context);
 
   const settings::Settings& settings() const { return ctx_.controller.settings(); }
   const char* host_name() const { return ctx_.host_name; }
 
-  enum class Outcome : unsigned char { kDone, kStartEvents, kClose };
-  /// Answers one request whose path starts with /api/. kStartEvents: the
-  /// response head of an event stream went out and events follow (poll).
+  enum class Outcome : unsigned char { kDone, kStartEvents, kClose, kPending };
+  /// Answers one request whose path starts with /api/, from `peer`.
+  /// kStartEvents: the response head of an event stream went out and events
+  /// follow (poll). kPending: a login or a new password is being hashed;
+  /// the session asks finish_pending() on each poll until it answers.
   Outcome handle(const HttpRequest& request, protocol::ByteSink& out,
-                 const ResponseOptions& options);
+                 const ResponseOptions& options, const access::Peer& peer = {});
+
+  /// The ticket of the request that just went kPending.
+  std::uint32_t pending_ticket() const { return auth_.job().ticket; }
+  /// Writes the pending request's response once its hash is done; false
+  /// while it is still being computed.
+  bool finish_pending(std::uint32_t ticket, protocol::ByteSink& out,
+                      const ResponseOptions& options);
+  /// The session of a pending request closed: its result is not waited for.
+  void abandon_pending(std::uint32_t ticket);
+  /// Whether a slow hash is being computed: the Pico's loop then calls
+  /// work() in its idle time instead of sleeping.
+  bool auth_busy() const {
+    return auth_.job().kind != WebAuth::JobKind::kNone && !auth_.job().completed;
+  }
+  /// One more slice of the slow hash (the port's idle time).
+  void work();
+
+  /// Whether a page (not /api/) may be served: access control is off, the
+  /// page is the login page's, or the caller logged in (or sent a token).
+  bool page_allowed(const HttpRequest& request);
+  /// Who sent the last request handle() answered (an event stream keeps it).
+  const Caller& last_caller() const { return last_caller_; }
+  /// Whether `caller` may still read: access control is off, or its
+  /// session is still logged in, or its token still stored. An event stream
+  /// ends when not (logout, expiry, a new password, a revoked token).
+  bool still_allowed(const Caller& caller) const;
 
   /// GET /metrics (Prometheus text format) and GET /healthz; any other
   /// method answers 405 (web_api_observability.cpp).
@@ -80,14 +118,49 @@ class Api {
   /// The live state: GET /api/status and every event of /api/events.
   void write_status(JsonWriter& w) const;
   Controller& controller() { return ctx_.controller; }
+  WebAuth& auth() { return auth_; }
 
  private:
+  /// A failed login (or a refused credential): counted by the access layer
+  /// and, for GET /metrics, as an HTTP auth failure.
+  void count_auth_failure(bool login) {
+    if (login)
+      auth_.count_failed_login();
+    else
+      auth_.count_refused();
+    if (ctx_.metrics != nullptr) ctx_.metrics->protocol(metrics::Protocol::kHttp).on_auth_failure();
+  }
   void get_settings(protocol::ByteSink& out, const ResponseOptions& options);
-  void post_settings(std::string_view body, protocol::ByteSink& out,
-                     const ResponseOptions& options);
+  void post_settings(std::string_view body, protocol::ByteSink& out, const ResponseOptions& options,
+                     const Caller& caller);
   void reset_settings(protocol::ByteSink& out, const ResponseOptions& options);
   /// Persists the settings, or restores `backup_` when that fails.
   bool persist(protocol::ByteSink& out, const ResponseOptions& options);
+  /// Saves the settings; false (nothing answered) when that fails.
+  bool save();
+
+  // Access control's endpoints (auth_api.cpp).
+  Outcome login(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
+                const access::Peer& peer);
+  void logout(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
+  Outcome set_password(const HttpRequest& request, protocol::ByteSink& out,
+                       const ResponseOptions& options, const Caller& caller,
+                       const access::Peer& peer);
+  void get_auth(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
+  void get_tokens(protocol::ByteSink& out, const ResponseOptions& options);
+  void create_token(const HttpRequest& request, protocol::ByteSink& out,
+                    const ResponseOptions& options);
+  void revoke_token(const HttpRequest& request, protocol::ByteSink& out,
+                    const ResponseOptions& options);
+  void lock(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
+            Caller caller);
+  void unlock(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
+  /// Acts on a computed slow hash: a login's session, a password's storage.
+  void complete_job();
+  /// 423 with the lock's holder and time left.
+  void send_locked(protocol::ByteSink& out, const ResponseOptions& options);
+  /// The lock's state: {"held", "mine", "by", "remaining_s"}.
+  void write_lock(JsonWriter& w, const Caller* caller) const;
   void send_changed(protocol::ByteSink& out, const ResponseOptions& options,
                     const SettingSet& changed);
 
@@ -101,6 +174,8 @@ class Api {
   void arm_dead_man(AxisId axis, Millis hold_ms);
 
   ApiContext ctx_;
+  WebAuth auth_;
+  Caller last_caller_;
   Millis transport_now_ = 0;
   std::array<DeadMan, 2> dead_man_{};
   settings::Settings scratch_;

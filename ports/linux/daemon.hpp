@@ -7,6 +7,7 @@
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
 #include "loop/tick_scheduler.hpp"
+#include "mbed_crypto.hpp"
 #include "metrics/registry.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
@@ -26,6 +27,8 @@ namespace rotord::linux_port {
 class Daemon final : private web::RebootHook {
  public:
   static constexpr Millis kTickMs = 10;
+  /// The most of a 10 ms pass a web login's password hash may take.
+  static constexpr std::chrono::milliseconds kHashBudget{3};
 
   explicit Daemon(const Options& options);
   ~Daemon();
@@ -90,8 +93,14 @@ class Daemon final : private web::RebootHook {
   metrics::Registry metrics_;
   asio::signal_set signals_;
   settings::Settings settings_;
-  SystemWallClock wall_clock_;   ///< GET /api/status time_utc
-  std::string host_name_;        ///< gethostname(): a name the web answers to
+  SystemWallClock wall_clock_;  ///< GET /api/status time_utc
+  std::string host_name_;       ///< gethostname(): a name the web answers to
+  MbedCrypto crypto_;           ///< access control: web password, sessions, tokens
+  /// Access control's log lines (logins, failed logins, tokens, the lock).
+  class StdoutLog final : public protocol::ByteSink {
+   public:
+    void write(std::string_view bytes) override;
+  } access_log_;
   settings::Settings defaults_;  ///< table defaults + the profile: what a reset restores
   std::unique_ptr<FileStorage> storage_;
   std::vector<char> saver_buf_;

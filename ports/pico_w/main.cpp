@@ -22,6 +22,7 @@
 #include "pico/binary_info.h"
 #include "pico/cyw43_arch.h"
 #include "pico/stdlib.h"
+#include "pico_crypto.hpp"
 #include "pico_flash.hpp"
 #include "pico_hal.hpp"
 #include "protocol/easycomm_session.hpp"
@@ -79,6 +80,20 @@ constexpr std::size_t kHttpSlots = 4;
 constexpr std::size_t kHttpEventStreams = 2;
 // POST /api/reboot answers first, then the watchdog resets the chip.
 constexpr Millis kRebootDelayMs = 300;
+// The web password's PBKDF2-HMAC-SHA256 (web_auth.hpp). One iteration is
+// about 29 300 instructions with the SDK's mbedtls 3.6 and this port's
+// mbedtls_config.h (counted under qemu -icount: tests/embedded, target
+// m0_pico_crypto), some 35 000-44 000 cycles on the Cortex-M0+ (1.2-1.5
+// cycles per instruction), 0.28-0.35 ms at 125 MHz. 5000 iterations: about
+// 1.5-1.8 s of CPU per login or new password (not measured on a chip), run
+// in slices of 3 iterations (about 1 ms) in the loop's idle time, so a tick
+// is never late by more than one slice. A hash made on Linux (100 000
+// iterations) also verifies here, 20 times slower: set the password on the
+// Pico itself.
+constexpr std::uint32_t kPbkdf2Iterations = 5'000;
+constexpr std::uint32_t kPbkdf2SliceIterations = 3;
+// A slice is started only when at least this much time is left before the tick.
+constexpr std::int64_t kSliceHeadroomUs = 2000;
 
 using settings::Id;
 using settings::kNoPin;
@@ -395,8 +410,16 @@ void report_settings(const web::LoadOutcome& r) {
   g_saver.begin();  // what was loaded (or deliberately not overwritten) counts as saved
   if (storage != nullptr) registry.saver = &g_saver;
   static SntpWallClock wall_clock(&now_ms);  // time_utc once SNTP has answered
-  static web::Api api(web::ApiContext{controller, storage, &g_defaults, &g_reboot, ROTORD_VERSION,
-                                      &wall_clock, nullptr, &registry});
+  // Access control's crypto: seeded once here (its only heap allocation).
+  static PicoCrypto crypto;
+  if (!crypto.begin()) std::printf("rotord: mbedtls could not seed: web logins refused\n");
+  web::ApiContext api_context{controller,     storage,     &g_defaults, &g_reboot,
+                              ROTORD_VERSION, &wall_clock, nullptr,     &registry};
+  api_context.crypto = crypto.ready() ? &crypto : nullptr;
+  api_context.pbkdf2_iterations = kPbkdf2Iterations;
+  api_context.pbkdf2_slice = kPbkdf2SliceIterations;
+  api_context.log = &log_port;
+  static web::Api api(api_context);
   auto make_http = [] { return web::HttpSession(api); };
   lwip_port::ServerConfig http_config;
   http_config.name = "web UI and REST API";
@@ -488,6 +511,12 @@ void report_settings(const web::LoadOutcome& r) {
     }
     const absolute_time_t next_tick =
         from_us_since_boot(static_cast<std::uint64_t>(ticks.deadline_us()));
+    // A login or a new password being hashed: its slices fill the time up to
+    // the next tick instead of sleeping (the tick is never late by more
+    // than one slice, and the watchdog is fed on every pass).
+    while (api.auth_busy() &&
+           absolute_time_diff_us(get_absolute_time(), next_tick) > kSliceHeadroomUs)
+      api.work();
     if (network)
       cyw43_arch_wait_for_work_until(next_tick);
     else

@@ -81,10 +81,19 @@ TEST(LineAccess, WhoMayControl) {
 }
 
 /// One session of each protocol for a client outside the allow-list.
-class ReadOnly : public ::testing::Test {
+/// Why a client is read-only: its address is outside
+/// access.control_networks, or a web operator holds the control lock (which
+/// binds every line client, whatever its address).
+enum class Why { kNetworks, kLock };
+
+class ReadOnly : public ::testing::TestWithParam<Why> {
  protected:
   void SetUp() override {
     ASSERT_EQ(r.settings.set_text(Id::kAccessControlNetworks, "10.0.0.0/8").error, Error::kOk);
+    if (GetParam() == Why::kLock) {
+      ASSERT_EQ(r.settings.set_text(Id::kAccessControlNetworks, "").error, Error::kOk);
+      r.controller->control_lock().take(access::LockHolder{}, 60'000);
+    }
     r.run_ms(50);
   }
   template <typename Session>
@@ -104,7 +113,7 @@ class ReadOnly : public ::testing::Test {
   testing::FakeRotator r;
 };
 
-TEST_F(ReadOnly, RotctldAnswersQueriesAndRefusesTheRestWithRigErjcted) {
+TEST_P(ReadOnly, RotctldAnswersQueriesAndRefusesTheRestWithRigErjcted) {
   protocol::RotctldSession s(*r.controller, "9");
   const auto revision = r.settings.revision();
   EXPECT_EQ(ask(s, "p\n"), "100.00\n20.00\n");
@@ -115,7 +124,7 @@ TEST_F(ReadOnly, RotctldAnswersQueriesAndRefusesTheRestWithRigErjcted) {
   expect_untouched(revision);
 }
 
-TEST_F(ReadOnly, Gs232RefusesWithItsError) {
+TEST_P(ReadOnly, Gs232RefusesWithItsError) {
   protocol::Gs232Session s(*r.controller);
   const auto revision = r.settings.revision();
   EXPECT_EQ(ask(s, "C\r"), "AZ=100\r\n");
@@ -127,7 +136,7 @@ TEST_F(ReadOnly, Gs232RefusesWithItsError) {
   expect_untouched(revision);
 }
 
-TEST_F(ReadOnly, EasycommRefusesWithAnAlarm) {
+TEST_P(ReadOnly, EasycommRefusesWithAnAlarm) {
   protocol::EasycommSession s(*r.controller, "9");
   const auto revision = r.settings.revision();
   EXPECT_EQ(ask(s, "AZ EL\n"), "AZ100.0 EL20.0\n");
@@ -138,7 +147,7 @@ TEST_F(ReadOnly, EasycommRefusesWithAnAlarm) {
   expect_untouched(revision);
 }
 
-TEST_F(ReadOnly, WrcRefusesWithAnError) {
+TEST_P(ReadOnly, WrcRefusesWithAnError) {
   protocol::WrcSession s(*r.controller, "9");
   const auto revision = r.settings.revision();
   EXPECT_EQ(ask(s, "AZ?\n"), "OK AZ 100.0\r\n");
@@ -149,7 +158,7 @@ TEST_F(ReadOnly, WrcRefusesWithAnError) {
   expect_untouched(revision);
 }
 
-TEST_F(ReadOnly, SeedRefusesWithAnError) {
+TEST_P(ReadOnly, SeedRefusesWithAnError) {
   protocol::SeedSession s(*r.controller);
   const auto revision = r.settings.revision();
   EXPECT_EQ(ask(s, "$E\n"), "$OK,E\r\n");
@@ -159,13 +168,19 @@ TEST_F(ReadOnly, SeedRefusesWithAnError) {
   expect_untouched(revision);
 }
 
-TEST_F(ReadOnly, AClientInTheListControls) {
+TEST_P(ReadOnly, AClientInTheListControls) {
   protocol::RotctldSession s(*r.controller, "9");
   s.set_peer(Peer::from_ipv4(ip(10, 1, 2, 3)));
   testing::StringSink sink;
   s.receive("P 200 30\n", sink);
-  EXPECT_EQ(sink.data, "RPRT 0\n");
+  EXPECT_EQ(sink.data, GetParam() == Why::kLock ? "RPRT -9\n" : "RPRT 0\n");
 }
+
+INSTANTIATE_TEST_SUITE_P(OutsideTheNetworksOrUnderTheLock, ReadOnly,
+                         ::testing::Values(Why::kNetworks, Why::kLock),
+                         [](const ::testing::TestParamInfo<Why>& param) {
+                           return param.param == Why::kLock ? "Lock" : "Networks";
+                         });
 
 }  // namespace
 }  // namespace rotord
