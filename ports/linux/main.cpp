@@ -68,7 +68,8 @@ int main(int argc, char** argv) {
   namespace log = rotord::linux_port::log;
   log::Level level = log::Level::kInfo;
   log::parse_level(o.log_level, level);
-  log::configure(level, o.log_format == "json" ? log::Format::kJson : log::Format::kText);
+  log::configure(level, o.log_format == "json" ? log::Format::kJson : log::Format::kText,
+                 log::stdio_is_journal());
   rotord::linux_port::Daemon daemon(o);
   return daemon.run();
 }
