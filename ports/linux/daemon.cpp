@@ -9,6 +9,7 @@
 
 #include "legacy_profile_guess.hpp"
 #include "log.hpp"
+#include "print_config.hpp"
 #include "safe_stop.hpp"
 #include "services.hpp"
 #include "sysfs_pwm.hpp"
@@ -85,12 +86,9 @@ bool Daemon::setup() {
                options_.sim_profile.c_str());
     return false;
   }
-  for (const auto& o : profile->overrides) {
-    const auto id = settings::find(o.key);
-    if (!id || settings_.set(*id, o.value).error != Error::kOk) {
-      log::error("profile %s sets an invalid %s", profile->name, o.key);
-      return false;
-    }
+  if (std::string error; !apply_profile(*profile, settings_, error)) {
+    log::error("%s", error.c_str());
+    return false;
   }
   defaults_ = settings_;
   if (!load_settings(profile)) return false;
@@ -129,8 +127,7 @@ AxisIo Daemon::axis_io(AxisId axis) {
 }
 
 bool Daemon::load_settings(const sim::Profile* profile) {
-  storage_ = std::make_unique<FileStorage>(
-      options_.config_path.empty() ? FileStorage::default_path() : options_.config_path);
+  storage_ = std::make_unique<FileStorage>(settings_path(options_));
   if (const std::string why = storage_->unusable_reason(); !why.empty()) {
     // A FIFO would block the first read forever, before any port listens.
     log::error("settings file %s %s", storage_->path().c_str(), why.c_str());

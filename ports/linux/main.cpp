@@ -1,7 +1,10 @@
 #include <CLI/CLI.hpp>
+#include <set>
+#include <string>
 
 #include "daemon.hpp"
 #include "log.hpp"
+#include "print_config.hpp"
 
 int main(int argc, char** argv) {
   rotord::linux_port::Options o;
@@ -64,7 +67,18 @@ int main(int argc, char** argv) {
                  "text (\"rotord: ...\" lines) or json (one object per line: time, level, msg)")
       ->check(CLI::IsMember({"text", "json"}))
       ->capture_default_str();
+  bool print_config = false;
+  app.add_flag("--print-config", print_config,
+               "Print the settings rotord would run with and where each comes from (default, "
+               "profile, file), the options and the settings file, then exit");
   CLI11_PARSE(app, argc, argv);
+  if (print_config) {
+    std::set<std::string> given;
+    for (const CLI::Option* option : app.get_options()) {
+      if (option->count() > 0) given.insert(option->get_name());
+    }
+    return rotord::linux_port::print_config(o, given, stdout);
+  }
   namespace log = rotord::linux_port::log;
   log::Level level = log::Level::kInfo;
   log::parse_level(o.log_level, level);
