@@ -4,6 +4,7 @@
 
 #include "daemon.hpp"
 #include "log.hpp"
+#include "outputs_off.hpp"
 #include "print_config.hpp"
 
 int main(int argc, char** argv) {
@@ -71,6 +72,12 @@ int main(int argc, char** argv) {
   app.add_flag("--print-config", print_config,
                "Print the settings rotord would run with and where each comes from (default, "
                "profile, file), the options and the settings file, then exit");
+  bool outputs_off = false;
+  app.add_flag("--outputs-off", outputs_off,
+               "Drive every output the settings wire off (GPIO lines inactive and released, PWM "
+               "duty 0 and disabled), then exit: the systemd unit's ExecStopPost, after any "
+               "exit of rotord, kill -9 included")
+      ->excludes("--print-config");
   CLI11_PARSE(app, argc, argv);
   if (print_config) {
     std::set<std::string> given;
@@ -84,6 +91,7 @@ int main(int argc, char** argv) {
   log::parse_level(o.log_level, level);
   log::configure(level, o.log_format == "json" ? log::Format::kJson : log::Format::kText,
                  log::stdio_is_journal());
+  if (outputs_off) return rotord::linux_port::run_outputs_off(o);
   rotord::linux_port::Daemon daemon(o);
   return daemon.run();
 }

@@ -61,6 +61,19 @@ bool apply_profile(const sim::Profile& profile, settings::Settings& settings, st
   return true;
 }
 
+web::LoadOutcome load_file_settings(FileStorage& storage, const sim::Profile* profile,
+                                    const settings::Settings& base, settings::Settings& out,
+                                    std::string& storage_error) {
+  out = base;
+  storage_error = storage.unusable_reason();
+  if (!storage_error.empty()) return {};
+  auto scratch = std::make_unique<settings::Settings>();
+  std::vector<char> buf(web::Api::kMaxDocumentBytes);
+  std::unique_ptr<LegacyProfileGuess> guess;
+  if (profile != nullptr) guess = std::make_unique<LegacyProfileGuess>(*profile);
+  return web::load_settings(storage, base, guess.get(), out, *scratch, buf.data(), buf.size());
+}
+
 int print_config(const Options& options, const std::set<std::string>& given, std::FILE* out) {
   // Heap is fine: a one-shot command, not the daemon.
   auto table = std::make_unique<settings::Settings>();  // the table's defaults
@@ -81,8 +94,9 @@ int print_config(const Options& options, const std::set<std::string>& given, std
   }
   std::fprintf(out, "# rotord %s: the settings it runs with, and where each comes from\n",
                ROTORD_VERSION);
-  std::fprintf(out, "#\n# options (\"given\": on the command line; under systemd that is\n"
-                    "# ROTORD_OPTS in /etc/rotord/rotord.conf)\n");
+  std::fprintf(out,
+               "#\n# options (\"given\": on the command line; under systemd that is\n"
+               "# ROTORD_OPTS in /etc/rotord/rotord.conf)\n");
   for (const auto& row : option_rows(options)) {
     std::fprintf(out, "%-34s %-24s # %s\n", row.name, row.value.c_str(),
                  given.count(row.name) != 0 ? "given" : "default");
@@ -91,17 +105,13 @@ int print_config(const Options& options, const std::set<std::string>& given, std
   FileStorage storage(settings_path(options));
   std::fprintf(out, "#\n# settings file %s (from %s): ", storage.path().c_str(),
                settings_path_origin(options));
-  if (const std::string why = storage.unusable_reason(); !why.empty()) {
+  auto effective = std::make_unique<settings::Settings>();
+  std::string why;
+  const web::LoadOutcome r = load_file_settings(storage, profile, *base, *effective, why);
+  if (!why.empty()) {
     std::fprintf(out, "%s; rotord refuses to start\n", why.c_str());
     return 2;
   }
-  auto effective = std::make_unique<settings::Settings>(*base);
-  auto scratch = std::make_unique<settings::Settings>();
-  std::vector<char> buf(web::Api::kMaxDocumentBytes);
-  std::unique_ptr<LegacyProfileGuess> guess;
-  if (profile != nullptr) guess = std::make_unique<LegacyProfileGuess>(*profile);
-  const web::LoadOutcome r = web::load_settings(storage, *base, guess.get(), *effective, *scratch,
-                                                buf.data(), buf.size());
   int code = 0;
   switch (r.status) {
     case web::LoadOutcome::kNothingStored:

@@ -8,9 +8,11 @@
 #include <set>
 #include <string>
 
+#include "file_storage.hpp"
 #include "options.hpp"
 #include "settings/settings.hpp"
 #include "sim/profiles.hpp"
+#include "web/settings_json.hpp"
 
 namespace rotord::linux_port {
 
@@ -25,6 +27,14 @@ const char* settings_path_origin(const Options& options);
 /// Puts `profile`'s values over `settings` (the simulator's geometry); false
 /// and `error` when the profile sets an invalid value (a bug in sim/).
 bool apply_profile(const sim::Profile& profile, settings::Settings& settings, std::string& error);
+
+/// Reads the settings file the daemon would read into `out` (which holds the
+/// base: the table's defaults and the profile, if any) the way the daemon
+/// does: an invalid file leaves `out` at the base. `storage_error` says why
+/// the file is unusable ("is a FIFO..."): nothing is read then.
+web::LoadOutcome load_file_settings(FileStorage& storage, const sim::Profile* profile,
+                                    const settings::Settings& base, settings::Settings& out,
+                                    std::string& storage_error);
 
 /// Writes the report to `out`. `given`: the long names of the options given
 /// on the command line ("--hw"). Returns the exit code: 0, 1 when the file
