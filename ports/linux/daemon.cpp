@@ -311,6 +311,11 @@ int Daemon::run() {
   metrics_.start_us = steady_us();
   if (clock_control_) clock_control_->start();
   schedule_tick();
+  // Every port listens (setup() returned true only then): clients may come.
+  notifier_.ready("ready");
+  if (notifier_.watchdog_us() != 0)
+    log::debug("systemd watchdog every %llu ms, fed from the control tick",
+               static_cast<unsigned long long>(notifier_.watchdog_us() / 1000));
   io_.run();
   stop_motors(controller_.get(), gpio_.get());
   const std::string outputs = driver_outputs();
@@ -340,6 +345,7 @@ std::string Daemon::driver_outputs() const {
 
 void Daemon::stop() {
   stop_motors(controller_.get(), gpio_.get());
+  notifier_.stopping();
   save_changed_settings(true);  // a change still in its quiet time
   timer_.cancel();
   servers_.clear();
@@ -363,6 +369,8 @@ void Daemon::schedule_tick() {
     if (ticks_.poll(steady_us())) {
       report_late_tick(before);
       on_tick();
+      // Only a loop that ticks feeds the watchdog.
+      notifier_.tick(steady_us());
     }
     schedule_tick();
   });

@@ -11,6 +11,7 @@
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
+#include "service_notify.hpp"
 #include "settings/settings.hpp"
 #include "sim/sim_rotator.hpp"
 #include "storage/settings_saver.hpp"
@@ -85,6 +86,8 @@ class Daemon final : private web::RebootHook {
   /// The loop's wake-ups for the control tick, on an absolute schedule.
   TickScheduler ticks_{kTickMs * 1000};
   SteadyClock steady_clock_;
+  /// READY=1, WATCHDOG=1 and STOPPING=1 to systemd (nothing outside it).
+  ServiceNotifier notifier_;
   /// Connections, error replies, ticks and saves for GET /metrics; outlives
   /// controller restarts, so counters only reset with the process.
   metrics::Registry metrics_;
