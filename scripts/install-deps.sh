@@ -12,7 +12,7 @@ packages=(
   libhamlib-utils socat netcat-openbsd
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
   liblwip-dev libgpiod-dev
-  libsystemd-dev libavahi-client-dev
+  libsystemd-dev libavahi-client-dev avahi-daemon avahi-utils dbus-daemon util-linux
   prometheus
   clang libclang-rt-14-dev
   chromium

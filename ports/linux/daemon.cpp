@@ -313,6 +313,7 @@ int Daemon::run() {
   schedule_tick();
   // Every port listens (setup() returned true only then): clients may come.
   notifier_.ready("ready");
+  announce();
   if (notifier_.watchdog_us() != 0)
     log::debug("systemd watchdog every %llu ms, fed from the control tick",
                static_cast<unsigned long long>(notifier_.watchdog_us() / 1000));
@@ -346,11 +347,27 @@ std::string Daemon::driver_outputs() const {
 void Daemon::stop() {
   stop_motors(controller_.get(), gpio_.get());
   notifier_.stopping();
+  avahi_.reset();               // withdrawn from the network at once
   save_changed_settings(true);  // a change still in its quiet time
   timer_.cancel();
   servers_.clear();
   serial_lines_.clear();
   io_.stop();
+}
+
+void Daemon::announce() {
+  if (options_.avahi != "on") return;
+  std::error_code ec;
+  if (asio::ip::make_address(options_.bind, ec).is_loopback()) {
+    log::info("avahi: bound to %s, not announced on the network", options_.bind.c_str());
+    return;
+  }
+  const auto port = [](int p) { return static_cast<std::uint16_t>(p); };
+  avahi_ = std::make_unique<AvahiPublisher>(
+      net::ServicePorts{port(options_.web_port), port(options_.rotctld_port),
+                        port(options_.wrc_port), port(options_.gs232_port),
+                        port(options_.easycomm_port), port(options_.seed_port)},
+      ROTORD_VERSION);
 }
 
 std::int64_t Daemon::steady_us() {

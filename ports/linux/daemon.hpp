@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include "avahi_publisher.hpp"
 #include "clock_control.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
@@ -79,6 +80,9 @@ class Daemon final : private web::RebootHook {
   /// Saves what the protocols changed (after the saver's quiet time, or at
   /// once when `now`), and says so.
   void save_changed_settings(bool now);
+  /// Announces the ports through avahi-daemon (--avahi on), unless rotord
+  /// listens on a loopback address nobody else can reach.
+  void announce();
 
   Options options_;
   asio::io_context io_;
@@ -110,6 +114,7 @@ class Daemon final : private web::RebootHook {
   std::chrono::steady_clock::time_point reboot_at_;
   std::vector<std::unique_ptr<TcpServer>> servers_;
   std::vector<std::unique_ptr<SerialTransport>> serial_lines_;
+  std::unique_ptr<AvahiPublisher> avahi_;  ///< --avahi on, not bound to loopback
   std::chrono::steady_clock::time_point wall_start_;
   Millis now_ms_ = 0;
 };

@@ -68,6 +68,11 @@ int main(int argc, char** argv) {
                  "text (\"rotord: ...\" lines) or json (one object per line: time, level, msg)")
       ->check(CLI::IsMember({"text", "json"}))
       ->capture_default_str();
+  app.add_option("--avahi", o.avahi,
+                 "on: announce the web UI (_http._tcp) and rotctld (_rotctld._tcp, the other "
+                 "ports as TXT records) through avahi-daemon when it runs; off: do not")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   bool print_config = false;
   app.add_flag("--print-config", print_config,
                "Print the settings rotord would run with and where each comes from (default, "

@@ -36,7 +36,8 @@ std::vector<OptionRow> option_rows(const Options& o) {
           {"--pty", list(o.ptys)},
           {"--serial", list(o.serials)},
           {"--log-level", o.log_level},
-          {"--log-format", o.log_format}};
+          {"--log-format", o.log_format},
+          {"--avahi", o.avahi}};
 }
 
 }  // namespace
