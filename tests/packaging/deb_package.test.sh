@@ -46,6 +46,26 @@ grep -q 'for group in gpio i2c dialout' "$x/control/postinst" || fail "postinst 
 grep -q "deb-systemd-invoke start" "$x/control/postinst" && fail "the service starts on install"
 sh -n "$x/control/postinst" || fail "postinst syntax"
 dpkg-deb -f "$deb" Depends | grep -q 'libgpiod' || fail "Depends has no libgpiod"
+# The sysusers line, applied to an empty root: a rotord user and group.
+mkdir -p "$x/sysroot/etc"
+systemd-sysusers --root="$x/sysroot" "$x/root/usr/lib/sysusers.d/rotord.conf" >/dev/null 2>&1 ||
+  fail "systemd-sysusers refuses rotord.conf"
+grep -q '^rotord:x:[0-9]*:[0-9]*:.*:/var/lib/rotord:/usr/sbin/nologin$' "$x/sysroot/etc/passwd" ||
+  fail "no rotord user from sysusers"
+# postinst on a machine with gpio and dialout but no i2c group, the system's
+# commands replaced by stubs that log (nothing on this machine changes):
+# rotord joins exactly the groups that exist.
+mkdir -p "$x/stubs"
+for cmd in systemd-sysusers deb-systemd-helper deb-systemd-invoke udevadm; do
+  printf '#!/bin/sh\nexit 0\n' >"$x/stubs/$cmd"
+done
+printf '#!/bin/sh\n[ "$1" = group ] && { [ "$2" = gpio ] || [ "$2" = dialout ]; }\n' >"$x/stubs/getent"
+printf '#!/bin/sh\necho rotord\n' >"$x/stubs/id"
+printf '#!/bin/sh\necho "usermod $*" >>"%s/usermod.log"\n' "$x" >"$x/stubs/usermod"
+chmod +x "$x"/stubs/*
+PATH="$x/stubs:$PATH" sh "$x/control/postinst" configure || fail "postinst configure failed"
+[ "$(cat "$x/usermod.log")" = "usermod -a -G gpio rotord
+usermod -a -G dialout rotord" ] || fail "postinst groups: $(cat "$x/usermod.log" 2>/dev/null)"
 
 # 2. The unit: what the issue asks for, and systemd accepts it.
 for line in Type=notify WatchdogSec= Restart=on-failure User=rotord StateDirectory=rotord \
