@@ -24,6 +24,7 @@ struct Options {
   std::vector<std::string> serials;  ///< --serial PERSONALITY:DEVICE[:BAUD]
   std::string log_level = "info";    ///< error, warn, info or debug (log.hpp)
   std::string log_format = "text";   ///< text or json
+  std::string avahi = "on";          ///< on: announce through avahi-daemon (avahi_publisher.hpp)
 };
 
 }  // namespace rotord::linux_port

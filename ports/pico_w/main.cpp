@@ -367,7 +367,12 @@ void report_settings(const web::LoadOutcome& r) {
   if (!network) std::printf("rotord: Wi-Fi chip init failed; running without network\n");
 
   // wifi.*, net.*, time.* as loaded at boot (they all need a restart).
-  static Wifi wifi(Wifi::config_from(settings, ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000}));
+  Wifi::Config wifi_config =
+      Wifi::config_from(settings, ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000});
+  // Announced by mDNS, as rotord on Linux announces them through Avahi.
+  wifi_config.ports =
+      net::ServicePorts{kHttpPort, kRotctldPort, kWrcPort, kGs232Port, kEasycommPort, 0};
+  static Wifi wifi(wifi_config);
   // WRC MONITOR lines also go to the USB log port as they happen, where the
   // WRC firmware prints them (stdout is that port: pico_stdio_usb on CDC 0).
   static LogPortSink log_port;

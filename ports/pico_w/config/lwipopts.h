@@ -36,12 +36,12 @@
 #define LWIP_DNS 1
 #define LWIP_DHCP 1
 #define LWIP_TCP_KEEPALIVE 1
-// mDNS (rotord.local, _http._tcp): multicast needs IGMP, the responder keeps
+// mDNS (rotord.local, _http._tcp and _rotctld._tcp): multicast needs IGMP, the responder keeps
 // per-netif data and runs a few timers of its own (probing, announcing).
 #define LWIP_MDNS_RESPONDER 1
 #define LWIP_IGMP 1
 #define LWIP_NUM_NETIF_CLIENT_DATA 1
-#define MDNS_MAX_SERVICES 1
+#define MDNS_MAX_SERVICES 2
 // SNTP (apps/sntp, time.sntp_server): one server, by name through DNS. The
 // time goes to sntp_clock.cpp, kept as an offset to the monotonic clock; no
 // RTC is set (GET /api/status time_utc reads it).
