@@ -25,10 +25,7 @@
 #include "pico_crypto.hpp"
 #include "pico_flash.hpp"
 #include "pico_hal.hpp"
-#include "protocol/easycomm_session.hpp"
-#include "protocol/gs232_session.hpp"
-#include "protocol/rotctld_session.hpp"
-#include "protocol/wrc_session.hpp"
+#include "protocol/protocol_registry.hpp"
 #include "rotator/controller.hpp"
 #include "settings/pin_rules.hpp"
 #include "settings/settings.hpp"
@@ -60,16 +57,43 @@ constexpr Millis kTickMs = 10;  // 100 Hz, as on Linux
 // a turning motor within 2 s (12 deg on a 6 deg/s G-5500; the reset puts
 // every pin back to an input with its pull-down, i.e. relays off).
 constexpr std::uint32_t kWatchdogMs = 2000;
-constexpr std::uint16_t kWrcPort = 1234;
-constexpr std::size_t kWrcSlots = 4;  // net.max_clients is clamped to this
-constexpr std::uint16_t kGs232Port = 4601;
-constexpr std::size_t kGs232Slots = 2;  // under 1 KB each; PstRotator or N1MM plus one
-constexpr std::uint16_t kEasycommPort = 4602;
-constexpr std::size_t kEasycommSlots = 2;  // a tracker plus one
-constexpr std::uint16_t kRotctldPort = 4533;
+// Every line protocol of the registry (core/protocol/protocol_registry.hpp)
+// on its TCP port, with a static pool of connection slots each;
+// net.max_clients is clamped to the pool. lwIP's pools (config/lwipopts.h)
+// are sized for these 17 slots plus the web's 4 and 6 listeners.
+using protocol::Personality;
+template <Personality P>
+constexpr std::size_t kTcpSlots = 0;
+template <>
+constexpr std::size_t kTcpSlots<Personality::kWrc> = 4;
 // ~2.6 KB each (a whole reply, the arguments, input held by \pause): Gpredict
 // or SatNOGS, a logger and a rotctl at once.
-constexpr std::size_t kRotctldSlots = 3;
+template <>
+constexpr std::size_t kTcpSlots<Personality::kRotctld> = 3;
+template <>
+constexpr std::size_t kTcpSlots<Personality::kGs232> =
+    2;  // under 1 KB each; PstRotator or N1MM plus one
+template <>
+constexpr std::size_t kTcpSlots<Personality::kEasycomm> = 2;  // a tracker plus one
+// A jog panel or script plus one; about 100 B each.
+template <>
+constexpr std::size_t kTcpSlots<Personality::kSeed> = 2;
+// A new personality in the registry fails to build here until it is served
+// (or this says why not).
+static_assert(protocol::kPersonalityCount == 5, "serve every personality on TCP");
+
+/// Builds a session of personality P for a static pool (returned by value:
+/// guaranteed copy elision builds it in its slot).
+template <Personality P>
+struct MakeSession {
+  const protocol::SessionDeps* deps;
+  typename protocol::SessionOf<P>::type operator()() const {
+    return protocol::SessionOf<P>::make(*deps);
+  }
+};
+template <Personality P>
+using LineService =
+    lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>, MakeSession<P>>;
 constexpr std::uint16_t kHttpPort = 80;
 // A browser holds a page connection and the event stream, plus short API
 // requests; each HTTP session is ~6 KB of RAM (request head and body buffers).
@@ -282,11 +306,9 @@ void report_settings(const web::LoadOutcome& r) {
 
   // USB before stdio: pico_stdio_usb logs on CDC 0 of our TinyUSB device,
   // CDC 1 carries usb.personality (usb_device.c says why two ports).
-  const usb_port::Personality usb_personality =
+  const std::optional<Personality> usb_personality =
       usb_port::personality_from_setting(settings.i(Id::kUsbPersonality));
-  rotord_usb_init(usb_personality == usb_port::Personality::kOff
-                      ? nullptr
-                      : usb_port::personality_name(usb_personality));
+  rotord_usb_init(usb_personality ? usb_port::personality_name(usb_personality) : nullptr);
   stdio_init_all();
   std::printf("rotord %s (Pico W)%s\n", ROTORD_VERSION,
               watchdog_caused_reboot() ? ": restarted by the watchdog" : "");
@@ -343,7 +365,7 @@ void report_settings(const web::LoadOutcome& r) {
   static usb_port::PersonalitySessions usb_sessions(usb_personality, controller, ROTORD_VERSION);
   static TinyUsbCdcPort usb_cdc(ROTORD_USB_PROTOCOL_CDC);
   static std::optional<usb_port::UsbCdcLink> usb_link;
-  if (usb_personality != usb_port::Personality::kOff) {
+  if (usb_personality) {
     usb_link.emplace(usb_cdc, usb_sessions);
     std::printf("rotord: %s on USB (the second USB serial port)\n",
                 usb_port::personality_name(usb_personality));
@@ -372,38 +394,32 @@ void report_settings(const web::LoadOutcome& r) {
   // WRC firmware prints them (stdout is that port: pico_stdio_usb on CDC 0).
   static LogPortSink log_port;
   static protocol::MonitorTap monitor_tap(log_port);
-  auto make_wrc = [] { return protocol::WrcSession(controller, ROTORD_VERSION, &monitor_tap); };
+  static const protocol::SessionDeps deps{controller, ROTORD_VERSION, &monitor_tap};
   // Every server admits by net/admission.hpp with the live settings (idle
   // eviction, per-address cap, allow-list), as on Linux.
-  auto line_config = [&settings](const char* name, std::uint16_t port, std::string_view busy,
-                                 metrics::Protocol protocol) {
+  auto line_config = [&settings](Personality personality) {
+    const protocol::ProtocolInfo& info = protocol::protocol_info(personality);
     lwip_port::ServerConfig config;
-    config.name = name;
-    config.port = port;
+    config.name = info.name.data();  // a string literal
+    config.port = info.tcp_port;
     config.max_clients = static_cast<std::size_t>(settings.i(Id::kNetMaxClients));
-    config.reject_message = busy;
+    config.reject_message = info.refusal;
     config.settings = &settings;
     config.metrics = &registry;
-    config.protocol = protocol;
+    config.protocol = info.metric;
     return config;
   };
-  static lwip_port::StaticService<protocol::WrcSession, kWrcSlots, decltype(make_wrc)> wrc(
-      line_config("WRC text protocol", kWrcPort, protocol::WrcSession::kTooManyConnections,
-                  metrics::Protocol::kWrc),
-      make_wrc);
-  // Yaesu GS-232A/B (gs232.variant) for PstRotator, N1MM+, HRD, Hamlib 601/603.
-  auto make_gs232 = [] { return protocol::Gs232Session(controller); };
-  static lwip_port::StaticService<protocol::Gs232Session, kGs232Slots, decltype(make_gs232)> gs232(
-      line_config("Yaesu GS-232", kGs232Port, protocol::Gs232Session::kTooManyConnections,
-                  metrics::Protocol::kGs232),
-      make_gs232);
-  // Hamlib rotctld for Gpredict, SatNOGS, rotctl -m 2 (docs/protocols/rotctld.md).
-  auto make_rotctld = [] { return protocol::RotctldSession(controller, ROTORD_VERSION); };
-  static lwip_port::StaticService<protocol::RotctldSession, kRotctldSlots, decltype(make_rotctld)>
-      rotctld(
-          line_config("Hamlib rotctld", kRotctldPort, protocol::RotctldSession::kTooManyConnections,
-                      metrics::Protocol::kRotctld),
-          make_rotctld);
+  static LineService<Personality::kWrc> wrc(line_config(Personality::kWrc),
+                                            MakeSession<Personality::kWrc>{&deps});
+  static LineService<Personality::kRotctld> rotctld(line_config(Personality::kRotctld),
+                                                    MakeSession<Personality::kRotctld>{&deps});
+  static LineService<Personality::kGs232> gs232(line_config(Personality::kGs232),
+                                                MakeSession<Personality::kGs232>{&deps});
+  static LineService<Personality::kEasycomm> easycomm(line_config(Personality::kEasycomm),
+                                                      MakeSession<Personality::kEasycomm>{&deps});
+  // The seed protocol: on the Pico's TCP too since issue 11 (port 4603).
+  static LineService<Personality::kSeed> seed(line_config(Personality::kSeed),
+                                              MakeSession<Personality::kSeed>{&deps});
   // POST /api/settings persists to the flash slots (RAM only when the
   // program image would overlap them).
   hal::Storage* const storage = g_flash.region_free() ? &g_saver : nullptr;
@@ -434,16 +450,8 @@ void report_settings(const web::LoadOutcome& r) {
   http_config.protocol = metrics::Protocol::kHttp;
   static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
       http_config, make_http);
-  // Easycomm II/III for Easycomm trackers and Hamlib 202/204 (docs/protocols/easycomm.md).
-  auto make_easycomm = [] { return protocol::EasycommSession(controller, ROTORD_VERSION); };
-  static lwip_port::StaticService<protocol::EasycommSession, kEasycommSlots,
-                                  decltype(make_easycomm)>
-      easycomm(
-          line_config("Easycomm II/III", kEasycommPort,
-                      protocol::EasycommSession::kTooManyConnections, metrics::Protocol::kEasycomm),
-          make_easycomm);
-  lwip_port::TcpServer* const servers[] = {&wrc.server(), &gs232.server(), &rotctld.server(),
-                                           &easycomm.server(), &http.server()};
+  lwip_port::TcpServer* const servers[] = {&wrc.server(),      &rotctld.server(), &gs232.server(),
+                                           &easycomm.server(), &seed.server(),    &http.server()};
   if (network) {
     wifi.begin(now_ms());
     // lwIP listens on every address, so the servers work on the station and
