@@ -185,15 +185,42 @@ FlashSlots g_storage(g_flash);
 // document buffer is the start-up one, free once the settings are loaded.
 // Only the user's changes over g_defaults go to flash (settings_layers.hpp).
 SettingsSaver g_saver(g_settings, g_defaults, g_storage, g_boot_document, sizeof g_boot_document);
-std::optional<PicoAdc> g_az_pot, g_el_pot;
-std::optional<Ma3PioInput> g_az_ma3_pio, g_el_ma3_pio;
-std::optional<Ma3EdgeInput> g_az_ma3_irq, g_el_ma3_irq;
-std::optional<PicoSwitch> g_az_t1, g_az_t2, g_az_limit_cw, g_az_limit_ccw;
-std::optional<PicoSwitch> g_el_limit_up, g_el_limit_down;
-std::optional<PicoSwitch> g_btn_cw, g_btn_ccw, g_btn_up, g_btn_down;
+/// The pins.* settings of one axis's wiring: the Pico's counterpart of the
+/// Linux port's gpiod.* key table (ports/linux/gpiod_io.cpp). "fwd" is CW on
+/// the azimuth and up on the elevation.
+struct AxisPins {
+  const char* name;
+  Id drive, sensor;
+  Id relay_fwd, relay_rev, speed;
+  std::optional<Id> brake;
+  Id pwm_fwd, pwm_rev;
+  Id pot;
+  Id limit_cw, limit_ccw;  ///< L2 / L1 on the azimuth
+  std::optional<Id> t1, t2;
+  Id ma3, button_fwd, button_rev;
+  bool may_use_magnetometer;  ///< the I2C magnetometer is an azimuth sensor only
+};
+
+constexpr AxisPins kAxisPins[] = {
+    {"az", Id::kAzDrive, Id::kAzSensor, Id::kPinAzCw, Id::kPinAzCcw, Id::kPinAzSpeed,
+     Id::kPinAzBrake, Id::kPinAzPwmCw, Id::kPinAzPwmCcw, Id::kPinAzPot, Id::kPinAzL2, Id::kPinAzL1,
+     Id::kPinAzT1, Id::kPinAzT2, Id::kPinAzMa3, Id::kPinBtnCw, Id::kPinBtnCcw, true},
+    {"el", Id::kElDrive, Id::kElSensor, Id::kPinElUp, Id::kPinElDown, Id::kPinElSpeed, std::nullopt,
+     Id::kPinElPwmUp, Id::kPinElPwmDown, Id::kPinElPot, Id::kPinElLimitUp, Id::kPinElLimitDown,
+     std::nullopt, std::nullopt, Id::kPinElMa3, Id::kPinBtnUp, Id::kPinBtnDown, false},
+};
+
+/// The hardware objects of one axis, in static storage (g_axes).
+struct AxisParts {
+  std::optional<PicoDriveSink> drive;
+  std::optional<PicoAdc> pot;
+  std::optional<Ma3PioInput> ma3_pio;
+  std::optional<Ma3EdgeInput> ma3_irq;
+  std::optional<PicoSwitch> t1, t2, limit_cw, limit_ccw, button_fwd, button_rev;
+};
+AxisParts g_axes[2];  // az, el: the order of kAxisPins
 std::optional<PicoSwitch> g_estop;
 std::optional<PicoI2c> g_i2c;
-std::optional<PicoDriveSink> g_az_drive, g_el_drive;
 
 /// Builds the object for a wired pin and returns it, or nullptr.
 template <class T, class... Args>
@@ -285,6 +312,44 @@ void report_settings(const web::LoadOutcome& r) {
   }
 }
 
+/// The pin of `id`, or kNoPin for a role the axis does not have.
+int pin(const settings::Settings& s, std::optional<Id> id) {
+  return id ? s.i(*id) : kNoPin;
+}
+
+/// Step 1 for one axis: its outputs, built and written off.
+void fit_drive(const settings::Settings& s, const AxisPins& k, AxisParts& parts) {
+  parts.drive.emplace(drive_pins(s.i(k.drive), s.i(k.relay_fwd), s.i(k.relay_rev), s.i(k.speed),
+                                 pin(s, k.brake), s.i(k.pwm_fwd), s.i(k.pwm_rev)));
+}
+
+/// Step 2 for one axis: its inputs, from the pins.* settings.
+AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& parts) {
+  AxisIo io;
+  io.drive = &*parts.drive;
+  if (PicoAdc* adc = fit(parts.pot, s.i(k.pot))) {
+    adc->begin();
+    io.pot = adc;
+  }
+  io.t1 = fit_switch(parts.t1, pin(s, k.t1));
+  io.t2 = fit_switch(parts.t2, pin(s, k.t2));
+  io.limit_ccw = fit_switch(parts.limit_ccw, s.i(k.limit_ccw));
+  io.limit_cw = fit_switch(parts.limit_cw, s.i(k.limit_cw));
+  if (s.i(k.sensor) == static_cast<int>(SensorType::kMa3))
+    io.ma3 = fit_ma3(parts.ma3_pio, parts.ma3_irq, s.i(k.ma3), k.name);
+  if (k.may_use_magnetometer && s.i(k.sensor) == static_cast<int>(SensorType::kMag)) {
+    if (PicoI2c* bus = fit(g_i2c, s.i(Id::kPinI2cSda), s.i(Id::kPinI2cScl))) {
+      bus->begin();
+      io.i2c = bus;
+    }
+  }
+  if (s.b(Id::kButtonsEnabled)) {
+    io.button_fwd = fit_switch(parts.button_fwd, s.i(k.button_fwd));
+    io.button_rev = fit_switch(parts.button_rev, s.i(k.button_rev));
+  }
+  return io;
+}
+
 [[noreturn]] void run() {
   // 1. Outputs off. Until the pins are known every GPIO is still an input
   // with its reset pull-down (relays off); the settings come first because
@@ -294,15 +359,13 @@ void report_settings(const web::LoadOutcome& r) {
   apply_wifi_secrets(g_settings);
   const web::LoadOutcome loaded = load_stored_settings();
   const auto p = [&settings](Id id) { return settings.i(id); };
-  g_az_drive.emplace(drive_pins(p(Id::kAzDrive), p(Id::kPinAzCw), p(Id::kPinAzCcw),
-                                p(Id::kPinAzSpeed), p(Id::kPinAzBrake), p(Id::kPinAzPwmCw),
-                                p(Id::kPinAzPwmCcw)));
-  g_el_drive.emplace(drive_pins(p(Id::kElDrive), p(Id::kPinElUp), p(Id::kPinElDown),
-                                p(Id::kPinElSpeed), kNoPin, p(Id::kPinElPwmUp),
-                                p(Id::kPinElPwmDown)));
-  g_az_drive->begin();
+  AxisParts& az = g_axes[0];
+  AxisParts& el = g_axes[1];
+  fit_drive(settings, kAxisPins[0], az);
+  fit_drive(settings, kAxisPins[1], el);
+  az.drive->begin();
   const bool has_el = settings.b(Id::kElEnabled);
-  if (has_el) g_el_drive->begin();
+  if (has_el) el.drive->begin();
 
   // USB before stdio: pico_stdio_usb logs on CDC 0 of our TinyUSB device,
   // CDC 1 carries usb.personality (usb_device.c says why two ports).
@@ -314,44 +377,9 @@ void report_settings(const web::LoadOutcome& r) {
               watchdog_caused_reboot() ? ": restarted by the watchdog" : "");
   report_settings(loaded);
 
-  // 2. Inputs, from the pins.* settings.
-  AxisIo az_io, el_io;
-  az_io.drive = &*g_az_drive;
-  if (PicoAdc* adc = fit(g_az_pot, p(Id::kPinAzPot))) {
-    adc->begin();
-    az_io.pot = adc;
-  }
-  az_io.t1 = fit_switch(g_az_t1, p(Id::kPinAzT1));
-  az_io.t2 = fit_switch(g_az_t2, p(Id::kPinAzT2));
-  az_io.limit_ccw = fit_switch(g_az_limit_ccw, p(Id::kPinAzL1));
-  az_io.limit_cw = fit_switch(g_az_limit_cw, p(Id::kPinAzL2));
-  if (settings.i(Id::kAzSensor) == static_cast<int>(SensorType::kMa3))
-    az_io.ma3 = fit_ma3(g_az_ma3_pio, g_az_ma3_irq, p(Id::kPinAzMa3), "az");
-  if (settings.i(Id::kAzSensor) == static_cast<int>(SensorType::kMag)) {
-    if (PicoI2c* bus = fit(g_i2c, p(Id::kPinI2cSda), p(Id::kPinI2cScl))) {
-      bus->begin();
-      az_io.i2c = bus;
-    }
-  }
-  if (settings.b(Id::kButtonsEnabled)) {
-    az_io.button_fwd = fit_switch(g_btn_cw, p(Id::kPinBtnCw));
-    az_io.button_rev = fit_switch(g_btn_ccw, p(Id::kPinBtnCcw));
-  }
-  if (has_el) {
-    el_io.drive = &*g_el_drive;
-    if (PicoAdc* adc = fit(g_el_pot, p(Id::kPinElPot))) {
-      adc->begin();
-      el_io.pot = adc;
-    }
-    el_io.limit_cw = fit_switch(g_el_limit_up, p(Id::kPinElLimitUp));
-    el_io.limit_ccw = fit_switch(g_el_limit_down, p(Id::kPinElLimitDown));
-    if (settings.i(Id::kElSensor) == static_cast<int>(SensorType::kMa3))
-      el_io.ma3 = fit_ma3(g_el_ma3_pio, g_el_ma3_irq, p(Id::kPinElMa3), "el");
-    if (settings.b(Id::kButtonsEnabled)) {
-      el_io.button_fwd = fit_switch(g_btn_up, p(Id::kPinBtnUp));
-      el_io.button_rev = fit_switch(g_btn_down, p(Id::kPinBtnDown));
-    }
-  }
+  // 2. Inputs, from the pins.* settings (kAxisPins).
+  const AxisIo az_io = fit_inputs(settings, kAxisPins[0], az);
+  const AxisIo el_io = has_el ? fit_inputs(settings, kAxisPins[1], el) : AxisIo{};
   static Controller controller(settings, az_io, el_io);
   if (PicoSwitch* estop = fit_switch(g_estop, p(Id::kPinEstop))) {
     controller.attach_estop(estop);
