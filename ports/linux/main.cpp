@@ -35,24 +35,21 @@ int main(int argc, char** argv) {
   app.add_option("--web-port", o.web_port, "Web UI and REST API port (0 disables)")
       ->check(port)
       ->capture_default_str();
-  app.add_option("--rotctld-port", o.rotctld_port, "Hamlib rotctld port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
-  app.add_option("--wrc-port", o.wrc_port, "WRC text protocol port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
-  app.add_option("--gs232-port", o.gs232_port, "Yaesu GS-232 port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
-  app.add_option("--easycomm-port", o.easycomm_port, "Easycomm II/III port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
-  app.add_option("--seed-port", o.seed_port, "Seed $cmd,arg protocol port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
+  // --wrc-port, --rotctld-port, --gs232-port, --easycomm-port, --seed-port:
+  // one per row of the protocol registry.
+  for (const rotord::protocol::ProtocolInfo& p : rotord::protocol::protocols()) {
+    std::string help = std::string(p.name) + " port (0 disables)";
+    if (!p.tcp_by_default)
+      help += "; off unless given (the Pico W uses " + std::to_string(p.tcp_port) + ")";
+    app.add_option("--" + std::string(p.key) + "-port",
+                   o.line_ports[static_cast<std::size_t>(p.personality)], help)
+        ->check(port)
+        ->capture_default_str();
+  }
   app.add_option("--pty", o.ptys,
-                 "Serve a protocol on a new pseudo-terminal, PERSONALITY[:LINK] (easycomm, seed, "
-                 "...); rotord prints its path and makes LINK a symlink to it. Repeatable")
+                 "Serve a protocol on a new pseudo-terminal, PERSONALITY[:LINK] (wrc, rotctld, "
+                 "gs232, easycomm, seed); rotord prints its path and makes LINK a symlink to it. "
+                 "Repeatable")
       ->take_all()
       ->allow_extra_args(false);
   app.add_option("--serial", o.serials,

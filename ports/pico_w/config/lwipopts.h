@@ -20,9 +20,11 @@
 // copy (lwip_transport.hpp, ServerConfig::is_immutable).
 #define MEMP_NUM_PBUF 32
 
-// Connections: 4 clients on each of up to 4 protocol ports, plus refused
-// clients and pcbs in TIME_WAIT. Listeners: one per protocol port.
-#define MEMP_NUM_TCP_PCB 20
+// Connections: the static slots of main.cpp (web 4, WRC 4, rotctld 3,
+// GS-232 2, Easycomm 2, seed 2: 17), plus 5 for refused clients and pcbs in
+// TIME_WAIT. Listeners: one per protocol port (web, WRC, rotctld, GS-232,
+// Easycomm, seed: 6).
+#define MEMP_NUM_TCP_PCB 22
 #define MEMP_NUM_TCP_PCB_LISTEN 6
 #define MEMP_NUM_UDP_PCB 6
 
