@@ -379,11 +379,14 @@ void Daemon::announce() {
     log::info("avahi: bound to %s, not announced on the network", options_.bind.c_str());
     return;
   }
-  const auto port = [](int p) { return static_cast<std::uint16_t>(p); };
+  const auto port = [this](protocol::Personality p) {
+    return static_cast<std::uint16_t>(options_.line_ports[static_cast<std::size_t>(p)]);
+  };
+  using protocol::Personality;
   avahi_ = std::make_unique<AvahiPublisher>(
-      net::ServicePorts{port(options_.web_port), port(options_.rotctld_port),
-                        port(options_.wrc_port), port(options_.gs232_port),
-                        port(options_.easycomm_port), port(options_.seed_port)},
+      net::ServicePorts{static_cast<std::uint16_t>(options_.web_port), port(Personality::kRotctld),
+                        port(Personality::kWrc), port(Personality::kGs232),
+                        port(Personality::kEasycomm), port(Personality::kSeed)},
       ROTORD_VERSION);
 }
 

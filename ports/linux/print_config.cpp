@@ -14,7 +14,7 @@ namespace rotord::linux_port {
 namespace {
 
 struct OptionRow {
-  const char* name;
+  std::string name;
   std::string value;
 };
 
@@ -24,20 +24,21 @@ std::vector<OptionRow> option_rows(const Options& o) {
     for (const auto& item : items) text += (text.empty() ? "" : " ") + item;
     return text;
   };
-  return {{"--hw", o.hw},
-          {"--sim", o.hw == "sim" ? o.sim_profile : "(not used under --hw " + o.hw + ")"},
-          {"--bind", o.bind},
-          {"--web-port", std::to_string(o.web_port)},
-          {"--rotctld-port", std::to_string(o.rotctld_port)},
-          {"--wrc-port", std::to_string(o.wrc_port)},
-          {"--gs232-port", std::to_string(o.gs232_port)},
-          {"--easycomm-port", std::to_string(o.easycomm_port)},
-          {"--seed-port", std::to_string(o.seed_port)},
-          {"--pty", list(o.ptys)},
-          {"--serial", list(o.serials)},
-          {"--log-level", o.log_level},
-          {"--log-format", o.log_format},
-          {"--avahi", o.avahi}};
+  std::vector<OptionRow> rows{
+      {"--hw", o.hw},
+      {"--sim", o.hw == "sim" ? o.sim_profile : "(not used under --hw " + o.hw + ")"},
+      {"--bind", o.bind},
+      {"--web-port", std::to_string(o.web_port)}};
+  // Every line protocol's --KEY-port, from the protocol registry.
+  for (const protocol::ProtocolInfo& p : protocol::protocols())
+    rows.push_back({"--" + std::string(p.key) + "-port",
+                    std::to_string(o.line_ports[static_cast<std::size_t>(p.personality)])});
+  rows.insert(rows.end(), {{"--pty", list(o.ptys)},
+                           {"--serial", list(o.serials)},
+                           {"--log-level", o.log_level},
+                           {"--log-format", o.log_format},
+                           {"--avahi", o.avahi}});
+  return rows;
 }
 
 }  // namespace
@@ -99,7 +100,7 @@ int print_config(const Options& options, const std::set<std::string>& given, std
                "#\n# options (\"given\": on the command line; under systemd that is\n"
                "# ROTORD_OPTS in /etc/rotord/rotord.conf)\n");
   for (const auto& row : option_rows(options)) {
-    std::fprintf(out, "%-34s %-24s # %s\n", row.name, row.value.c_str(),
+    std::fprintf(out, "%-34s %-24s # %s\n", row.name.c_str(), row.value.c_str(),
                  given.count(row.name) != 0 ? "given" : "default");
   }
 
