@@ -16,8 +16,9 @@ int main(int argc, char** argv) {
   using namespace rotord::bench;
   const char* out_path = nullptr;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--ticks") == 0 && i + 1 < argc) {
-      run_ticks_only(std::atol(argv[i + 1]));  // for callgrind
+    const bool ticks = std::strcmp(argv[i], "--ticks") == 0;
+    if ((ticks || std::strcmp(argv[i], "--sim-only") == 0) && i + 1 < argc) {
+      run_steps_only(std::atol(argv[i + 1]), ticks);  // for callgrind
       return 0;
     }
     if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out_path = argv[++i];

@@ -10,8 +10,9 @@ namespace rotord::bench {
 /// callgrind one (bench/run.py footprint).
 Result run_tick_cost();
 
-/// Runs `ticks` control ticks with nothing else around them, for callgrind's
-/// instruction count (rotord_bench --ticks N).
-void run_ticks_only(long ticks);
+/// Runs `ticks` steps of the plant, each with a control tick when `control`
+/// is set, for callgrind's instruction count: rotord_bench --ticks N minus
+/// rotord_bench --sim-only N, over N, is what one tick executes.
+void run_steps_only(long ticks, bool control);
 
 }  // namespace rotord::bench
