@@ -11,6 +11,7 @@
 #include "control_quality.hpp"
 #include "results.hpp"
 #include "tick_cost.hpp"
+#include "tracking_error.hpp"
 
 int main(int argc, char** argv) {
   using namespace rotord::bench;
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   for (Result& r : run_control_quality()) results.push_back(std::move(r));
+  for (Result& r : run_tracking_error()) results.push_back(std::move(r));
   results.push_back(run_tick_cost());
   std::FILE* out = out_path ? std::fopen(out_path, "w") : stdout;
   if (out == nullptr) {
