@@ -116,9 +116,9 @@ Run run_one(const sim::Profile& profile, Controller_ who, const Scenario& sc) {
     controller->begin(0);
     controller->go_to(static_cast<float>(sc.target_deg), std::nullopt, AzTarget::kUnwrapped);
   } else if (who == Controller_::kWrc) {
-    peer = std::make_unique<WrcTwoSpeed>(ax.plant.drive, kToleranceDeg);
+    peer = std::make_unique<WrcTwoSpeed>(ax.plant.drive, ax.plant.has_brake, kToleranceDeg);
   } else {
-    peer = std::make_unique<PicoRotorSlowZone>(ax.plant.drive);
+    peer = std::make_unique<PicoRotorSlowZone>(ax.plant.drive, ax.plant.has_brake);
   }
 
   Run r;

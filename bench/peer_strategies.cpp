@@ -5,7 +5,7 @@
 
 namespace rotord::bench {
 
-DriveOutputs drive_outputs(sim::DriveKind drive, int dir, double duty) {
+DriveOutputs drive_outputs(sim::DriveKind drive, bool has_brake, int dir, double duty) {
   DriveOutputs out;
   if (dir == 0) return out;
   if (drive == sim::DriveKind::kHBridge) {
@@ -13,7 +13,7 @@ DriveOutputs drive_outputs(sim::DriveKind drive, int dir, double duty) {
     return out;
   }
   out.set(dir > 0 ? OutputChannel::kRelayCw : OutputChannel::kRelayCcw, 1.0f);
-  out.set(OutputChannel::kBrake, 1.0f);  // released while driving (ignored without a brake)
+  if (has_brake) out.set(OutputChannel::kBrake, 1.0f);  // released while driving
   return out;
 }
 
@@ -34,14 +34,14 @@ DriveOutputs WrcTwoSpeed::step(double error_deg) {
     duty = kSlowDuty +
            (1.0 - kSlowDuty) * (abs_err - kSlowWithinDeg) / (kFastBeyondDeg - kSlowWithinDeg);
   }
-  return drive_outputs(drive_, dir_, duty);
+  return drive_outputs(drive_, has_brake_, dir_, duty);
 }
 
 DriveOutputs PicoRotorSlowZone::step(double error_deg) {
   const double abs_err = std::fabs(error_deg);
   if (abs_err <= 1.0) return {};
   const double duty = abs_err < 5.0 ? 0.30 + (0.50 - 0.30) * abs_err / 5.0 : 1.0;
-  return drive_outputs(drive_, error_deg > 0 ? 1 : -1, duty);
+  return drive_outputs(drive_, has_brake_, error_deg > 0 ? 1 : -1, duty);
 }
 
 }  // namespace rotord::bench

@@ -25,8 +25,8 @@ class PeerStrategy {
 /// which coasts ~0.9 deg, would hunt forever around a 0.3 deg window).
 class WrcTwoSpeed final : public PeerStrategy {
  public:
-  WrcTwoSpeed(sim::DriveKind drive, double restart_deg)
-      : drive_(drive), restart_deg_(restart_deg) {}
+  WrcTwoSpeed(sim::DriveKind drive, bool has_brake, double restart_deg)
+      : drive_(drive), has_brake_(has_brake), restart_deg_(restart_deg) {}
   const char* name() const override { return "wrc"; }
   int loop_ms() const override { return 10; }
   DriveOutputs step(double error_deg) override;
@@ -38,6 +38,7 @@ class WrcTwoSpeed final : public PeerStrategy {
 
  private:
   sim::DriveKind drive_;
+  bool has_brake_;
   double restart_deg_;
   bool driving_ = false;
   int dir_ = 0;
@@ -48,17 +49,18 @@ class WrcTwoSpeed final : public PeerStrategy {
 /// model. On a relay plant the duty is just on/off.
 class PicoRotorSlowZone final : public PeerStrategy {
  public:
-  explicit PicoRotorSlowZone(sim::DriveKind drive) : drive_(drive) {}
+  PicoRotorSlowZone(sim::DriveKind drive, bool has_brake) : drive_(drive), has_brake_(has_brake) {}
   const char* name() const override { return "picorotor"; }
   int loop_ms() const override { return 50; }
   DriveOutputs step(double error_deg) override;
 
  private:
   sim::DriveKind drive_;
+  bool has_brake_;
 };
 
 /// Outputs that drive `dir` (+1 CW, -1 CCW, 0 stop) at `duty` on this drive
 /// kind (relay plants ignore the duty; a brake is released while driving).
-DriveOutputs drive_outputs(sim::DriveKind drive, int dir, double duty);
+DriveOutputs drive_outputs(sim::DriveKind drive, bool has_brake, int dir, double duty);
 
 }  // namespace rotord::bench
