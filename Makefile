@@ -24,7 +24,7 @@ test: build
 
 bench: build
 	@cmake --build --preset $(PRESET) --target benchmarks -j $(JOBS)
-	./$(BUILD_DIR)/bench/rotord_bench
+	python3 bench/run.py --build-dir $(BUILD_DIR)
 
 embedded: deps
 	@cmake --preset embedded >/dev/null

@@ -17,6 +17,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libasio-dev libcli11-dev nlohmann-json3-dev
   libhamlib-utils socat netcat-openbsd
+  valgrind
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
   liblwip-dev libgpiod-dev
   avahi-daemon avahi-utils dbus-daemon util-linux
