@@ -7,6 +7,7 @@
 #include "motion/angles.hpp"
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol {
@@ -58,13 +59,14 @@ std::string_view next_token(std::string_view& rest) {
   while (i < rest.size() && is_separator(rest[i])) ++i;
   std::size_t j = i;
   while (j < rest.size() && !is_separator(rest[j])) ++j;
-  const std::string_view token = rest.substr(i, j - i);
+  const std::string_view token = text::slice(rest, i, j - i);
   rest.remove_prefix(j);
   return token;
 }
 
 bool starts_with(std::string_view token, std::string_view prefix) {
-  return token.size() >= prefix.size() && text::iequals(token.substr(0, prefix.size()), prefix);
+  return token.size() >= prefix.size() &&
+         text::iequals(text::slice(token, 0, prefix.size()), prefix);
 }
 
 bool all_letters(std::string_view s) {
@@ -125,7 +127,7 @@ void EasycommSession::handle_line(std::string_view line, ByteSink& out) {
 bool EasycommSession::parse_token(std::string_view token, std::string_view& rest,
                                   LineRequest& request, ByteSink& out) {
   auto value_of = [&](std::optional<float>& target) {
-    const std::string_view value = token.substr(2);
+    const std::string_view value = text::slice(token, 2);
     double deg = 0;
     if (!text::parse_double(value, deg)) return false;
     target = static_cast<float>(deg);
@@ -156,7 +158,7 @@ bool EasycommSession::parse_token(std::string_view token, std::string_view& rest
   if (starts_with(token, "VL") || starts_with(token, "VR") || starts_with(token, "VU") ||
       starts_with(token, "VD")) {
     long velocity = 0;
-    return (text::parse_int(token.substr(2), velocity) && velocity >= 0) || reject("SYNTAX");
+    return (text::parse_int(text::slice(token, 2), velocity) && velocity >= 0) || reject("SYNTAX");
   }
   if (starts_with(token, "CR") || starts_with(token, "CW")) {
     // The register may follow as its own token ("CR 1", as Hamlib writes it).
@@ -179,7 +181,7 @@ bool EasycommSession::parse_token(std::string_view token, std::string_view& rest
 
 void EasycommSession::run_token(std::string_view token, std::string_view& rest, ByteSink& out) {
   auto is = [&](std::string_view prefix) { return starts_with(token, prefix); };
-  const std::string_view value = token.size() > 2 ? token.substr(2) : std::string_view();
+  const std::string_view value = token.size() > 2 ? text::slice(token, 2) : std::string_view();
 
   // Moves, park, reset and register writes: refused to a read-only client
   // (access.control_networks) with an alarm. SA and SE (stop) still work.
@@ -247,12 +249,12 @@ void EasycommSession::read_config(std::string_view reg, ByteSink& out) {
 void EasycommSession::write_config(std::string_view arg, ByteSink& out) {
   const std::size_t comma = arg.find(',');
   if (comma == std::string_view::npos) return alarm(out, "SYNTAX");
-  const std::optional<Id> id = find_register(arg.substr(0, comma));
+  const std::optional<Id> id = find_register(text::slice(arg, 0, comma));
   if (!id) return alarm(out, "UNKNOWN");
   // Secrets and the access rules are written through the web or REST only.
   if (!settings::line_writable(*id)) return alarm(out, "DENIED");
   // A value that breaks a cross-setting rule (a min above its max) is undone.
-  if (controller_.settings().update_from_text(*id, arg.substr(comma + 1)).error != Error::kOk)
+  if (controller_.settings().update_from_text(*id, text::slice(arg, comma + 1)).error != Error::kOk)
     alarm(out, "RANGE");
 }
 

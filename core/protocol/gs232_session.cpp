@@ -5,6 +5,7 @@
 #include "protocol/gs232_calibration.hpp"
 #include "protocol/gs232_help.hpp"
 #include "rotator/controller.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol {
@@ -105,7 +106,7 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
   // reply; empty commands are ignored so that nothing answers it.
   if (line.empty()) return;
   const char cmd = upper(line[0]);
-  const std::string_view rest = line.substr(1);
+  const std::string_view rest = text::slice(line, 1);
   // Turning, speed, timed lists, calibration and P36/P45: refused with the
   // controller's error to a read-only client (access.control_networks).
   // S, A and E (stop) are not among them.
