@@ -1,10 +1,10 @@
 #pragma once
 #include <optional>
 
-#include "axis/axis_id.hpp"
-#include "axis/sequencer.hpp"
 #include "protocol/line_assembler.hpp"
 #include "protocol/session.hpp"
+#include "util/axis_id.hpp"
+#include "util/direction.hpp"
 
 namespace rotord::protocol {
 
