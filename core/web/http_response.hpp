@@ -2,7 +2,7 @@
 #include <cstddef>
 #include <string_view>
 
-#include "protocol/session.hpp"
+#include "util/byte_sink.hpp"
 #include "web/json_writer.hpp"
 
 namespace rotord::web {
