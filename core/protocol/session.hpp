@@ -1,8 +1,8 @@
 #pragma once
 #include <string_view>
 
-#include "access/line_access.hpp"
 #include "access/peer.hpp"
+#include "net/line_access.hpp"
 #include "util/byte_sink.hpp"
 #include "util/time.hpp"
 
