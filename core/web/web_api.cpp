@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "json/json_reader.hpp"
 #include "util/utc_time.hpp"
-#include "web/json_reader.hpp"
 
 namespace rotord::web {
 namespace {

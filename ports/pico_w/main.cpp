@@ -15,6 +15,7 @@
 
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
+#include "json/settings_json.hpp"
 #include "log_port.hpp"
 #include "loop/tick_scheduler.hpp"
 #include "lwip_transport.hpp"
@@ -38,7 +39,6 @@
 #include "usb_cdc_port.hpp"
 #include "usb_personality.hpp"
 #include "web/http_session.hpp"
-#include "web/settings_json.hpp"
 #include "web/web_api.hpp"
 #include "wifi.hpp"
 #include "wifi_secrets.h"

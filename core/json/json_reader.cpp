@@ -1,4 +1,4 @@
-#include "web/json_reader.hpp"
+#include "json/json_reader.hpp"
 
 #include "util/slice.hpp"
 #include "util/text.hpp"

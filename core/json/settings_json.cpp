@@ -1,4 +1,4 @@
-#include "web/settings_json.hpp"
+#include "json/settings_json.hpp"
 
 #include <cstring>
 
