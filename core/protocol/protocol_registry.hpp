@@ -10,12 +10,12 @@
 #include <span>
 #include <string_view>
 
-#include "metrics/registry.hpp"
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "protocol/seed_session.hpp"
 #include "protocol/wrc_session.hpp"
+#include "util/metrics_protocol.hpp"
 
 namespace rotord::protocol {
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <string_view>
 
+#include "json/settings_json.hpp"
 #include "settings/settings.hpp"
-#include "web/settings_json.hpp"
 
 namespace {
 

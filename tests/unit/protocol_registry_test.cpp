@@ -10,6 +10,7 @@
 #include <string>
 
 #include "fake_rotator.hpp"
+#include "metrics/registry.hpp"
 #include "string_sink.hpp"
 
 namespace rotord::protocol {
