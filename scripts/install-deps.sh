@@ -13,6 +13,7 @@ packages=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
   liblwip-dev libgpiod-dev libmbedtls-dev
   prometheus
+  libmosquitto-dev mosquitto mosquitto-clients python3-jsonschema
   clang libclang-rt-14-dev
   chromium
 )

@@ -72,19 +72,25 @@ Bridge::Fingerprint Bridge::fingerprint() const {
   f.speed_pct = s.speed_pct;
   f.fault = s.any_fault();
   f.lock = api_->controller().control_lock().held();
-  f.az_tenths = s.az.position_valid ? tenths(s.az.position_deg) : -100000;
+  f.az_valid = s.az.position_valid;
   f.az_target = s.az.has_target;
   f.az_target_tenths = s.az.has_target ? tenths(s.az.target_deg) : 0;
   f.az_state = static_cast<int>(s.az.state);
   f.az_fault = static_cast<int>(s.az.fault);
   if (s.el.present) {
-    f.el_tenths = s.el.position_valid ? tenths(s.el.position_deg) : -100000;
+    f.el_valid = s.el.position_valid;
     f.el_target = s.el.has_target;
     f.el_target_tenths = s.el.has_target ? tenths(s.el.target_deg) : 0;
     f.el_state = static_cast<int>(s.el.state);
     f.el_fault = static_cast<int>(s.el.fault);
   }
   return f;
+}
+
+bool Bridge::position_changed() const {
+  const RotatorStatus s = api_->controller().status();
+  if (std::fabs(s.az.position_deg - last_az_deg_) >= kPositionStepDeg) return true;
+  return s.el.present && std::fabs(s.el.position_deg - last_el_deg_) >= kPositionStepDeg;
 }
 
 void Bridge::poll(Millis now_ms) {
@@ -100,7 +106,7 @@ void Bridge::poll(Millis now_ms) {
     have_published_ = false;
   }
   const Fingerprint f = fingerprint();
-  const bool changed = !have_published_ || !(f == last_);
+  const bool changed = !have_published_ || !(f == last_) || position_changed();
   const int hz = api_->settings().i(Id::kMqttStateHz);
   const Millis period_ms = 1000 / (hz < 1 ? 1 : hz);
   const Millis since_ms = now_ms - last_publish_ms_;
@@ -116,6 +122,9 @@ void Bridge::poll(Millis now_ms) {
   if (!due) return;
   if (publish_state()) {
     last_ = f;
+    const RotatorStatus s = api_->controller().status();
+    last_az_deg_ = s.az.position_deg;
+    last_el_deg_ = s.el.present ? s.el.position_deg : 0.0f;
     have_published_ = true;
     last_publish_ms_ = now_ms;
   }

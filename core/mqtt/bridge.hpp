@@ -34,6 +34,9 @@ class Bridge {
   static constexpr std::size_t kMaxDiscoveryBytes = 1024;
   /// The fastest the state is ever published (mqtt.state_hz's maximum).
   static constexpr Millis kMinStateGapMs = 100;
+  /// A standing rotator's position must change this much to be published
+  /// (a pot's noise is not a change); while moving, mqtt.state_hz rules.
+  static constexpr float kPositionStepDeg = 0.5f;
 
   /// `prefix` and `node_id` are copied.
   Bridge(web::Api& api, Transport& transport, std::string_view prefix, std::string_view node_id,
@@ -66,13 +69,15 @@ class Bridge {
     int speed_pct = 0;
     bool fault = false;
     bool lock = false;
-    int az_tenths = 0, el_tenths = 0;
+    bool az_valid = false, el_valid = false;
     int az_target_tenths = 0, el_target_tenths = 0;
     bool az_target = false, el_target = false;
     int az_state = 0, el_state = 0, az_fault = 0, el_fault = 0;
     bool operator==(const Fingerprint&) const = default;
   };
   Fingerprint fingerprint() const;
+  /// Whether a position moved by kPositionStepDeg since the last publish.
+  bool position_changed() const;
   bool publish_state();
   void publish_discovery();
   void publish_result(std::string_view command, int status, std::string_view body);
@@ -90,6 +95,8 @@ class Bridge {
   bool was_connected_ = false;
   bool have_published_ = false;
   Fingerprint last_;
+  float last_az_deg_ = 0.0f;
+  float last_el_deg_ = 0.0f;
   Millis last_publish_ms_ = 0;
   std::uint32_t states_published_ = 0;
   std::uint32_t commands_handled_ = 0;
