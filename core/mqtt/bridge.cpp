@@ -103,6 +103,7 @@ void Bridge::poll(Millis now_ms) {
     // A (re)connection: the broker may have lost everything retained.
     was_connected_ = true;
     if (api_->settings().b(Id::kMqttDiscovery)) publish_discovery();
+    publish_info();
     have_published_ = false;
   }
   const Fingerprint f = fingerprint();
@@ -146,7 +147,11 @@ bool Bridge::publish_state() {
 
 void Bridge::on_message(std::string_view topic, std::string_view payload, bool oversized) {
   const std::string_view name = command_name(prefix(), topic);
-  if (name.empty()) return;  // not ours (the subscription is <prefix>/cmd/+)
+  if (name.empty()) {
+    // Another rotord's (or our own) state, availability or info.
+    if (station_ != nullptr && !oversized) station_->on_message(topic, payload);
+    return;
+  }
   ++commands_handled_;
   char name_copy[16];
   const std::string_view command(name_copy,
@@ -201,6 +206,25 @@ void Bridge::publish_result(std::string_view command, int status, std::string_vi
   const std::size_t n = join_topic(prefix(), "result", topic_, sizeof topic_);
   if (n == 0) return;
   transport_.publish(std::string_view(topic_, n), std::string_view(message_, len + 1), false);
+}
+
+void Bridge::set_web_url(std::string_view url) {
+  copy_text(url, web_url_, sizeof web_url_);
+}
+
+void Bridge::publish_info() {
+  FixedSink sink(message_, sizeof message_);
+  {
+    web::JsonWriter w(sink);
+    w.begin_object()
+        .member("rotord", ROTORD_VERSION)
+        .member("name", device_name_)
+        .member("web", web_url_)
+        .end_object();
+  }
+  const std::size_t n = join_topic(prefix(), "info", topic_, sizeof topic_);
+  if (n == 0 || sink.overflowed()) return;
+  transport_.publish(std::string_view(topic_, n), sink.view(), true);
 }
 
 void Bridge::publish_discovery() {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "mqtt/station.hpp"
 #include "mqtt/topics.hpp"
 #include "util/time.hpp"
 #include "web/web_api.hpp"
@@ -42,6 +43,13 @@ class Bridge {
   Bridge(web::Api& api, Transport& transport, std::string_view prefix, std::string_view node_id,
          std::string_view device_name);
 
+  /// Where this rotord's web UI is (published retained on <prefix>/info for
+  /// the other rotords' station pages); copied.
+  void set_web_url(std::string_view url);
+  /// Messages that are not commands go to `station` (the port subscribes to
+  /// the other rotords' topics); nullptr: ignored.
+  void set_station(Station* station) { station_ = station; }
+
   /// A new controller (POST /api/reboot) comes with a new API.
   void set_api(web::Api& api) { api_ = &api; }
 
@@ -80,6 +88,7 @@ class Bridge {
   bool position_changed() const;
   bool publish_state();
   void publish_discovery();
+  void publish_info();
   void publish_result(std::string_view command, int status, std::string_view body);
 
   web::Api* api_;
@@ -88,6 +97,8 @@ class Bridge {
   std::size_t prefix_len_ = 0;
   char node_id_[48] = {};
   char device_name_[72] = {};
+  char web_url_[Station::kMaxUrlBytes] = {};
+  Station* station_ = nullptr;
   char availability_[kMaxTopicBytes] = {};
   std::size_t availability_len_ = 0;
   char command_filter_[kMaxTopicBytes] = {};

@@ -271,6 +271,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       {"/api/settings", false, Need::kRead, false},
       {"/api/settings/schema", false, Need::kRead, false},
       {"/api/auth", false, Need::kRead, false},
+      {"/api/station", false, Need::kRead, false},
       {"/api/tokens", false, Need::kAdmin, false},
       {"/api/goto", true, Need::kControl, true},
       {"/api/move", true, Need::kControl, true},
@@ -372,6 +373,12 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       get_settings(out, options);
     } else if (path == "/api/auth") {
       get_auth(caller, out, options);
+    } else if (path == "/api/station") {
+      if (station_ == nullptr) {
+        send_error(out, 404, "no station: MQTT is off (mqtt.enabled)", options);
+      } else {
+        send_json(out, 200, options, [this](JsonWriter& w) { station_->write_station(w); });
+      }
     } else if (path == "/api/tokens") {
       get_tokens(out, options);
     } else {

@@ -9,6 +9,7 @@
 #include "web/http_request.hpp"
 #include "web/http_response.hpp"
 #include "web/settings_json.hpp"
+#include "web/station_source.hpp"
 #include "web/web_auth.hpp"
 
 namespace rotord::web {
@@ -119,6 +120,8 @@ class Api {
   void write_status(JsonWriter& w) const;
   Controller& controller() { return ctx_.controller; }
   WebAuth& auth() { return auth_; }
+  /// GET /api/station's data (the MQTT station); nullptr: 404.
+  void set_station(const StationSource* station) { station_ = station; }
 
  private:
   /// A failed login (or a refused credential): counted by the access layer
@@ -175,6 +178,7 @@ class Api {
 
   ApiContext ctx_;
   WebAuth auth_;
+  const StationSource* station_ = nullptr;
   Caller last_caller_;
   Millis transport_now_ = 0;
   std::array<DeadMan, 2> dead_man_{};

@@ -199,7 +199,9 @@ bool Daemon::start_controller() {
   api_context.pbkdf2_slice = 500;
   api_context.log = &access_log_;
   api_ = std::make_unique<web::Api>(api_context);
-  mqtt_ = MqttClient::create(settings_, host_name_, *api_);
+  mqtt_ = MqttClient::create(settings_, host_name_,
+                             "http://" + host_name_ + ":" + std::to_string(options_.web_port) + "/",
+                             *api_);
 
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);

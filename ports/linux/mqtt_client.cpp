@@ -23,7 +23,8 @@ std::string text(const settings::Settings& s, Id id) {
 }  // namespace
 
 std::unique_ptr<MqttClient> MqttClient::create(const settings::Settings& settings,
-                                               const std::string& host_name, web::Api& api) {
+                                               const std::string& host_name,
+                                               const std::string& web_url, web::Api& api) {
   if (!settings.b(Id::kMqttEnabled)) return nullptr;
   char prefix[mqtt::kMaxPrefixBytes + 1];
   if (mqtt::make_prefix(settings.text(Id::kMqttPrefix), host_name, prefix, sizeof prefix) == 0) {
@@ -39,13 +40,17 @@ std::unique_ptr<MqttClient> MqttClient::create(const settings::Settings& setting
   mqtt::make_node_id(client_id, node_id, sizeof node_id);
   std::unique_ptr<MqttClient> client(new MqttClient(
       api, prefix, node_id, "rotord " + (host_name.empty() ? client_id : host_name)));
+  client->bridge_.set_web_url(web_url);
   if (!client->start(settings, client_id)) return nullptr;
   return client;
 }
 
 MqttClient::MqttClient(web::Api& api, const std::string& prefix, const std::string& node_id,
                        const std::string& device_name)
-    : bridge_(api, *this, prefix, node_id, device_name) {}
+    : api_(api), bridge_(api, *this, prefix, node_id, device_name) {
+  bridge_.set_station(&station_);
+  api_.set_station(&station_);
+}
 
 bool MqttClient::start(const settings::Settings& settings, const std::string& client_id) {
   static const int lib_init = mosquitto_lib_init();
@@ -84,6 +89,7 @@ bool MqttClient::start(const settings::Settings& settings, const std::string& cl
 }
 
 MqttClient::~MqttClient() {
+  api_.set_station(nullptr);
   if (mosq_ == nullptr) return;
   if (connected_.load()) {
     // A clean goodbye sends no will: say offline ourselves.
@@ -149,6 +155,9 @@ void MqttClient::on_connect(mosquitto* m, void* self, int rc) {
                     kOnline.data(), 1, true);
   const std::string filter(c->bridge_.command_filter());
   mosquitto_subscribe(m, nullptr, filter.c_str(), 1);
+  // The station page: every rotord on a two-level prefix (rotord/<hostname>).
+  static const char* const kStation[] = {"+/+/state", "+/+/availability", "+/+/info"};
+  for (const char* topic : kStation) mosquitto_subscribe(m, nullptr, topic, 0);
   log::info("mqtt: connected to %s:%d", c->host_.c_str(), c->port_);
   c->connected_ = true;  // the loop republishes discovery and state
 }
@@ -164,6 +173,16 @@ void MqttClient::on_message(mosquitto* /*m*/, void* self, const mosquitto_messag
   in.topic = message->topic;
   const std::size_t length =
       message->payloadlen > 0 ? static_cast<std::size_t>(message->payloadlen) : 0;
+  const bool command = !mqtt::command_name(c->bridge_.prefix(), in.topic).empty();
+  if (!command) {
+    // Another rotord's topics (or ours echoed), for the station page.
+    if (length > mqtt::Bridge::kMaxStateBytes) return;
+    in.payload.assign(static_cast<const char*>(message->payload), length);
+    std::lock_guard<std::mutex> lock(c->mutex_);
+    if (c->station_inbox_.size() >= kMaxStationInbox) c->station_inbox_.pop_front();
+    c->station_inbox_.push_back(std::move(in));
+    return;
+  }
   if (length > mqtt::Bridge::kMaxCommandBytes) {
     in.oversized = true;  // answered 413, never read
   } else if (length > 0) {
@@ -186,11 +205,14 @@ bool MqttClient::publish(std::string_view topic, std::string_view payload, bool 
 
 void MqttClient::poll(Millis wall_ms) {
   std::deque<Inbound> arrived;
+  std::deque<Inbound> station;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     arrived.swap(inbox_);
+    station.swap(station_inbox_);
   }
   for (const Inbound& in : arrived) bridge_.on_message(in.topic, in.payload, in.oversized);
+  for (const Inbound& in : station) bridge_.on_message(in.topic, in.payload, false);
   bridge_.poll(wall_ms);
 }
 

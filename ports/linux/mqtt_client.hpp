@@ -30,9 +30,14 @@ class MqttClient final : private mqtt::Transport {
   static constexpr int kMinBackoffS = 1;
   static constexpr int kMaxBackoffS = 30;
 
+  /// Other rotords' state messages waiting; more are dropped.
+  static constexpr std::size_t kMaxStationInbox = 32;
+
   /// nullptr when mqtt.enabled is off or the settings cannot work (logged).
+  /// `web_url`: where this rotord's web UI is, for the station pages.
   static std::unique_ptr<MqttClient> create(const settings::Settings& settings,
-                                            const std::string& host_name, web::Api& api);
+                                            const std::string& host_name,
+                                            const std::string& web_url, web::Api& api);
   ~MqttClient() override;
   MqttClient(const MqttClient&) = delete;
   MqttClient& operator=(const MqttClient&) = delete;
@@ -57,6 +62,8 @@ class MqttClient final : private mqtt::Transport {
   static void on_disconnect(mosquitto* m, void* self, int rc);
   static void on_message(mosquitto* m, void* self, const mosquitto_message* message);
 
+  web::Api& api_;
+  mqtt::Station station_;  ///< every rotord seen on the broker (GET /api/station)
   mqtt::Bridge bridge_;
   mosquitto* mosq_ = nullptr;
   std::string host_;
@@ -67,6 +74,7 @@ class MqttClient final : private mqtt::Transport {
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<Inbound> inbox_;
+  std::deque<Inbound> station_inbox_;
   std::uint64_t dropped_ = 0;
 };
 

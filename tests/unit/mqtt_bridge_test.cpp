@@ -173,3 +173,47 @@ TEST_F(MqttBridge, DiscoveryOnConnectAndAgainAfterAReconnect) {
 
 }  // namespace
 }  // namespace rotord::mqtt
+
+namespace rotord::mqtt {
+namespace {
+
+TEST_F(MqttBridge, StationListsTheRotordsSeen) {
+  Station station;
+  bridge.set_station(&station);
+  bridge.poll(0);
+  // Our own state, as the broker echoes it back, and another rotord's.
+  const std::string own = transport.on("rotord/test/state").back().payload;
+  bridge.on_message("rotord/test/state", own);
+  bridge.on_message("rotord/test/availability", "online");
+  bridge.on_message("rotord/other/info",
+                    R"({"rotord":"0.1.0","name":"rotord other","web":"http://other:8080/"})");
+  bridge.on_message(
+      "rotord/other/state",
+      R"({"version":"0.1.0","mode":"goto","fault":false,"az":{"position_deg":271.5},"el":null})");
+  bridge.on_message("zigbee2mqtt/lamp/state", R"({"state":"ON"})");
+  std::string json;
+  class Sink final : public protocol::ByteSink {
+   public:
+    explicit Sink(std::string& s) : s_(s) {}
+    void write(std::string_view b) override { s_.append(b); }
+    std::string& s_;
+  } sink(json);
+  {
+    web::JsonWriter w(sink);
+    station.write_station(w);
+  }
+  EXPECT_EQ(station.size(), 2u) << json;
+  EXPECT_NE(
+      json.find(
+          R"({"prefix":"rotord/test","name":"","web":"","online":true,"mode":"idle","az_deg":100,"el_deg":20,"fault":false})"),
+      std::string::npos)
+      << json;
+  EXPECT_NE(
+      json.find(
+          R"({"prefix":"rotord/other","name":"rotord other","web":"http://other:8080/","online":false,"mode":"goto","az_deg":271.5,"el_deg":null,"fault":false})"),
+      std::string::npos)
+      << json;
+}
+
+}  // namespace
+}  // namespace rotord::mqtt
