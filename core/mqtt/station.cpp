@@ -90,6 +90,9 @@ bool Station::on_message(std::string_view topic, std::string_view payload) {
   }
   Entry* e = find(prefix, false);
   if (leaf == "availability") {
+    // It may come before the state (retained messages arrive per topic).
+    if (payload != "online" && payload != "offline") return false;
+    if (e == nullptr) e = find(prefix, true);
     if (e == nullptr) return false;
     e->online = payload == "online";
     return true;

@@ -183,8 +183,8 @@ TEST_F(MqttBridge, StationListsTheRotordsSeen) {
   bridge.poll(0);
   // Our own state, as the broker echoes it back, and another rotord's.
   const std::string own = transport.on("rotord/test/state").back().payload;
+  bridge.on_message("rotord/test/availability", "online");  // before the state
   bridge.on_message("rotord/test/state", own);
-  bridge.on_message("rotord/test/availability", "online");
   bridge.on_message("rotord/other/info",
                     R"({"rotord":"0.1.0","name":"rotord other","web":"http://other:8080/"})");
   bridge.on_message(
