@@ -102,7 +102,13 @@ bool Station::on_message(std::string_view topic, std::string_view payload) {
     if (e == nullptr) e = find(prefix, true);
     if (e == nullptr) return false;
     string_after(payload, R"("name":")", e->name, sizeof e->name);
-    string_after(payload, R"("web":")", e->web, sizeof e->web);
+    // Anyone may publish there: only a plain http(s) address becomes a link.
+    char web[kMaxUrlBytes];
+    if (string_after(payload, R"("web":")", web, sizeof web)) {
+      const std::string_view url(web);
+      const bool http = url.substr(0, 7) == "http://" || url.substr(0, 8) == "https://";
+      copy(http ? url : std::string_view(), e->web, sizeof e->web);
+    }
     return true;
   }
   return false;

@@ -191,6 +191,10 @@ TEST_F(MqttBridge, StationListsTheRotordsSeen) {
       "rotord/other/state",
       R"({"version":"0.1.0","mode":"goto","fault":false,"az":{"position_deg":271.5},"el":null})");
   bridge.on_message("zigbee2mqtt/lamp/state", R"({"state":"ON"})");
+  bridge.on_message("rotord/evil/info",
+                    R"j({"rotord":"1","name":"x","web":"javascript:alert(1)"})j");
+  bridge.on_message("rotord/evil/state",
+                    R"({"version":"0.1.0","mode":"idle","az":{"position_deg":1}})");
   std::string json;
   class Sink final : public protocol::ByteSink {
    public:
@@ -202,7 +206,9 @@ TEST_F(MqttBridge, StationListsTheRotordsSeen) {
     web::JsonWriter w(sink);
     station.write_station(w);
   }
-  EXPECT_EQ(station.size(), 2u) << json;
+  EXPECT_EQ(station.size(), 3u) << json;
+  EXPECT_NE(json.find(R"("prefix":"rotord/evil","name":"x","web":"")"), std::string::npos) << json;
+  EXPECT_EQ(json.find("javascript"), std::string::npos);
   EXPECT_NE(
       json.find(
           R"({"prefix":"rotord/test","name":"","web":"","online":true,"mode":"idle","az_deg":100,"el_deg":20,"fault":false})"),
