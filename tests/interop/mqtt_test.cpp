@@ -5,6 +5,7 @@
 // messages against a schema written from HA's documentation, and the
 // reconnection after the broker restarts. Each test has its own broker on a
 // free port. Timeouts (-W) bound liveness only; nothing asserts durations.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/types.h>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "http_client.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
@@ -36,6 +38,13 @@ class Broker {
     std::ofstream(conf) << "listener " << port_ << " 127.0.0.1\nallow_anonymous true\n";
     pid_ = ::fork();
     if (pid_ == 0) {
+      // Its log goes to a file in the test's directory, not the test output.
+      const int log =
+          ::open((dir_ + "/mosquitto.log").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0600);
+      if (log >= 0) {
+        ::dup2(log, 1);
+        ::dup2(log, 2);
+      }
       ::execlp("mosquitto", "mosquitto", "-c", conf.c_str(), static_cast<char*>(nullptr));
       ::_exit(127);
     }
@@ -68,7 +77,8 @@ class Mqtt : public ::testing::Test {
     run_command("rm -rf " + dir);
   }
   /// Starts rotord with mqtt.* settings over the defaults.
-  void start_daemon(bool control, const std::string& prefix = "rotord/test") {
+  void start_daemon(bool control, const std::string& prefix = "rotord/test",
+                    bool wait_connected = true) {
     const std::string config = dir + "/rotord.json";
     std::ofstream(config) << R"({"mqtt.enabled": true, "mqtt.host": "127.0.0.1", "mqtt.port": )"
                           << broker->port() << R"(, "mqtt.prefix": ")" << prefix
@@ -76,7 +86,9 @@ class Mqtt : public ::testing::Test {
                           << (control ? "true" : "false") << "}\n";
     daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{"--config", config});
     ASSERT_TRUE(daemon->ready()) << daemon->output();
-    ASSERT_TRUE(daemon->wait_for_output("mqtt: connected")) << daemon->output();
+    if (wait_connected) {
+      ASSERT_TRUE(daemon->wait_for_output("mqtt: connected")) << daemon->output();
+    }
   }
   std::string p() const { return std::to_string(broker->port()); }
   /// The first (retained) message on `topic`, waiting up to wait_s.
@@ -189,6 +201,22 @@ TEST_F(Mqtt, ReconnectsAfterTheBrokerRestarts) {
   EXPECT_NE(retained("homeassistant/button/rotord-test/stop/config", 10).find("cmd/stop"),
             std::string::npos);
   EXPECT_TRUE(daemon->wait_for_output("mqtt: connected", 1000));
+}
+
+TEST_F(Mqtt, ABrokerThatIsDownHoldsNothingUp) {
+  broker->stop();  // nobody listens on its port now
+  start_daemon(true, "rotord/test", false);
+  // The daemon is ready and serves REST and a move without the broker.
+  const HttpResponse status = http(daemon->ports().web, "GET", "/api/status");
+  EXPECT_EQ(status.status, 200);
+  TcpClient wrc(daemon->ports().wrc);
+  EXPECT_EQ(wrc.ask("AZ 300\n"), "OK AZ 300.00");
+  EXPECT_EQ(http(daemon->ports().web, "POST", "/api/stop").status, 200);
+  // The broker comes up: rotord finds it on its own (backoff) and publishes.
+  broker->start();
+  EXPECT_TRUE(daemon->wait_for_output("mqtt: connected", 60000)) << daemon->output();
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+  EXPECT_NE(command("stop", "").find(R"("status":200)"), std::string::npos);
 }
 
 }  // namespace
