@@ -190,8 +190,10 @@ void MqttClient::on_message(mosquitto* /*m*/, void* self, const mosquitto_messag
   }
   std::lock_guard<std::mutex> lock(c->mutex_);
   if (c->inbox_.size() >= kMaxInbox) {
+    // A flood must not cost a STOP its place: it pushes out the oldest.
     ++c->dropped_;
-    return;
+    if (mqtt::command_name(c->bridge_.prefix(), in.topic) != "stop") return;
+    c->inbox_.pop_front();
   }
   c->inbox_.push_back(std::move(in));
 }
@@ -204,11 +206,16 @@ bool MqttClient::publish(std::string_view topic, std::string_view payload, bool 
 }
 
 void MqttClient::poll(Millis wall_ms) {
+  // At most kCommandsPerPass commands per 10 ms pass: the rest wait in the
+  // bounded inbox, so a flood from the broker costs the loop little.
   std::deque<Inbound> arrived;
   std::deque<Inbound> station;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    arrived.swap(inbox_);
+    for (std::size_t n = 0; n < kCommandsPerPass && !inbox_.empty(); ++n) {
+      arrived.push_back(std::move(inbox_.front()));
+      inbox_.pop_front();
+    }
     station.swap(station_inbox_);
   }
   for (const Inbound& in : arrived) bridge_.on_message(in.topic, in.payload, in.oversized);

@@ -26,6 +26,8 @@ class MqttClient final : private mqtt::Transport {
  public:
   /// Messages waiting for the loop; more are dropped (and counted).
   static constexpr std::size_t kMaxInbox = 16;
+  /// Commands handled per pass of the loop (10 ms): at most 400 a second.
+  static constexpr std::size_t kCommandsPerPass = 4;
   static constexpr int kKeepaliveS = 30;
   static constexpr int kMinBackoffS = 1;
   static constexpr int kMaxBackoffS = 30;
