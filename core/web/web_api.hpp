@@ -1,6 +1,8 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <span>
+#include <string_view>
 
 #include "hal/storage.hpp"
 #include "hal/wall_clock.hpp"
@@ -71,6 +73,36 @@ class Api {
   const char* host_name() const { return ctx_.host_name; }
 
   enum class Outcome : unsigned char { kDone, kStartEvents, kClose, kPending };
+
+  /// Who may call a route once access control is on (web.password set):
+  /// kPublic anyone, kRead a login or any token, kControl a login or a
+  /// control token, kAdmin the web login only.
+  enum class Need : unsigned char { kPublic, kRead, kControl, kAdmin };
+  /// What a route's handler is given.
+  struct Call {
+    const HttpRequest& request;
+    protocol::ByteSink& out;
+    const ResponseOptions& options;
+    const Caller& caller;
+    const access::Peer& peer;
+  };
+  /// One row of the REST API's route table (web_api.cpp). handle() finds the
+  /// row, answers 404/405 and the access checks from it, then runs it; the
+  /// endpoint table of docs/web_api.md is checked against these rows
+  /// (tests/docs).
+  struct Route {
+    std::string_view path;
+    bool post;  ///< POST; else GET (and HEAD)
+    Need need;
+    /// Refused (423) to all but the control lock's holder while it is held.
+    bool locked;
+    /// The body must be declared JSON (415 otherwise): a cross-site form
+    /// cannot send that header. Only STOP takes anything: it must always work.
+    bool json_body;
+    Outcome (*run)(Api& api, const Call& call);
+    std::string_view help;
+  };
+  static std::span<const Route> routes();
   /// Answers one request whose path starts with /api/, from `peer`.
   /// kStartEvents: the response head of an event stream went out and events
   /// follow (poll). kPending: a login or a new password is being hashed;
@@ -133,6 +165,22 @@ class Api {
       auth_.count_refused();
     if (ctx_.metrics != nullptr) ctx_.metrics->protocol(metrics::Protocol::kHttp).on_auth_failure();
   }
+  static const Route kRoutes[];
+
+  // The REST commands (web_api.cpp); the access endpoints are in auth_api.cpp.
+  Outcome get_status(const Call& call);
+  Outcome get_events(const Call& call);
+  Outcome get_station(const Call& call);
+  Outcome get_schema(const Call& call);
+  Outcome post_stop(const Call& call);
+  Outcome post_goto(const Call& call);
+  Outcome post_move(const Call& call);
+  Outcome post_park(const Call& call);
+  Outcome post_mode(const Call& call);
+  Outcome post_reset(const Call& call);
+  Outcome post_speed(const Call& call);
+  Outcome post_reboot(const Call& call);
+
   void get_settings(protocol::ByteSink& out, const ResponseOptions& options);
   void post_settings(std::string_view body, protocol::ByteSink& out, const ResponseOptions& options,
                      const Caller& caller);

@@ -238,9 +238,25 @@ void Wifi::announce(int itf) {
     std::printf("rotord: mDNS not available on this interface\n");
     return;
   }
-  mdns_resp_add_service(n, config_.hostname, "_http", DNSSD_PROTO_TCP, kHttpPort, nullptr, nullptr);
+  mdns_resp_add_service(n, config_.hostname, net::kHttpService, DNSSD_PROTO_TCP, config_.ports.web,
+                        &Wifi::http_txt, this);
+  if (config_.ports.rotctld != 0)
+    mdns_resp_add_service(n, config_.hostname, net::kRotctldService, DNSSD_PROTO_TCP,
+                          config_.ports.rotctld, &Wifi::rotctld_txt, this);
   mdns_on_[itf] = true;
   std::printf("rotord: mDNS name %s.local\n", config_.hostname);
+}
+
+void Wifi::http_txt(mdns_service* service, void*) {
+  mdns_resp_add_service_txtitem(service, net::kHttpTxt,
+                                static_cast<u8_t>(std::strlen(net::kHttpTxt)));
+}
+
+void Wifi::rotctld_txt(mdns_service* service, void* self) {
+  // The same records as Linux's Avahi announcement (core/net/dns_sd.hpp).
+  const net::RotctldTxt txt(static_cast<const Wifi*>(self)->config_.ports, ROTORD_VERSION);
+  for (std::size_t n = 0; n < txt.size(); ++n)
+    mdns_resp_add_service_txtitem(service, txt[n], static_cast<u8_t>(std::strlen(txt[n])));
 }
 
 void Wifi::log_address(const char* what, int itf) {

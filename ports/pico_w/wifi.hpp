@@ -14,10 +14,13 @@
 #include <optional>
 
 #include "dhcp_server.hpp"
+#include "net/dns_sd.hpp"
 #include "net/setup_ap.hpp"
 #include "net_config.hpp"
 #include "settings/settings.hpp"
 #include "util/time.hpp"
+
+struct mdns_service;
 
 namespace rotord::pico_w {
 
@@ -44,6 +47,9 @@ class Wifi {
     bool sntp = false;
     char sntp_server[64] = "";
     Millis join_timeout_ms = 30'000;
+    /// Announced by mDNS (core/net/dns_sd.hpp): the web UI as _http._tcp,
+    /// rotctld as _rotctld._tcp with the other ports as TXT records.
+    net::ServicePorts ports{kHttpPort};
   };
   static Config config_from(const settings::Settings& s, Millis join_timeout_ms);
 
@@ -64,6 +70,9 @@ class Wifi {
   void station_up();
   static void log_address(const char* what, int itf);
   void announce(int itf);
+  /// lwIP's TXT callbacks (service_get_txt_fn_t).
+  static void http_txt(mdns_service* service, void* self);
+  static void rotctld_txt(mdns_service* service, void* self);
 
   Config config_;
   lwip_port::DhcpServer dhcp_;  ///< hands out addresses on the setup AP

@@ -17,7 +17,7 @@
 namespace rotord {
 namespace {
 
-using usb_port::Personality;
+using protocol::Personality;
 using usb_port::PersonalitySessions;
 using usb_port::UsbCdcLink;
 
@@ -315,15 +315,28 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
-TEST(UsbPersonality, TheSettingsChoicesMatchTheEnum) {
-  const settings::Def& def = settings::def(settings::Id::kUsbPersonality);
-  EXPECT_STREQ(def.choices, usb_port::kPersonalityChoices);
-  EXPECT_EQ(def.max, usb_port::kPersonalityCount - 1);
+TEST(UsbPersonality, TheSettingsChoicesAreOffAndTheRegistrysKeys) {
+  const settings::Id id = settings::Id::kUsbPersonality;
+  const settings::Def& def = settings::def(id);
+  ASSERT_EQ(settings::choice_count(id), static_cast<int>(protocol::kPersonalityCount) + 1);
+  EXPECT_EQ(def.max, static_cast<int>(protocol::kPersonalityCount));
+  EXPECT_EQ(settings::choice_name(id, 0), "off");
+  for (const protocol::ProtocolInfo& p : protocol::protocols()) {
+    bool offered = false;
+    for (int n = 1; n < settings::choice_count(id); ++n) {
+      if (settings::choice_name(id, n) != p.key) continue;
+      offered = true;
+      EXPECT_EQ(usb_port::personality_from_setting(n), p.personality) << p.key;
+    }
+    EXPECT_TRUE(offered) << p.key << " is no usb.personality choice";
+  }
   EXPECT_EQ(usb_port::personality_from_setting(static_cast<int>(def.default_value)),
             Personality::kGs232);
-  EXPECT_EQ(usb_port::personality_from_setting(-1), Personality::kOff);
-  EXPECT_EQ(usb_port::personality_from_setting(6), Personality::kOff);
+  EXPECT_EQ(usb_port::personality_from_setting(0), std::nullopt);
+  EXPECT_EQ(usb_port::personality_from_setting(-1), std::nullopt);
+  EXPECT_EQ(usb_port::personality_from_setting(6), std::nullopt);
   EXPECT_STREQ(usb_port::personality_name(Personality::kEasycomm), "Easycomm II/III");
+  EXPECT_STREQ(usb_port::personality_name(std::nullopt), "off");
 }
 
 }  // namespace
