@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "json/json_writer.hpp"
 #include "mqtt/fixed_sink.hpp"
-#include "web/json_writer.hpp"
 
 namespace rotord::mqtt {
 namespace {
@@ -217,7 +217,7 @@ void Bridge::publish_info() {
   {
     web::JsonWriter w(sink);
     w.begin_object()
-        .member("rotord", ROTORD_VERSION)
+        .member("rotord", version_)
         .member("name", device_name_)
         .member("web", web_url_)
         .end_object();
@@ -285,7 +285,7 @@ void Bridge::publish_discovery() {
           .member("name", device_name_)
           .member("manufacturer", "rotord")
           .member("model", "rotord antenna rotator controller")
-          .member("sw_version", ROTORD_VERSION)
+          .member("sw_version", version_)
           .end_object();
       switch (e.kind) {
         case Kind::kSensorAz:

@@ -50,6 +50,10 @@ class Bridge {
   /// the other rotords' topics); nullptr: ignored.
   void set_station(Station* station) { station_ = station; }
 
+  /// rotord's version for <prefix>/info and discovery's sw_version (the
+  /// port's ROTORD_VERSION); not copied: a string literal.
+  void set_version(const char* version) { version_ = version; }
+
   /// A new controller (POST /api/reboot) comes with a new API.
   void set_api(web::Api& api) { api_ = &api; }
 
@@ -99,6 +103,7 @@ class Bridge {
   char device_name_[72] = {};
   char web_url_[Station::kMaxUrlBytes] = {};
   Station* station_ = nullptr;
+  const char* version_ = "";
   char availability_[kMaxTopicBytes] = {};
   std::size_t availability_len_ = 0;
   char command_filter_[kMaxTopicBytes] = {};

@@ -3,7 +3,7 @@
 #include <cstring>
 #include <string_view>
 
-#include "protocol/session.hpp"
+#include "util/byte_sink.hpp"
 
 namespace rotord::mqtt {
 

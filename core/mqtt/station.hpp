@@ -3,9 +3,9 @@
 #include <cstddef>
 #include <string_view>
 
+#include "json/json_writer.hpp"
 #include "mqtt/topics.hpp"
 #include "util/time.hpp"
-#include "web/json_writer.hpp"
 #include "web/station_source.hpp"
 
 namespace rotord::mqtt {

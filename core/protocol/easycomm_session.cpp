@@ -7,6 +7,7 @@
 #include "motion/angles.hpp"
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol {
@@ -52,13 +53,14 @@ std::string_view next_token(std::string_view& rest) {
   while (i < rest.size() && is_separator(rest[i])) ++i;
   std::size_t j = i;
   while (j < rest.size() && !is_separator(rest[j])) ++j;
-  const std::string_view token = rest.substr(i, j - i);
+  const std::string_view token = text::slice(rest, i, j - i);
   rest.remove_prefix(j);
   return token;
 }
 
 bool starts_with(std::string_view token, std::string_view prefix) {
-  return token.size() >= prefix.size() && text::iequals(token.substr(0, prefix.size()), prefix);
+  return token.size() >= prefix.size() &&
+         text::iequals(text::slice(token, 0, prefix.size()), prefix);
 }
 
 bool all_letters(std::string_view s) {
@@ -178,7 +180,7 @@ bool EasycommSession::parse_token(std::string_view token, std::string_view& rest
   };
   const Command* c = find(token);
   if (c == nullptr) return reject("UNKNOWN");
-  const std::string_view value = token.substr(c->name.size());
+  const std::string_view value = text::slice(token, c->name.size());
   switch (c->arg) {
     case Arg::kWord:
     case Arg::kAny:
@@ -216,7 +218,7 @@ bool EasycommSession::parse_token(std::string_view token, std::string_view& rest
 void EasycommSession::run_token(std::string_view token, std::string_view& rest, ByteSink& out) {
   const Command* c = find(token);  // checked by parse_token
   if (c == nullptr) return;
-  std::string_view value = token.substr(c->name.size());
+  std::string_view value = text::slice(token, c->name.size());
   // Take the same tokens parse_token took: a register on its own, the mode
   // word after a frequency.
   if (c->arg == Arg::kRegister && value.empty()) value = next_token(rest);
@@ -294,12 +296,12 @@ void EasycommSession::read_config(std::string_view reg, ByteSink& out) {
 void EasycommSession::write_config(std::string_view arg, ByteSink& out) {
   const std::size_t comma = arg.find(',');
   if (comma == std::string_view::npos) return alarm(out, "SYNTAX");
-  const std::optional<Id> id = find_register(arg.substr(0, comma));
+  const std::optional<Id> id = find_register(text::slice(arg, 0, comma));
   if (!id) return alarm(out, "UNKNOWN");
   // Secrets and the access rules are written through the web or REST only.
   if (!settings::line_writable(*id)) return alarm(out, "DENIED");
   // A value that breaks a cross-setting rule (a min above its max) is undone.
-  if (controller_.settings().update_from_text(*id, arg.substr(comma + 1)).error != Error::kOk)
+  if (controller_.settings().update_from_text(*id, text::slice(arg, comma + 1)).error != Error::kOk)
     alarm(out, "RANGE");
 }
 

@@ -3,11 +3,11 @@
 #include <optional>
 #include <span>
 
-#include "axis/axis_id.hpp"
-#include "axis/sequencer.hpp"
 #include "protocol/line_assembler.hpp"
 #include "protocol/line_reply.hpp"
 #include "protocol/session.hpp"
+#include "util/axis_id.hpp"
+#include "util/direction.hpp"
 
 namespace rotord::protocol {
 

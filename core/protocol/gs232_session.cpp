@@ -5,6 +5,7 @@
 
 #include "protocol/gs232_calibration.hpp"
 #include "rotator/controller.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol {
@@ -258,7 +259,7 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
   // reply; empty commands are ignored so that nothing answers it.
   if (line.empty()) return;
   const char letter = upper(line[0]);
-  const std::string_view rest = line.substr(1);
+  const std::string_view rest = text::slice(line, 1);
   // A read-only client (access.control_networks, the control lock) is
   // refused every letter that can change something, before its argument is
   // looked at: M, W, R, L, U, D, X, T, O, F and P. S, A and E (stop) work.

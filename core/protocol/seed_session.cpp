@@ -6,6 +6,7 @@
 
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol {
@@ -77,7 +78,7 @@ void SeedSession::handle_line(std::string_view line, ByteSink& out) {
   for (;;) {
     const std::size_t comma = line.find(',');
     if (count == kMaxFields) return error(out, "SYNTAX");
-    fields[count++] = text::trim(line.substr(0, comma));
+    fields[count++] = text::trim(text::slice(line, 0, comma));
     if (comma == std::string_view::npos) break;
     line.remove_prefix(comma + 1);
   }

@@ -1,5 +1,5 @@
 #pragma once
-#include "web/json_writer.hpp"
+#include "json/json_writer.hpp"
 
 namespace rotord::web {
 

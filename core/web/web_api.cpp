@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "json/json_reader.hpp"
 #include "util/utc_time.hpp"
-#include "web/json_reader.hpp"
 
 namespace rotord::web {
 namespace {
@@ -720,7 +720,7 @@ void Api::post_settings(std::string_view body, protocol::ByteSink& out,
   }
   if (r.changed.any() && !persist(out, options)) {
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (r.changed.test(n)) values.copy_value(static_cast<Id>(n), backup_);
+      if (r.changed[n]) values.copy_value(static_cast<Id>(n), backup_);
     return;
   }
   send_changed(out, options, r.changed);
@@ -742,13 +742,13 @@ void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options
     // controller to everyone (POST /api/password with "" does that).
     if ((settings::def(id).flags & settings::kHidden) != 0) continue;
     if (!values.same_value(id, defaults)) {
-      changed.set(n);
+      changed[n] = true;
       values.copy_value(id, defaults);
     }
   }
   if (changed.any() && !persist(out, options)) {
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed.test(n)) values.copy_value(static_cast<Id>(n), backup_);
+      if (changed[n]) values.copy_value(static_cast<Id>(n), backup_);
     return;
   }
   send_changed(out, options, changed);
@@ -776,10 +776,10 @@ void Api::send_changed(protocol::ByteSink& out, const ResponseOptions& options,
     w.begin_object().member("ok", true).member("saved", ctx_.storage != nullptr);
     w.key("changed").begin_array();
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed.test(n)) w.string(settings::def(static_cast<Id>(n)).key);
+      if (changed[n]) w.string(settings::def(static_cast<Id>(n)).key);
     w.end_array().key("restart_required").begin_array();
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed.test(n) && (settings::def(static_cast<Id>(n)).flags & settings::kRestart))
+      if (changed[n] && (settings::def(static_cast<Id>(n)).flags & settings::kRestart))
         w.string(settings::def(static_cast<Id>(n)).key);
     w.end_array().end_object();
   });

@@ -6,11 +6,11 @@
 
 #include "hal/storage.hpp"
 #include "hal/wall_clock.hpp"
+#include "json/settings_json.hpp"
 #include "metrics/registry.hpp"
 #include "rotator/controller.hpp"
 #include "web/http_request.hpp"
 #include "web/http_response.hpp"
-#include "web/settings_json.hpp"
 #include "web/station_source.hpp"
 #include "web/web_auth.hpp"
 

@@ -41,6 +41,7 @@ std::unique_ptr<MqttClient> MqttClient::create(const settings::Settings& setting
   std::unique_ptr<MqttClient> client(new MqttClient(
       api, prefix, node_id, "rotord " + (host_name.empty() ? client_id : host_name)));
   client->bridge_.set_web_url(web_url);
+  client->bridge_.set_version(ROTORD_VERSION);
   if (!client->start(settings, client_id)) return nullptr;
   return client;
 }

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "file_storage.hpp"
+#include "json/settings_json.hpp"
 #include "legacy_profile_guess.hpp"
 #include "settings/settings_layers.hpp"
-#include "web/settings_json.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord::linux_port {

@@ -9,10 +9,10 @@
 #include <string>
 
 #include "file_storage.hpp"
+#include "json/settings_json.hpp"
 #include "options.hpp"
 #include "settings/settings.hpp"
 #include "sim/profiles.hpp"
-#include "web/settings_json.hpp"
 
 namespace rotord::linux_port {
 

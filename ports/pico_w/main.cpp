@@ -15,12 +15,16 @@
 
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
+#include "json/settings_json.hpp"
+#include "log_port.hpp"
 #include "loop/tick_scheduler.hpp"
 #include "lwip_transport.hpp"
 #include "ma3_pio.hpp"
 #include "metrics/registry.hpp"
 #include "pico/binary_info.h"
 #include "pico/cyw43_arch.h"
+#include "pico/stdio/driver.h"
+#include "pico/stdio_usb.h"
 #include "pico/stdlib.h"
 #include "pico_crypto.hpp"
 #include "pico_flash.hpp"
@@ -35,7 +39,6 @@
 #include "usb_cdc_port.hpp"
 #include "usb_personality.hpp"
 #include "web/http_session.hpp"
-#include "web/settings_json.hpp"
 #include "web/web_api.hpp"
 #include "wifi.hpp"
 #include "wifi_secrets.h"
@@ -43,12 +46,15 @@
 namespace rotord::pico_w {
 namespace {
 
-/// The USB log port as a ByteSink.
+/// The USB log port as a ByteSink for output that only matters as it
+/// happens (WRC MONITOR lines): never kept for a later reader.
 class LogPortSink final : public protocol::ByteSink {
  public:
-  void write(std::string_view bytes) override {
-    std::fwrite(bytes.data(), 1, bytes.size(), stdout);
-  }
+  explicit LogPortSink(usb_port::LogPort& log) : log_(log) {}
+  void write(std::string_view bytes) override { log_.write_live(bytes); }
+
+ private:
+  usb_port::LogPort& log_;
 };
 
 constexpr Millis kTickMs = 10;  // 100 Hz, as on Linux
@@ -166,6 +172,27 @@ class Reboot final : public web::RebootHook {
 
  private:
   bool requested_ = false;
+};
+
+// The USB log port (CDC 0), printf's only output (log_port.hpp): what is
+// printed while no terminal has the port open waits in its ring.
+TinyUsbCdcPort g_log_cdc(ROTORD_USB_LOG_CDC);
+usb_port::LogPort g_log(g_log_cdc);
+
+void log_out_chars(const char* buf, int length) {
+  g_log.write(std::string_view(buf, static_cast<std::size_t>(length)));
+}
+
+stdio_driver_t g_log_driver = {
+    .out_chars = log_out_chars,
+    .out_flush = nullptr,
+    .in_chars = nullptr,
+    .set_chars_available_callback = nullptr,
+    .next = nullptr,
+#if PICO_STDIO_ENABLE_CRLF_SUPPORT
+    .last_ended_with_cr = false,
+    .crlf_enabled = PICO_STDIO_DEFAULT_CRLF,
+#endif
 };
 
 // Hardware objects: static storage, built once the settings (and so the
@@ -373,6 +400,12 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
       usb_port::personality_from_setting(settings.i(Id::kUsbPersonality));
   rotord_usb_init(usb_personality ? usb_port::personality_name(usb_personality) : nullptr);
   stdio_init_all();
+  // printf into the log port's ring rather than through pico_stdio_usb's
+  // driver, which drops whatever is printed while no terminal listens: the
+  // banner, the settings report and the Wi-Fi lines below all come before a
+  // terminal can open the port, and are sent when one does.
+  stdio_set_driver_enabled(&stdio_usb, false);
+  stdio_set_driver_enabled(&g_log_driver, true);
   std::printf("rotord %s (Pico W)%s\n", ROTORD_VERSION,
               watchdog_caused_reboot() ? ": restarted by the watchdog" : "");
   report_settings(loaded);
@@ -424,8 +457,8 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
       net::ServicePorts{kHttpPort, kRotctldPort, kWrcPort, kGs232Port, kEasycommPort, 0};
   static Wifi wifi(wifi_config);
   // WRC MONITOR lines also go to the USB log port as they happen, where the
-  // WRC firmware prints them (stdout is that port: pico_stdio_usb on CDC 0).
-  static LogPortSink log_port;
+  // WRC firmware prints them, but only while a terminal listens (log_port.hpp).
+  static LogPortSink log_port(g_log);
   static protocol::MonitorTap monitor_tap(log_port);
   static const protocol::SessionDeps deps{controller, ROTORD_VERSION, &monitor_tap};
   // Every server admits by net/admission.hpp with the live settings (idle
@@ -509,6 +542,7 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
     watchdog_update();
     // USB every pass: neither TinyUSB's task nor the link waits for the host.
     rotord_usb_task();
+    g_log.service();
     if (usb_link) usb_link->service();
     if (network) cyw43_arch_poll();
     if (ticks.poll(static_cast<std::int64_t>(time_us_64()))) {

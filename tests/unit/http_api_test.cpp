@@ -6,10 +6,10 @@
 
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
+#include "json/json_reader.hpp"
 #include "memory_storage.hpp"
 #include "web/assets.hpp"
 #include "web/http_session.hpp"
-#include "web/json_reader.hpp"
 
 namespace rotord::web {
 namespace {

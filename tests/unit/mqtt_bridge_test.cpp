@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "fake_rotator.hpp"
+#include "json/json_reader.hpp"
 #include "mqtt/bridge.hpp"
 #include "mqtt/topics.hpp"
-#include "web/json_reader.hpp"
 
 namespace rotord::mqtt {
 namespace {

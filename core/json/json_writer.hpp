@@ -3,8 +3,11 @@
 #include <cstdint>
 #include <string_view>
 
-#include "protocol/session.hpp"
+#include "util/byte_sink.hpp"
 
+// The JSON codec layer (core/json, DESIGN: layers): below web and storage,
+// which both read and write JSON. Its names stayed in rotord::web, where the
+// codec began, so the web API, the ports and the tests spell them as before.
 namespace rotord::web {
 
 /// A ByteSink that only counts, so a response body can be generated twice:

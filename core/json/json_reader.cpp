@@ -1,5 +1,6 @@
-#include "web/json_reader.hpp"
+#include "json/json_reader.hpp"
 
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::web {
@@ -136,7 +137,7 @@ bool JsonObjectReader::parse_value(JsonValue* value, int depth) {
 }
 
 bool JsonObjectReader::parse_literal(std::string_view word) {
-  if (json_.substr(pos_, word.size()) != word) return fail("invalid JSON value");
+  if (text::slice(json_, pos_, word.size()) != word) return fail("invalid JSON value");
   pos_ += word.size();
   return true;
 }
@@ -165,7 +166,7 @@ bool JsonObjectReader::parse_number(double* out) {
     if (pos_ < json_.size() && (json_[pos_] == '+' || json_[pos_] == '-')) ++pos_;
     if (digits() == 0) return fail("invalid number");
   }
-  if (!text::parse_double(json_.substr(start, pos_ - start), *out))
+  if (!text::parse_double(text::slice(json_, start, pos_ - start), *out))
     return fail("number too long or out of range");
   return true;
 }

@@ -4,11 +4,14 @@
 #include <string_view>
 
 #include "hal/storage.hpp"
+#include "json/json_reader.hpp"
+#include "json/json_writer.hpp"
 #include "settings/settings.hpp"
 #include "settings/settings_layers.hpp"
-#include "web/json_reader.hpp"
-#include "web/json_writer.hpp"
 
+// The JSON codec layer (core/json, DESIGN: layers): below web and storage,
+// which both read and write JSON. Its names stayed in rotord::web, where the
+// codec began, so the web API, the ports and the tests spell them as before.
 namespace rotord::web {
 
 /// The settings as JSON: one flat object {"key": value} in table order, with

@@ -1,4 +1,4 @@
-#include "web/json_writer.hpp"
+#include "json/json_writer.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "web/settings_json.hpp"
+#include "json/settings_json.hpp"
 
 #include <cstring>
 
@@ -212,11 +212,11 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
       errors.add(key, "unknown setting");
       continue;
     }
-    if (seen.test(static_cast<std::size_t>(*id))) {
+    if (seen[static_cast<std::size_t>(*id)]) {
       errors.add(key, "given twice");
       continue;
     }
-    seen.set(static_cast<std::size_t>(*id));
+    seen[static_cast<std::size_t>(*id)] = true;
     if (const char* reason = apply_member(*id, value, scratch)) errors.add(key, reason);
   }
   if (errors.size() > 0 || errors.dropped() > 0) {
@@ -230,7 +230,7 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
     // form can show it next to the fields involved.
     for (std::size_t n = 0; n < settings::kCount; ++n) {
       const char* name = settings::def(static_cast<Id>(n)).key;
-      if (seen.test(n) && std::strstr(rule.reason, name) != nullptr) errors.add(name, rule.reason);
+      if (seen[n] && std::strstr(rule.reason, name) != nullptr) errors.add(name, rule.reason);
     }
     outcome.status = ApplyOutcome::kInvalid;
     outcome.message = rule.reason;
@@ -239,7 +239,7 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
   for (std::size_t n = 0; n < settings::kCount; ++n) {
     const auto id = static_cast<Id>(n);
     if (!scratch.same_value(id, target)) {
-      outcome.changed.set(n);
+      outcome.changed[n] = true;
       target.copy_value(id, scratch);  // validated above
     }
   }
@@ -304,7 +304,7 @@ bool save_settings(hal::Storage& storage, const settings::Settings& values,
     writer.member(settings::kVersionKey, settings::kStoredVersion);
     const settings::KeySet keys = settings::user_layer(values, base);
     for (std::size_t n = 0; n < settings::kCount; ++n) {
-      if (!keys.test(n)) continue;
+      if (!keys[n]) continue;
       const auto id = static_cast<Id>(n);
       writer.key(settings::def(id).key);
       write_setting(values, id, writer, Secrets::kReveal);  // the device's own copy

@@ -1,4 +1,4 @@
-#include "access/line_access.hpp"
+#include "net/line_access.hpp"
 
 #include "settings/network_list.hpp"
 

@@ -2,6 +2,10 @@
 #include "access/peer.hpp"
 #include "settings/settings.hpp"
 
+// In net/, beside the connection admission, because it reads the settings'
+// network lists: the rest of access/ (credentials, sessions, the control
+// lock) sits below the settings, which check the credentials' text formats.
+// The name stays access::may_control, as the sessions call it.
 namespace rotord::access {
 
 /// Whether a line-protocol client (WRC, rotctld, GS-232, Easycomm, seed) may
