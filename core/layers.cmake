@@ -13,7 +13,7 @@
 # Bottom to top (the order the libraries are defined in).
 set(ROTORD_LAYERS
     util hal motion access tracking sensors settings json storage input axis net rotator
-    protocol metrics loop web)
+    protocol metrics loop web mqtt)
 
 # Errors, text, CRC-32, time, and the ids every layer shares (AxisId,
 # Direction) and the ByteSink every writer streams into.
@@ -58,3 +58,6 @@ set(ROTORD_LAYER_metrics protocol hal)
 set(ROTORD_LAYER_loop metrics)
 # HTTP session, REST API, the metrics page, the embedded web UI.
 set(ROTORD_LAYER_web protocol rotator json storage metrics loop)
+# MQTT (docs/mqtt.md): state, commands through the REST API's handlers, Home
+# Assistant discovery, the station table; above web, whose API it calls.
+set(ROTORD_LAYER_mqtt web)

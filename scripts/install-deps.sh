@@ -23,6 +23,7 @@ packages=(
   avahi-daemon avahi-utils dbus-daemon util-linux
   lintian systemd man-db
   prometheus
+  libmosquitto-dev mosquitto mosquitto-clients python3-jsonschema
   clang libclang-rt-14-dev
   chromium
 )

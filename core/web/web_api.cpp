@@ -276,6 +276,9 @@ const Api::Route Api::kRoutes[] = {
        return O::kDone;
      },
      "who the caller is, and the lock"},
+    {"/api/station", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.get_station(c); },
+     "the rotords seen on the MQTT broker (docs/mqtt.md)"},
     {"/api/tokens", false, N::kAdmin, false, false,
      [](Api& a, const Call& c) {
        a.get_tokens(c.out, c.options);
@@ -432,6 +435,15 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
 
 Api::Outcome Api::get_status(const Call& call) {
   send_json(call.out, 200, call.options, [this](JsonWriter& w) { write_status(w); });
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::get_station(const Call& call) {
+  if (station_ == nullptr) {
+    send_error(call.out, 404, "no station: MQTT is off (mqtt.enabled)", call.options);
+  } else {
+    send_json(call.out, 200, call.options, [this](JsonWriter& w) { station_->write_station(w); });
+  }
   return Outcome::kDone;
 }
 

@@ -11,6 +11,7 @@
 #include "rotator/controller.hpp"
 #include "web/http_request.hpp"
 #include "web/http_response.hpp"
+#include "web/station_source.hpp"
 #include "web/web_auth.hpp"
 
 namespace rotord::web {
@@ -151,6 +152,8 @@ class Api {
   void write_status(JsonWriter& w) const;
   Controller& controller() { return ctx_.controller; }
   WebAuth& auth() { return auth_; }
+  /// GET /api/station's data (the MQTT station); nullptr: 404.
+  void set_station(const StationSource* station) { station_ = station; }
 
  private:
   /// A failed login (or a refused credential): counted by the access layer
@@ -167,6 +170,7 @@ class Api {
   // The REST commands (web_api.cpp); the access endpoints are in auth_api.cpp.
   Outcome get_status(const Call& call);
   Outcome get_events(const Call& call);
+  Outcome get_station(const Call& call);
   Outcome get_schema(const Call& call);
   Outcome post_stop(const Call& call);
   Outcome post_goto(const Call& call);
@@ -222,6 +226,7 @@ class Api {
 
   ApiContext ctx_;
   WebAuth auth_;
+  const StationSource* station_ = nullptr;
   Caller last_caller_;
   Millis transport_now_ = 0;
   std::array<DeadMan, 2> dead_man_{};

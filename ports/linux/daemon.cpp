@@ -196,6 +196,9 @@ bool Daemon::start_controller() {
   api_context.pbkdf2_slice = 500;
   api_context.log = &access_log_;
   api_ = std::make_unique<web::Api>(api_context);
+  mqtt_ = MqttClient::create(settings_, host_name_,
+                             "http://" + host_name_ + ":" + std::to_string(options_.web_port) + "/",
+                             *api_);
 
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);
@@ -289,6 +292,7 @@ void Daemon::reboot() {
   log::info("restarting the controller");
   stop_motors(controller_.get(), nullptr);
   servers_.clear();
+  mqtt_.reset();
   api_.reset();
   controller_.reset();
   if (gpio_) {
@@ -367,6 +371,7 @@ void Daemon::stop() {
   avahi_.reset();               // withdrawn from the network at once
   save_changed_settings(true);  // a change still in its quiet time
   timer_.cancel();
+  mqtt_.reset();
   servers_.clear();
   serial_lines_.clear();
   io_.stop();
@@ -458,6 +463,7 @@ void Daemon::serve(Millis wall_ms) {
     const auto until = std::chrono::steady_clock::now() + kHashBudget;
     while (api_->auth_busy() && std::chrono::steady_clock::now() < until) api_->work();
   }
+  if (mqtt_) mqtt_->poll(wall_ms);
   for (auto& server : servers_) server->poll(wall_ms);
   for (auto& line : serial_lines_) line->poll(wall_ms);
   save_changed_settings(false);

@@ -10,6 +10,7 @@
 #include "loop/tick_scheduler.hpp"
 #include "mbed_crypto.hpp"
 #include "metrics/registry.hpp"
+#include "mqtt_client.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
@@ -119,6 +120,7 @@ class Daemon final : private web::RebootHook {
   int exit_code_ = 0;
   std::unique_ptr<Controller> controller_;
   std::unique_ptr<web::Api> api_;
+  std::unique_ptr<MqttClient> mqtt_;  ///< mqtt.enabled: on the station's broker
   bool reboot_pending_ = false;
   std::chrono::steady_clock::time_point reboot_at_;
   std::vector<std::unique_ptr<TcpServer>> servers_;
