@@ -55,7 +55,7 @@ std::size_t Admission::idlest(const ClientList& clients, const Address* only, bo
     const ClientInfo* c = clients.at(i);
     if (c == nullptr || c->event_stream) continue;
     if (only != nullptr && !(c->address == *only)) continue;
-    if (now - c->last_receive_ms < threshold) continue;
+    if (!c->between_requests && now - c->last_receive_ms < threshold) continue;
     if (!any_listed && control_listed(c->peer)) continue;
     if (best == kNone || c->last_receive_ms < best_since) {
       best = i;

@@ -28,6 +28,10 @@ struct ClientInfo {
   access::Peer peer;          ///< for the allow-list (access.control_networks)
   Address address;            ///< for the per-address cap
   bool event_stream = false;  ///< an HTTP event stream (protocol::Session::is_event_stream)
+  /// An HTTP keep-alive connection waiting for its next request: nothing in
+  /// progress, so it makes room at once (a browser opens another when it
+  /// needs one), without waiting for net.idle_evict_s.
+  bool between_requests = false;
   Millis opened_ms = 0;
   Millis last_receive_ms = 0;  ///< the last byte from the client, or opened_ms
 };

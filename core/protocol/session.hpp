@@ -28,6 +28,9 @@ class Session {
   /// The session only pushes from now on (an HTTP event stream): transports
   /// count it apart from the clients that send requests (net/admission.hpp).
   virtual bool is_event_stream() const { return false; }
+  /// HTTP keep-alive: a request was answered and the next has not begun
+  /// (net::ClientInfo::between_requests).
+  virtual bool between_requests() const { return false; }
 
   /// Who the client is; the transport calls this once, before the first byte.
   void set_peer(const access::Peer& peer) { peer_ = peer; }

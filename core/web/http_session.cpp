@@ -26,6 +26,7 @@ void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
       break;
     }
     handle(parser_.request(), out);
+    answered_ = true;
     parser_.reset();
     request_timed_ = request_start_pending_ = false;
     body_timed_ = body_start_pending_ = false;

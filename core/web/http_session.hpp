@@ -48,6 +48,9 @@ class HttpSession final : public protocol::Session {
   bool wants_close() const override { return close_; }
   bool streaming_events() const { return events_; }
   bool is_event_stream() const override { return events_; }
+  bool between_requests() const override {
+    return answered_ && !events_ && !pending_ && !close_ && !parser_.in_progress();
+  }
 
  private:
   void handle(const HttpRequest& request, protocol::ByteSink& out);
@@ -66,6 +69,7 @@ class HttpSession final : public protocol::Session {
   // A login or a new password being hashed (Api::Outcome::kPending): the
   // response goes out from poll(), the connection closes after it, and
   // bytes that arrive meanwhile are dropped (no pipelining behind a login).
+  bool answered_ = false;  ///< a request has been answered on this connection
   bool pending_ = false;
   std::uint32_t pending_ticket_ = 0;
   // Who opened the event stream: it ends when that login or token does.

@@ -65,7 +65,10 @@ class TcpServer::Connection final : public protocol::ByteSink,
     read();
   }
 
-  const net::ClientInfo& info() const { return info_; }
+  const net::ClientInfo& info() {
+    info_.between_requests = session_ != nullptr && session_->between_requests();
+    return info_;
+  }
   void count_as_event_stream() { info_.event_stream = true; }
 
   void write(std::string_view bytes) override {

@@ -83,6 +83,19 @@ TEST_F(AdmissionTest, AFullPortDropsTheClientIdleLongestOnceItIsIdleLongEnough) 
   EXPECT_EQ(gate.counters().accepted, 1u);
 }
 
+TEST_F(AdmissionTest, AKeepAliveConnectionBetweenRequestsMakesRoomAtOnce) {
+  // A browser's pooled connections from one host at the cap: a second
+  // browser window on that host is served by recycling one that waits for
+  // its next request, not refused for net.idle_evict_s.
+  Admission gate({8, SIZE_MAX, 0}, &settings);
+  for (int n = 0; n < 6; ++n) clients.add(1, 0);
+  EXPECT_EQ(gate.admit(clients, newcomer(1), 1000).kind, Kind::kRefusePerAddress);
+  clients.entries[3].between_requests = true;
+  const auto d = gate.admit(clients, newcomer(1), 1000);
+  EXPECT_EQ(d.kind, Kind::kAdmit);
+  EXPECT_EQ(d.evict, 3u);
+}
+
 TEST_F(AdmissionTest, ClientsOnTheControlAllowListAreNeverDroppedForAStranger) {
   ASSERT_EQ(settings.set_text(settings::Id::kAccessControlNetworks, "10.0.0.0/29").error,
             Error::kOk);  // 10.0.0.0 - 10.0.0.7
