@@ -152,11 +152,16 @@ bool HttpRequestParser::parse_head() {
     return false;
   }
   request_.method_text = method;
-  request_.method = method == "GET"    ? Method::kGet
-                    : method == "HEAD" ? Method::kHead
-                    : method == "POST" ? Method::kPost
-                                       : Method::kOther;
-  request_.path = target.substr(0, target.find('?'));
+  request_.method = method == "GET"      ? Method::kGet
+                    : method == "HEAD"   ? Method::kHead
+                    : method == "POST"   ? Method::kPost
+                    : method == "PUT"    ? Method::kPut
+                    : method == "DELETE" ? Method::kDelete
+                                         : Method::kOther;
+  const std::size_t question = target.find('?');
+  request_.path = target.substr(0, question);
+  request_.query =
+      question == std::string_view::npos ? std::string_view{} : target.substr(question + 1);
   request_.keep_alive = version == "HTTP/1.1";
 
   while (!headers.empty()) {

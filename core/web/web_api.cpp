@@ -234,6 +234,7 @@ void Api::poll(Millis transport_now) {
   }
   auth_.sessions().expire(transport_now);
   work();
+  work_passes(ctx_.passes_poll_budget);
   for (std::size_t n = 0; n < dead_man_.size(); ++n) {
     DeadMan& d = dead_man_[n];
     if (!d.armed || transport_now < d.until) continue;
@@ -289,9 +290,18 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       {"/api/tokens/revoke", true, Need::kAdmin, false},
       {"/api/lock", true, Need::kControl, false},
       {"/api/unlock", true, Need::kControl, false},
+      // Tracking (track_api.cpp): "post" rows also take PUT and DELETE,
+      // which the handler tells apart.
+      {"/api/tle", false, Need::kRead, false},
+      {"/api/tle", true, Need::kControl, true},
+      {"/api/passes", false, Need::kRead, false},
+      {"/api/track", false, Need::kRead, false},
+      {"/api/track", true, Need::kControl, true},
   };
   const std::string_view path = request.path;
-  const bool is_post = request.method == Method::kPost;
+  // PUT and DELETE change state as POST does (the tracking routes).
+  const bool is_post = request.method == Method::kPost || request.method == Method::kPut ||
+                       request.method == Method::kDelete;
   const bool is_get = request.method == Method::kGet || request.method == Method::kHead;
   bool path_known = false;
   bool allows_get = false;
@@ -374,6 +384,8 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       get_auth(caller, out, options);
     } else if (path == "/api/tokens") {
       get_tokens(out, options);
+    } else if (is_track_path(path)) {
+      handle_track(request, out, options);
     } else {
       send_json(out, 200, options, [this](JsonWriter& w) {
         write_settings_schema(ctx_.defaults != nullptr ? *ctx_.defaults : settings::Settings(), w);
@@ -385,6 +397,16 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
   // POST. A body must be JSON, declared as such: a cross-site HTML form or
   // no-cors fetch cannot send that header, so another web page open in the
   // same browser cannot move the antenna. STOP is exempt: it must always work.
+  if (is_track_path(path)) {
+    handle_track(request, out, options);  // checks its own methods and bodies
+    return Outcome::kDone;
+  }
+  if (request.method != Method::kPost) {
+    ResponseOptions o = options;
+    o.extra_headers = allows_get ? "Allow: GET, HEAD, POST\r\n" : "Allow: POST\r\n";
+    send_error(out, 405, "method not allowed here", o);
+    return Outcome::kDone;
+  }
   if (path != "/api/stop" && !request.json_body) {
     send_error(out, 415, "send Content-Type: application/json", options);
     return Outcome::kDone;
