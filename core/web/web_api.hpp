@@ -57,6 +57,9 @@ struct ApiContext {
   /// Moon or a direction still works).
   tracking::TleCatalog* tles = nullptr;
   hal::Storage* tle_storage = nullptr;
+  /// false (Pico W): PUT/DELETE /api/tle are refused while the rotator
+  /// moves, as a flash write pauses the control loop for ~0.1 s.
+  bool tle_save_while_moving = true;
   /// Target evaluations GET /api/passes may do within the request, and per
   /// poll() afterwards (the Pico W keeps both small: ~3 ms each).
   int passes_request_budget = 200000;
