@@ -144,7 +144,6 @@ class Tracker {
   float return_el_deg_ = 0.0f;
   AxisFollow follow_[2];
   float az_shift_deg_ = 0.0f;  // whole turns added by unwinds
-  int speed_restore_pct_[2] = {100, 100};
 };
 
 }  // namespace rotord
