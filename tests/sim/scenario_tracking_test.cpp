@@ -278,6 +278,24 @@ TEST(TrackingScenario, AnyCommandEndsTheTrackAndParksNoMoreWhileArmed) {
   EXPECT_FALSE(s.controller().track_status().armed());
 }
 
+/// A system clock the kernel does not call synchronized (no NTP).
+class UnsyncedClock final : public hal::WallClock {
+ public:
+  std::optional<std::int64_t> unix_ms() const override { return utc("2019-12-09T19:00:00Z"); }
+  bool synchronized() const override { return false; }
+};
+
+TEST(TrackingScenario, AnUnsynchronizedClockIsRefusedUnlessTrusted) {
+  TrackScenario s("g5500", "2019-12-09T19:00:00Z", 39.86366, -119.17875, 0.0, 50.0, 10.0);
+  s.power_on();
+  UnsyncedClock unsynced;
+  s.controller().attach_utc_clock(&unsynced);
+  EXPECT_EQ(s.track_satellite(TrackWhen::kNextPass), TrackError::kClockUnsynced);
+  EXPECT_STRNE(track_error_text(TrackError::kClockUnsynced), "");
+  s.settings().set(Id::kTimeTrustClock, 1.0);
+  EXPECT_EQ(s.track_satellite(TrackWhen::kNextPass), TrackError::kOk);
+}
+
 TEST(TrackingScenario, RefusesWithoutAClockOrBelowTheHorizonNow) {
   TrackScenario s("g5500", "2019-12-09T19:00:00Z", 39.86366, -119.17875, 0.0, 50.0, 10.0);
   s.power_on();
