@@ -9,9 +9,9 @@ packages=(
   build-essential cmake ninja-build pkg-config clang-format
   libgtest-dev libgmock-dev libbenchmark-dev
   libasio-dev libcli11-dev nlohmann-json3-dev
-  libhamlib-utils socat netcat-openbsd
+  libhamlib-utils socat netcat-openbsd python3
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
-  liblwip-dev libgpiod-dev libmbedtls-dev
+  liblwip-dev libgpiod-dev libmbedtls-dev libcurl4-openssl-dev
   prometheus
   clang libclang-rt-14-dev
   chromium

@@ -204,6 +204,32 @@ TleCheck TleCatalog::put(std::string_view text, std::int64_t utc_ms) {
   return check;
 }
 
+TleCatalog::Refresh TleCatalog::refresh(std::string_view text) {
+  Refresh r;
+  TleSetReader reader(text);
+  std::string_view title, line1, line2;
+  SkyTarget target;  // ~1.2 KB on the stack: a refresh, never the tick
+  while (reader.next(title, line1, line2)) {
+    Tle tle;
+    if (!parse_tle(line1, line2, tle).ok() || target.set_satellite(tle) != Sgp4Error::kOk) {
+      ++r.bad;
+      continue;
+    }
+    Entry* e = nullptr;
+    for (std::size_t i = 0; i < count_ && e == nullptr; ++i)
+      if (entries_[i].catalog == tle.catalog) e = &entries_[i];
+    if (e == nullptr) {
+      ++r.not_stored;
+      continue;
+    }
+    // The stored name stays (the user may have named it); the lines change.
+    copy_text(line1, e->line1, sizeof e->line1);
+    copy_text(line2, e->line2, sizeof e->line2);
+    ++r.updated;
+  }
+  return r;
+}
+
 bool TleCatalog::remove(std::uint32_t catalog) {
   for (std::size_t i = 0; i < count_; ++i) {
     if (entries_[i].catalog != catalog) continue;

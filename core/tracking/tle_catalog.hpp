@@ -55,6 +55,15 @@ class TleCatalog {
   /// only when all are good stores them: a set replaces the stored one of
   /// the same catalog number. Nothing changes on any error.
   TleCheck put(std::string_view text, std::int64_t utc_ms);
+  /// A refresh (a downloaded catalog, e.g. CelesTrak's): every good set
+  /// whose catalog number is stored replaces it; the rest is left out. Bad
+  /// sets (format, checksum, SGP4 at epoch) are counted and skipped.
+  struct Refresh {
+    std::size_t updated = 0;
+    std::size_t not_stored = 0;
+    std::size_t bad = 0;
+  };
+  Refresh refresh(std::string_view text);
   /// Removes an object; false when it is not stored.
   bool remove(std::uint32_t catalog);
   void clear() { count_ = 0; }

@@ -469,7 +469,35 @@ void Daemon::serve(Millis wall_ms) {
   for (auto& server : servers_) server->poll(wall_ms);
   for (auto& line : serial_lines_) line->poll(wall_ms);
   save_changed_settings(false);
+  refresh_tles();
   if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();
+}
+
+void Daemon::refresh_tles() {
+  if (!tles_) return;
+  const std::string url(settings_.text(settings::Id::kTrackTleUrl));
+  if (url.empty()) {
+    tle_url_fetched_.clear();
+    return;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (url == tle_url_fetched_ && now < next_tle_refresh_) return;
+  if (!tle_fetcher_) tle_fetcher_ = std::make_unique<TleFetcher>(io_);
+  if (tle_fetcher_->busy()) return;
+  tle_url_fetched_ = url;
+  next_tle_refresh_ = now + std::chrono::hours(settings_.i(settings::Id::kTrackTleRefreshH));
+  tle_fetcher_->fetch(url, [this, url](bool ok, const std::string& text) {
+    if (!ok) {
+      log::warn("TLE refresh from %s failed: %s", url.c_str(), text.c_str());
+      return;
+    }
+    if (!tles_) return;
+    const tracking::TleCatalog::Refresh r = tles_->refresh(text);
+    std::vector<char> buf(2 * tracking::TleCatalog::kMaxTextBytes);
+    const bool saved = r.updated == 0 || tles_->save(*tle_storage_, buf.data(), buf.size());
+    log::info("TLEs refreshed from %s: %zu updated, %zu not stored here, %zu bad%s", url.c_str(),
+              r.updated, r.not_stored, r.bad, saved ? "" : " (could not save them)");
+  });
 }
 
 void Daemon::advance_simulation(Millis wall_ms) {
