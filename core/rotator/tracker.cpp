@@ -311,6 +311,11 @@ void Tracker::follow(Axis& axis, AxisFollow& f, float want_now, float want_lead,
   const AxisConfig& c = axis.config();
   if (!s.position_valid || s.fault != AxisFault::kNone) return;
   const float pos = s.position_deg;
+  if (c.continuous) {
+    // An endless axis reads 0..360: compare on the turn nearest the antenna.
+    want_now = unwrap_near(want_now, pos);
+    want_lead = unwrap_near(want_lead, pos);
+  }
   // The band the antenna may lag or lead by: its tolerance, or wider when the
   // target is fast and the relays must rest min_dwell_ms between starts.
   const float rate = std::fabs(rate_deg_s);
@@ -381,8 +386,12 @@ Tracker::Action Tracker::tick(Millis now, std::int64_t utc_ms, Axis& az, Axis* e
     case TrackPhase::kHolding: {
       // Hold the direction against wind and drift.
       const AxisStatus& s = az.status();
+      const float az_error =
+          az.config().continuous
+              ? unwrap_near(status_.target_az_deg, s.position_deg) - s.position_deg
+              : status_.target_az_deg - s.position_deg;
       if (!s.has_target && s.state == AxisState::kIdle &&
-          std::fabs(s.position_deg - status_.target_az_deg) > 2.0f * az.config().tolerance_deg)
+          std::fabs(az_error) > 2.0f * az.config().tolerance_deg)
         az.go_to(status_.target_az_deg);
       if (el != nullptr) {
         const AxisStatus& e = el->status();
