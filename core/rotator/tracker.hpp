@@ -2,6 +2,7 @@
 #include <cstdint>
 
 #include "axis/axis.hpp"
+#include "rotator/axis_follower.hpp"
 #include "settings/settings.hpp"
 #include "tracking/pass_finder.hpp"
 #include "tracking/sky_target.hpp"
@@ -109,23 +110,9 @@ class Tracker {
   const tracking::PassTable& table() const { return table_; }
 
  private:
-  /// What the tracker learns about one axis while it drives it.
-  struct AxisFollow {
-    float lag_ms = 300.0f;     ///< command to motion
-    float speed_deg_s = 6.0f;  ///< full-speed slew
-    Millis commanded_at = 0;   ///< a start from rest was commanded then ...
-    bool awaiting_motion = false;
-    float peak_speed_deg_s = 0;  ///< ... the fastest seen during this move
-    bool was_moving = false;
-    bool full_speed_move = false;
-  };
   void fail(TrackError error, tracking::Sgp4Error sgp4 = tracking::Sgp4Error::kOk);
   void find(std::int64_t utc_ms);
   void plan(std::int64_t utc_ms, Axis& az, Axis* el);
-  void learn(AxisFollow& f, const Axis& axis, Millis now);
-  /// Drives one axis toward the planned position (the core of following).
-  void follow(Axis& axis, AxisFollow& f, float want_now, float want_lead, float rate_deg_s,
-              Millis now, bool hurry);
   void position_now(std::int64_t utc_ms, float& az, float& el) const;
   /// Keeps a planned azimuth inside the travel (only a plan that does not
   /// fit needs it: that is the one unwind).
