@@ -4,7 +4,7 @@ PRESET    ?= default
 JOBS      ?= $(shell nproc)
 ROTORD_ARGS ?= --sim g5500
 
-.PHONY: all deps build run test bench embedded pico format format-check clean
+.PHONY: all deps build run test bench embedded pico deb format format-check clean
 
 all: build
 
@@ -24,7 +24,7 @@ test: build
 
 bench: build
 	@cmake --build --preset $(PRESET) --target benchmarks -j $(JOBS)
-	./$(BUILD_DIR)/bench/rotord_bench
+	python3 bench/run.py --build-dir $(BUILD_DIR)
 
 embedded: deps
 	@cmake --preset embedded >/dev/null
@@ -43,8 +43,19 @@ else
 	@cmake --build $(PICO_BUILD_DIR) -j $(JOBS)
 endif
 
+# The Debian package for this machine's architecture (arm64/armhf on a Pi),
+# built from a copy of the tree in $(DEB_BUILD_DIR) so debhelper's files
+# stay out of the source; the .deb lands in the top directory. README.md,
+# "Install on a Raspberry Pi".
+DEB_BUILD_DIR ?= build-deb
+deb:
+	@./scripts/install-deps.sh --deb
+	@DEB_BUILD_DIR=$(DEB_BUILD_DIR) DEB_JOBS=$(JOBS) ./scripts/build-deb.sh
+	@cp $(DEB_BUILD_DIR)/rotord_*.deb .
+	@ls rotord_*.deb
+
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD_DIR) build-embedded $(PICO_BUILD_DIR)
+	rm -rf $(BUILD_DIR) build-embedded $(PICO_BUILD_DIR) $(DEB_BUILD_DIR)

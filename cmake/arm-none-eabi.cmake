@@ -33,10 +33,11 @@ set(CMAKE_ASM_FLAGS_INIT "${ROTORD_ARM_ARCH_FLAGS}")
 # image that runs from RAM has; it says nothing about our code.
 set(CMAKE_EXE_LINKER_FLAGS_INIT "-Wl,--gc-sections -Wl,--no-warn-rwx-segments")
 
-# The other binutils the size report and the ISA check use.
+# The other binutils the size report, the ISA check and the exception check use.
 get_filename_component(ROTORD_ARM_BIN_DIR ${ROTORD_ARM_GCC} DIRECTORY)
 find_program(ROTORD_ARM_SIZE arm-none-eabi-size HINTS ${ROTORD_ARM_BIN_DIR} REQUIRED)
 find_program(ROTORD_ARM_READELF arm-none-eabi-readelf HINTS ${ROTORD_ARM_BIN_DIR} REQUIRED)
+find_program(ROTORD_ARM_NM arm-none-eabi-nm HINTS ${ROTORD_ARM_BIN_DIR} REQUIRED)
 
 # Never pick up host headers or libraries (e.g. the host's GTest package).
 set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)

@@ -2,21 +2,34 @@
 # Installs the Debian packages (and the npm packages of the web tests) that the
 # build and the test suite need. Idempotent: does nothing when all are present.
 # Used by `make run` and `make test`, so a fresh Debian 12 machine needs no
-# manual step.
+# manual step. `--deb` (`make deb`, e.g. on a Raspberry Pi): only what
+# building the Debian package needs (debian/control's Build-Depends).
 set -euo pipefail
 
+# What `make deb` needs: debian/control's Build-Depends, dpkg-buildpackage, git.
+deb_packages=(
+  build-essential dpkg-dev debhelper cmake ninja-build pkg-config gzip git
+  libasio-dev libcli11-dev libgpiod-dev libsystemd-dev libavahi-client-dev libmbedtls-dev
+)
 packages=(
-  build-essential cmake ninja-build pkg-config clang-format
+  "${deb_packages[@]}"
+  clang-format
   libgtest-dev libgmock-dev libbenchmark-dev
   libasio-dev libcli11-dev nlohmann-json3-dev
   libhamlib-utils socat netcat-openbsd python3
+  valgrind
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
-  liblwip-dev libgpiod-dev libmbedtls-dev libcurl4-openssl-dev
+  liblwip-dev libgpiod-dev libcurl4-openssl-dev
+  avahi-daemon avahi-utils dbus-daemon util-linux
+  lintian systemd man-db
   prometheus
+  libmosquitto-dev mosquitto mosquitto-clients python3-jsonschema
   clang libclang-rt-14-dev
   chromium
 )
-if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+if [ "${1:-}" = "--deb" ]; then
+  packages=("${deb_packages[@]}")
+elif ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
   packages+=(nodejs npm)
 fi
 

@@ -1,12 +1,12 @@
 #pragma once
 #include <cstdint>
 
-#include "axis/axis_id.hpp"
 #include "axis/axis_io.hpp"
 #include "sim/plant.hpp"
 #include "sim/profiles.hpp"
 #include "sim/recording_sink.hpp"
 #include "sim/sensors.hpp"
+#include "util/axis_id.hpp"
 #include "util/time.hpp"
 
 namespace rotord::sim {

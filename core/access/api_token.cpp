@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "util/hex.hpp"
+#include "util/slice.hpp"
 
 namespace rotord::access {
 namespace {
@@ -31,8 +32,8 @@ bool parse_token_record(std::string_view text, TokenRecord& out) {
   if (first == std::string_view::npos) return false;
   const std::size_t second = text.find(':', first + 1);
   if (second == std::string_view::npos) return false;
-  const std::string_view name = text.substr(0, first);
-  const std::string_view scope = text.substr(first + 1, second - first - 1);
+  const std::string_view name = text::slice(text, 0, first);
+  const std::string_view scope = text::slice(text, first + 1, second - first - 1);
   if (!valid_token_name(name)) return false;
   TokenRecord parsed;
   if (scope == "read") {
@@ -42,7 +43,7 @@ bool parse_token_record(std::string_view text, TokenRecord& out) {
   } else {
     return false;
   }
-  if (!hex::decode(text.substr(second + 1), parsed.hash)) return false;
+  if (!hex::decode(text::slice(text, second + 1), parsed.hash)) return false;
   std::memcpy(parsed.name, name.data(), name.size());
   parsed.name[name.size()] = '\0';
   out = parsed;

@@ -3,16 +3,17 @@
 #include <cstdio>
 
 #include "util/hex.hpp"
+#include "util/slice.hpp"
 
 namespace rotord::access {
 
 bool parse_password_hash(std::string_view text, PasswordHash& out) {
-  if (text.substr(0, kPasswordHashPrefix.size()) != kPasswordHashPrefix) return false;
+  if (!text.starts_with(kPasswordHashPrefix)) return false;
   text.remove_prefix(kPasswordHashPrefix.size());
   const std::size_t dollar = text.find('$');
   if (dollar == 0 || dollar == std::string_view::npos || dollar > 8) return false;
   std::uint32_t iterations = 0;
-  for (char c : text.substr(0, dollar)) {
+  for (char c : text::slice(text, 0, dollar)) {
     if (c < '0' || c > '9') return false;
     iterations = iterations * 10 + static_cast<std::uint32_t>(c - '0');
   }
@@ -25,8 +26,8 @@ bool parse_password_hash(std::string_view text, PasswordHash& out) {
     return false;
   PasswordHash parsed;
   parsed.iterations = iterations;
-  if (!hex::decode(text.substr(0, kSaltHex), parsed.salt) ||
-      !hex::decode(text.substr(kSaltHex + 1), parsed.key))
+  if (!hex::decode(text::slice(text, 0, kSaltHex), parsed.salt) ||
+      !hex::decode(text::slice(text, kSaltHex + 1), parsed.key))
     return false;
   out = parsed;
   return true;

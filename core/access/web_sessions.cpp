@@ -1,6 +1,7 @@
 #include "access/web_sessions.hpp"
 
 #include "util/hex.hpp"
+#include "util/slice.hpp"
 
 namespace rotord::access {
 namespace {
@@ -16,13 +17,13 @@ std::string_view trim_spaces(std::string_view s) {
 std::string_view cookie_value(std::string_view cookie_header, std::string_view name) {
   while (!cookie_header.empty()) {
     const std::size_t semi = cookie_header.find(';');
-    const std::string_view pair = trim_spaces(cookie_header.substr(0, semi));
+    const std::string_view pair = trim_spaces(text::slice(cookie_header, 0, semi));
     const std::size_t eq = pair.find('=');
-    if (eq != std::string_view::npos && trim_spaces(pair.substr(0, eq)) == name) {
-      std::string_view value = trim_spaces(pair.substr(eq + 1));
+    if (eq != std::string_view::npos && trim_spaces(text::slice(pair, 0, eq)) == name) {
+      std::string_view value = trim_spaces(text::slice(pair, eq + 1));
       // RFC 6265 allows a quoted value.
       if (value.size() >= 2 && value.front() == '"' && value.back() == '"')
-        value = value.substr(1, value.size() - 2);
+        value = text::slice(value, 1, value.size() - 2);
       return value;
     }
     if (semi == std::string_view::npos) break;

@@ -302,7 +302,17 @@ void Axis::drive_moving(Millis now) {
       out_.set(OutputChannel::kVoltageFast, slow ? 0.0f : 1.0f);
       break;
     case DriveType::kHBridge: {
-      const float target = commanded_duty(near_target);
+      // Inside the slow zone the duty tapers linearly from the cruise duty
+      // to pwm_slow_duty at the target rather than dropping to it at the
+      // zone's edge: the last degrees are still slow (the stop stays
+      // accurate), the rest of the zone no longer crawls (bench: SPID
+      // moves of 10-180 deg).
+      float target = commanded_duty(false);
+      if (near_target && cfg_.slow_zone_deg > 0.0f) {
+        const float floor_duty = commanded_duty(true);
+        const float frac = std::fabs(request_.target_deg - pos_deg()) / cfg_.slow_zone_deg;
+        if (target > floor_duty) target = floor_duty + (target - floor_duty) * frac;
+      }
       // Soft start: the duty slews at most full scale per soft_ms.
       float step = 1.0f;
       if (cfg_.soft_ms > 0)

@@ -1,10 +1,10 @@
 #pragma once
 #include "axis/axis_config.hpp"
-#include "axis/axis_id.hpp"
 #include "axis/axis_io.hpp"
 #include "axis/axis_status.hpp"
 #include "axis/position_tracker.hpp"
 #include "axis/sequencer.hpp"
+#include "util/axis_id.hpp"
 #include "util/error.hpp"
 #include "util/time.hpp"
 

@@ -1,11 +1,11 @@
 #pragma once
 #include <cstdint>
 
-#include "axis/axis_id.hpp"
 #include "sensors/magnetometer.hpp"
 #include "sensors/pot_calibration.hpp"
 #include "sensors/pot_filter.hpp"
 #include "settings/settings.hpp"
+#include "util/axis_id.hpp"
 
 namespace rotord {
 

@@ -3,11 +3,10 @@
 #include <cstdint>
 
 #include "axis/drive_outputs.hpp"
+#include "util/direction.hpp"
 #include "util/time.hpp"
 
 namespace rotord {
-
-enum class Direction : std::int8_t { kCcw = -1, kNone = 0, kCw = 1 };  // el: kCcw = down
 
 /// What one step of a timed sequence does. Direction-relative targets are
 /// resolved against the direction the sequence runs for, so one start

@@ -1,10 +1,10 @@
 #pragma once
 #include <array>
 
-#include "axis/axis_id.hpp"
-#include "axis/sequencer.hpp"
 #include "hal/digital_in.hpp"
 #include "input/debouncer.hpp"
+#include "util/axis_id.hpp"
+#include "util/direction.hpp"
 
 namespace rotord {
 

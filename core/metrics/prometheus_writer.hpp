@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "metrics/histogram.hpp"
-#include "protocol/session.hpp"
+#include "util/byte_sink.hpp"
 
 namespace rotord::metrics {
 

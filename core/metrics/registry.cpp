@@ -27,7 +27,7 @@ const char* protocol_label(Protocol protocol) {
 namespace {
 
 bool starts_with(std::string_view s, std::string_view prefix) {
-  return s.substr(0, prefix.size()) == prefix;
+  return s.starts_with(prefix);
 }
 
 /// "HTTP/1.1 404 ..." and up: a status line of 400 or more.

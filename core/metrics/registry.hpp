@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "hal/monotonic_clock.hpp"
+#include "util/metrics_protocol.hpp"
 
 namespace rotord {
 class SettingsSaver;
@@ -12,10 +13,6 @@ class TickScheduler;
 }  // namespace rotord
 
 namespace rotord::metrics {
-
-/// The protocols a port serves: the `protocol` label of GET /metrics.
-enum class Protocol : std::uint8_t { kHttp, kWrc, kRotctld, kGs232, kEasycomm, kSeed, kCount };
-inline constexpr std::size_t kProtocolCount = static_cast<std::size_t>(Protocol::kCount);
 
 /// "http", "wrc", "rotctld", "gs232", "easycomm", "seed".
 const char* protocol_label(Protocol protocol);

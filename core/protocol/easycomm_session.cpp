@@ -7,6 +7,7 @@
 #include "motion/angles.hpp"
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol {
@@ -14,16 +15,10 @@ namespace {
 
 using settings::Id;
 
-/// Formats one reply line into a fixed buffer and writes it with LF (Hamlib
-/// reads up to LF; a CR alone makes it time out).
-void send(ByteSink& out, const char* fmt, auto... args) {
-  char buf[EasycommSession::kMaxReplyLength];
-  const int n = std::snprintf(buf, sizeof(buf) - 1, fmt, args...);
-  if (n < 0) return;
-  std::size_t len =
-      static_cast<std::size_t>(n) < sizeof(buf) - 1 ? static_cast<std::size_t>(n) : sizeof(buf) - 2;
-  buf[len++] = '\n';
-  out.write(std::string_view(buf, len));
+/// One reply line, LF ended, in one write.
+template <typename... Args>
+void send(ByteSink& out, const char* fmt, Args... args) {
+  EasycommSession::Reply(EasycommSession::kReplyRules).line(out, fmt, args...);
 }
 
 /// The alarm line: Easycomm's only way to report a problem (`ALxxx`).
@@ -58,13 +53,14 @@ std::string_view next_token(std::string_view& rest) {
   while (i < rest.size() && is_separator(rest[i])) ++i;
   std::size_t j = i;
   while (j < rest.size() && !is_separator(rest[j])) ++j;
-  const std::string_view token = rest.substr(i, j - i);
+  const std::string_view token = text::slice(rest, i, j - i);
   rest.remove_prefix(j);
   return token;
 }
 
 bool starts_with(std::string_view token, std::string_view prefix) {
-  return token.size() >= prefix.size() && text::iequals(token.substr(0, prefix.size()), prefix);
+  return token.size() >= prefix.size() &&
+         text::iequals(text::slice(token, 0, prefix.size()), prefix);
 }
 
 bool all_letters(std::string_view s) {
@@ -74,13 +70,13 @@ bool all_letters(std::string_view s) {
   return !s.empty();
 }
 
-/// Bare words that are commands, so an Easycomm I mode field never hides one.
+/// Bare words that are commands (the rows that take no value), so an
+/// Easycomm I mode field never hides one.
 bool is_bare_command(std::string_view token) {
-  constexpr std::array<std::string_view, 15> kWords = {"AZ", "EL", "SA", "SE",   "ML",
-                                                       "MR", "MU", "MD", "VE",   "GS",
-                                                       "GE", "AO", "LO", "PARK", "RESET"};
-  for (std::string_view w : kWords) {
-    if (text::iequals(token, w)) return true;
+  for (const EasycommSession::Command& c : EasycommSession::commands()) {
+    using Arg = EasycommSession::Arg;
+    const bool bare = c.arg == Arg::kWord || c.arg == Arg::kNone || c.arg == Arg::kQueryOrNumber;
+    if (bare && text::iequals(token, c.name)) return true;
   }
   return false;
 }
@@ -122,107 +118,160 @@ void EasycommSession::handle_line(std::string_view line, ByteSink& out) {
   finish_line(request, out);
 }
 
+// The command table, in the order of docs/protocols/easycomm.md.
+using C = EasycommSession;
+using A = EasycommSession::Arg;
+const EasycommSession::Command EasycommSession::kCommands[] = {
+    {"AZ", A::kQueryOrNumber, nullptr, &LineRequest::query_az, &LineRequest::set_az_deg,
+     "AZ: azimuth query; AZx.x: go to (one go-to with ELy.y on the line)", true},
+    {"EL", A::kQueryOrNumber, nullptr, &LineRequest::query_el, &LineRequest::set_el_deg,
+     "EL: elevation query; ELy.y: go to", true},
+    {"SA", A::kNone, nullptr, &LineRequest::stop_az, nullptr, "SA: stop azimuth", false},
+    {"SE", A::kNone, nullptr, &LineRequest::stop_el, nullptr, "SE: stop elevation", false},
+    {"ML", A::kNone, &C::move_left, nullptr, nullptr, "ML: move left (CCW)", true},
+    {"MR", A::kNone, &C::move_right, nullptr, nullptr, "MR: move right (CW)", true},
+    {"MU", A::kNone, &C::move_up, nullptr, nullptr, "MU: move up", true},
+    {"MD", A::kNone, &C::move_down, nullptr, nullptr, "MD: move down", true},
+    {"VL", A::kVelocity, &C::move_left, nullptr, nullptr, "VLn: move left at n mdeg/s", true},
+    {"VR", A::kVelocity, &C::move_right, nullptr, nullptr, "VRn: move right at n mdeg/s", true},
+    {"VU", A::kVelocity, &C::move_up, nullptr, nullptr, "VUn: move up at n mdeg/s", true},
+    {"VD", A::kVelocity, &C::move_down, nullptr, nullptr, "VDn: move down at n mdeg/s", true},
+    {"PARK", A::kWord, &C::park, nullptr, nullptr, "PARK: go to the park position", true},
+    {"RESET", A::kWord, &C::reset, nullptr, nullptr, "RESET: stop, clear faults", true},
+    {"VE", A::kNone, &C::version, nullptr, nullptr, "VE: version", false},
+    {"GS", A::kNone, &C::status, nullptr, nullptr, "GS: status register", false},
+    {"GE", A::kNone, &C::errors, nullptr, nullptr, "GE: error register", false},
+    {"CR", A::kRegister, &C::read_config, nullptr, nullptr, "CRr: read configuration register r",
+     false},
+    {"CW", A::kRegister, &C::write_config, nullptr, nullptr,
+     "CWr,value: write configuration register r", true},
+    // Radio, time and AOS/LOS fields concern no rotator: checked, ignored.
+    {"UP", A::kFrequency, nullptr, nullptr, nullptr, "UPn [mode]: uplink (ignored)", false},
+    {"DN", A::kFrequency, nullptr, nullptr, nullptr, "DNn [mode]: downlink (ignored)", false},
+    {"UM", A::kAny, nullptr, nullptr, nullptr, "UMx: uplink mode (ignored)", false},
+    {"DM", A::kAny, nullptr, nullptr, nullptr, "DMx: downlink mode (ignored)", false},
+    {"UR", A::kAny, nullptr, nullptr, nullptr, "URn: uplink radio (ignored)", false},
+    {"DR", A::kAny, nullptr, nullptr, nullptr, "DRn: downlink radio (ignored)", false},
+    {"ST", A::kAny, nullptr, nullptr, nullptr, "STtime: set time (ignored)", false},
+    {"AO", A::kNone, nullptr, nullptr, nullptr, "AO: acquisition of signal (ignored)", false},
+    {"LO", A::kNone, nullptr, nullptr, nullptr, "LO: loss of signal (ignored)", false},
+    // Digital/analogue I/O channels: this controller has none to offer.
+    {"IP", A::kAny, &C::io_channel, nullptr, nullptr, "IPn: digital input (unsupported)", false},
+    {"OP", A::kAny, &C::io_channel, nullptr, nullptr, "OPn: digital output (unsupported)", false},
+    {"AN", A::kAny, &C::io_channel, nullptr, nullptr, "ANn: analogue input (unsupported)", false},
+};
+
+std::span<const EasycommSession::Command> EasycommSession::commands() {
+  return kCommands;
+}
+
+const EasycommSession::Command* EasycommSession::find(std::string_view token) {
+  for (const Command& c : kCommands) {
+    if (c.arg == Arg::kWord ? text::iequals(token, c.name) : starts_with(token, c.name)) return &c;
+  }
+  return nullptr;
+}
+
 bool EasycommSession::parse_token(std::string_view token, std::string_view& rest,
                                   LineRequest& request, ByteSink& out) {
-  auto value_of = [&](std::optional<float>& target) {
-    const std::string_view value = token.substr(2);
-    double deg = 0;
-    if (!text::parse_double(value, deg)) return false;
-    target = static_cast<float>(deg);
-    return true;
-  };
-  auto bare = [&] { return token.size() == 2; };
   auto reject = [&](const char* reason) {
     alarm(out, reason);
     return false;
   };
-
-  if (text::iequals(token, "PARK") || text::iequals(token, "RESET")) return true;
-  if (token.size() < 2) return reject("UNKNOWN");
-  if (starts_with(token, "AZ")) {
-    if (bare()) return request.query_az = true;
-    return value_of(request.set_az_deg) || reject("SYNTAX");
+  const Command* c = find(token);
+  if (c == nullptr) return reject("UNKNOWN");
+  const std::string_view value = text::slice(token, c->name.size());
+  switch (c->arg) {
+    case Arg::kWord:
+    case Arg::kAny:
+      return true;
+    case Arg::kNone:
+      if (!value.empty()) return reject("SYNTAX");
+      if (c->flag != nullptr) request.*(c->flag) = true;
+      return true;
+    case Arg::kQueryOrNumber: {
+      if (value.empty()) return request.*(c->flag) = true;
+      double deg = 0;
+      if (!text::parse_double(value, deg)) return reject("SYNTAX");
+      request.*(c->target) = static_cast<float>(deg);
+      return true;
+    }
+    case Arg::kVelocity: {
+      long velocity = 0;
+      return (text::parse_int(value, velocity) && velocity >= 0) || reject("SYNTAX");
+    }
+    case Arg::kRegister:
+      // The register may follow as its own token ("CR 1", as Hamlib writes it).
+      if (value.empty() && next_token(rest).empty()) return reject("SYNTAX");
+      return true;
+    case Arg::kFrequency: {
+      // Easycomm I: "UP000 XXX" -- a frequency, then a mode word.
+      std::string_view peek = rest;
+      const std::string_view mode = next_token(peek);
+      if (all_letters(mode) && !is_bare_command(mode)) rest = peek;
+      return true;
+    }
   }
-  if (starts_with(token, "EL")) {
-    if (bare()) return request.query_el = true;
-    return value_of(request.set_el_deg) || reject("SYNTAX");
-  }
-  if (starts_with(token, "SA")) return bare() ? (request.stop_az = true) : reject("SYNTAX");
-  if (starts_with(token, "SE")) return bare() ? (request.stop_el = true) : reject("SYNTAX");
-  if (starts_with(token, "ML") || starts_with(token, "MR") || starts_with(token, "MU") ||
-      starts_with(token, "MD") || starts_with(token, "VE") || starts_with(token, "GS") ||
-      starts_with(token, "GE") || starts_with(token, "AO") || starts_with(token, "LO"))
-    return bare() || reject("SYNTAX");
-  if (starts_with(token, "VL") || starts_with(token, "VR") || starts_with(token, "VU") ||
-      starts_with(token, "VD")) {
-    long velocity = 0;
-    return (text::parse_int(token.substr(2), velocity) && velocity >= 0) || reject("SYNTAX");
-  }
-  if (starts_with(token, "CR") || starts_with(token, "CW")) {
-    // The register may follow as its own token ("CR 1", as Hamlib writes it).
-    if (bare() && next_token(rest).empty()) return reject("SYNTAX");
-    return true;
-  }
-  if (starts_with(token, "UP") || starts_with(token, "DN")) {
-    // Easycomm I: "UP000 XXX" -- a frequency, then a mode word.
-    std::string_view peek = rest;
-    const std::string_view mode = next_token(peek);
-    if (all_letters(mode) && !is_bare_command(mode)) rest = peek;
-    return true;
-  }
-  if (starts_with(token, "UM") || starts_with(token, "DM") || starts_with(token, "UR") ||
-      starts_with(token, "DR") || starts_with(token, "ST") || starts_with(token, "IP") ||
-      starts_with(token, "OP") || starts_with(token, "AN"))
-    return true;
   return reject("UNKNOWN");
 }
 
 void EasycommSession::run_token(std::string_view token, std::string_view& rest, ByteSink& out) {
-  auto is = [&](std::string_view prefix) { return starts_with(token, prefix); };
-  const std::string_view value = token.size() > 2 ? token.substr(2) : std::string_view();
-
-  // Moves, park, reset and register writes: refused to a read-only client
-  // (access.control_networks) with an alarm. SA and SE (stop) still work.
-  const bool changes_state = text::iequals(token, "PARK") || text::iequals(token, "RESET") ||
-                             is("ML") || is("MR") || is("MU") || is("MD") || is("VL") || is("VR") ||
-                             is("VU") || is("VD") || is("CW");
-  if (changes_state && !may_control(controller_)) {
-    if (is("CW") && value.empty()) next_token(rest);  // the register, as its own token
-    return alarm(out, "DENIED");
-  }
-
-  if (text::iequals(token, "PARK")) {
-    const Error e = controller_.park();
-    if (e != Error::kOk) alarm(out, alarm_reason(e));
-    return;
-  }
-  if (text::iequals(token, "RESET")) {
-    if (controller_.reset() != Error::kOk) alarm(out, "ESTOP");
-    return;
-  }
-  if (is("ML")) return move(AxisId::kAz, Direction::kCcw, {}, out);
-  if (is("MR")) return move(AxisId::kAz, Direction::kCw, {}, out);
-  if (is("MU")) return move(AxisId::kEl, Direction::kCw, {}, out);
-  if (is("MD")) return move(AxisId::kEl, Direction::kCcw, {}, out);
-  if (is("VL")) return move(AxisId::kAz, Direction::kCcw, value, out);
-  if (is("VR")) return move(AxisId::kAz, Direction::kCw, value, out);
-  if (is("VU")) return move(AxisId::kEl, Direction::kCw, value, out);
-  if (is("VD")) return move(AxisId::kEl, Direction::kCcw, value, out);
-  if (is("VE")) return send(out, "VErotord-%s", version_);
-  if (is("GS")) return send(out, "GS%d", status_register());
-  if (is("GE")) return send(out, "GE%d", error_register());
-  if (is("CR")) return read_config(value.empty() ? next_token(rest) : value, out);
-  if (is("CW")) return write_config(value.empty() ? next_token(rest) : value, out);
-  if (is("UP") || is("DN")) {
+  const Command* c = find(token);  // checked by parse_token
+  if (c == nullptr) return;
+  std::string_view value = text::slice(token, c->name.size());
+  // Take the same tokens parse_token took: a register on its own, the mode
+  // word after a frequency.
+  if (c->arg == Arg::kRegister && value.empty()) value = next_token(rest);
+  if (c->arg == Arg::kFrequency) {
     std::string_view peek = rest;
     const std::string_view mode = next_token(peek);
     if (all_letters(mode) && !is_bare_command(mode)) rest = peek;
-    return;
   }
-  // Digital/analogue I/O channels: this controller has none to offer.
-  if (is("IP") || is("OP") || is("AN")) return alarm(out, "UNSUPPORTED");
-  // AZ/EL/SA/SE are collected for finish_line; radio, time and AOS/LOS
-  // fields (UM, DM, UR, DR, ST, AO, LO) concern no rotator and are ignored.
+  // AZ/EL/SA/SE are collected for finish_line, which refuses a position.
+  if (c->run == nullptr) return;
+  if (c->changes_state && !may_control(controller_)) return alarm(out, "DENIED");
+  (this->*(c->run))(value, out);
+}
+
+void EasycommSession::park(std::string_view, ByteSink& out) {
+  const Error e = controller_.park();
+  if (e != Error::kOk) alarm(out, alarm_reason(e));
+}
+
+void EasycommSession::reset(std::string_view, ByteSink& out) {
+  if (controller_.reset() != Error::kOk) alarm(out, "ESTOP");
+}
+
+void EasycommSession::move_left(std::string_view velocity, ByteSink& out) {
+  move(AxisId::kAz, Direction::kCcw, velocity, out);
+}
+
+void EasycommSession::move_right(std::string_view velocity, ByteSink& out) {
+  move(AxisId::kAz, Direction::kCw, velocity, out);
+}
+
+void EasycommSession::move_up(std::string_view velocity, ByteSink& out) {
+  move(AxisId::kEl, Direction::kCw, velocity, out);
+}
+
+void EasycommSession::move_down(std::string_view velocity, ByteSink& out) {
+  move(AxisId::kEl, Direction::kCcw, velocity, out);
+}
+
+void EasycommSession::version(std::string_view, ByteSink& out) {
+  send(out, "VErotord-%s", version_);
+}
+
+void EasycommSession::status(std::string_view, ByteSink& out) {
+  send(out, "GS%d", status_register());
+}
+
+void EasycommSession::errors(std::string_view, ByteSink& out) {
+  send(out, "GE%d", error_register());
+}
+
+void EasycommSession::io_channel(std::string_view, ByteSink& out) {
+  alarm(out, "UNSUPPORTED");
 }
 
 void EasycommSession::move(AxisId axis, Direction dir, std::string_view velocity, ByteSink& out) {
@@ -247,12 +296,12 @@ void EasycommSession::read_config(std::string_view reg, ByteSink& out) {
 void EasycommSession::write_config(std::string_view arg, ByteSink& out) {
   const std::size_t comma = arg.find(',');
   if (comma == std::string_view::npos) return alarm(out, "SYNTAX");
-  const std::optional<Id> id = find_register(arg.substr(0, comma));
+  const std::optional<Id> id = find_register(text::slice(arg, 0, comma));
   if (!id) return alarm(out, "UNKNOWN");
   // Secrets and the access rules are written through the web or REST only.
   if (!settings::line_writable(*id)) return alarm(out, "DENIED");
   // A value that breaks a cross-setting rule (a min above its max) is undone.
-  if (controller_.settings().update_from_text(*id, arg.substr(comma + 1)).error != Error::kOk)
+  if (controller_.settings().update_from_text(*id, text::slice(arg, comma + 1)).error != Error::kOk)
     alarm(out, "RANGE");
 }
 

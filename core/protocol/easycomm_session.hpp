@@ -1,10 +1,13 @@
 #pragma once
+#include <cstdint>
 #include <optional>
+#include <span>
 
-#include "axis/axis_id.hpp"
-#include "axis/sequencer.hpp"
 #include "protocol/line_assembler.hpp"
+#include "protocol/line_reply.hpp"
 #include "protocol/session.hpp"
+#include "util/axis_id.hpp"
+#include "util/direction.hpp"
 
 namespace rotord::protocol {
 
@@ -20,6 +23,10 @@ class EasycommSession final : public Session {
   static constexpr std::size_t kMaxLineLength = 128;
   static constexpr std::size_t kMaxReplyLength = 160;
   static constexpr std::string_view kTooManyConnections = "ALBUSY\n";
+  /// LF lines (Hamlib reads up to LF; a CR alone makes it time out); a
+  /// reply that cannot fit is the overflow alarm.
+  static constexpr ReplyRules kReplyRules{"\n", "ALOVERFLOW\n"};
+  using Reply = LineReply<kMaxReplyLength>;
 
   EasycommSession(Controller& controller, const char* version)
       : controller_(controller), version_(version) {}
@@ -47,6 +54,54 @@ class EasycommSession final : public Session {
     bool stop_az = false;
     bool stop_el = false;
   };
+
+ public:
+  /// What may follow a command's two letters in its token.
+  enum class Arg : std::uint8_t {
+    kWord,           ///< nothing: the token is the whole name (PARK, RESET)
+    kNone,           ///< nothing (ML, VE, SA, ...): anything else is ALSYNTAX
+    kQueryOrNumber,  ///< AZ / EL: bare queries, a number sets
+    kVelocity,       ///< VL..VD: a non-negative whole number (mdeg/s)
+    kRegister,       ///< CR / CW: a register, attached or as the next token
+    kFrequency,      ///< UP / DN (Easycomm I): anything, then an optional mode word
+    kAny,            ///< UM, ST, IP, ...: anything
+  };
+  /// One row of the command table (easycomm_session.cpp); matched by its
+  /// name as the token's prefix (kWord: the whole token), case-insensitive.
+  /// docs/protocols/easycomm.md is checked against these rows (tests/docs).
+  struct Command {
+    std::string_view name;
+    Arg arg;
+    /// Run once the whole line is checked; nullptr: nothing to run (AZ, EL,
+    /// SA and SE are collected into the line's request instead, and radio
+    /// fields are ignored).
+    void (EasycommSession::*run)(std::string_view value, ByteSink& out);
+    /// For AZ/EL/SA/SE: the request flag a bare token sets, and the target
+    /// a value sets.
+    bool LineRequest::*flag;
+    std::optional<float> LineRequest::*target;
+    std::string_view help;
+    /// Moves the rotator or writes a register: `ALDENIED` to a read-only
+    /// client (Session::may_control). A position (AZ/EL with a value) is
+    /// refused once for the line's go-to; SA and SE (stop) never.
+    bool changes_state;
+  };
+  static std::span<const Command> commands();
+
+ private:
+  static const Command kCommands[];
+  static const Command* find(std::string_view token);
+
+  void park(std::string_view value, ByteSink& out);
+  void reset(std::string_view value, ByteSink& out);
+  void move_left(std::string_view value, ByteSink& out);
+  void move_right(std::string_view value, ByteSink& out);
+  void move_up(std::string_view value, ByteSink& out);
+  void move_down(std::string_view value, ByteSink& out);
+  void version(std::string_view value, ByteSink& out);
+  void status(std::string_view value, ByteSink& out);
+  void errors(std::string_view value, ByteSink& out);
+  void io_channel(std::string_view value, ByteSink& out);
 
   /// Checks one token and notes AZ/EL/SA/SE; false (after an alarm) when it
   /// is malformed. `rest` loses the tokens a command takes as arguments.

@@ -1,10 +1,11 @@
 #include "protocol/gs232_session.hpp"
 
+#include <array>
 #include <cstdio>
 
 #include "protocol/gs232_calibration.hpp"
-#include "protocol/gs232_help.hpp"
 #include "rotator/controller.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol {
@@ -34,17 +35,170 @@ bool parse_field(std::string_view s, int& value) {
 }
 
 /// Formats a data reply (which always ends in CR LF) and sends it in one write.
-/// A reply that cannot fit goes out as the protocol's error, never as silence
-/// (issue 11).
+/// A reply that cannot fit goes out as the protocol's error, never as silence.
 template <typename... Args>
 void send(ByteSink& out, const char* fmt, Args... args) {
-  char buf[64];
-  const int n = std::snprintf(buf, sizeof(buf), fmt, args...);
-  if (n <= 0 || static_cast<std::size_t>(n) >= sizeof(buf)) return out.write(Gs232Session::kError);
-  out.write(std::string_view(buf, static_cast<std::size_t>(n)));
+  Gs232Session::Reply reply(Gs232Session::kReplyRules);
+  reply.format(fmt, args...);
+  reply.send(out);
 }
 
 }  // namespace
+
+// The command table. Its order is the help pages' order: a row is listed on
+// every page its help_pages bit names (T, N and S on both pages 1 and 2).
+using A = Gs232Session::Arg;
+constexpr Gs232Session::Command Gs232Session::kCommands[] = {
+    {"R", 'R', A::kNone, {}, false, &Gs232Session::turn_cw, "turn clockwise", 1, true},
+    {"L", 'L', A::kNone, {}, false, &Gs232Session::turn_ccw, "turn counter-clockwise", 1, true},
+    {"A", 'A', A::kNone, {}, false, &Gs232Session::stop_az, "stop azimuth", 1, false},
+    {"C", 'C', A::kNone, {}, false, &Gs232Session::report_az, "report azimuth", 1, false},
+    {"Maaa", 'M', A::kList, {}, false, &Gs232Session::go_az, "turn to azimuth aaa", 1, true},
+    {"Msss aaa aaa ...",
+     'M',
+     A::kList,
+     {},
+     false,
+     nullptr,
+     "timed list, sss seconds per step",
+     1,
+     true},
+    {"U", 'U', A::kNone, {}, false, &Gs232Session::turn_up, "turn up", 2, true},
+    {"D", 'D', A::kNone, {}, false, &Gs232Session::turn_down, "turn down", 2, true},
+    {"E", 'E', A::kNone, {}, false, &Gs232Session::stop_el, "stop elevation", 2, false},
+    {"B", 'B', A::kNone, {}, false, &Gs232Session::report_el, "report elevation", 2, false},
+    {"C2", 'C', A::kExact, "2", false, &Gs232Session::report_both, "report azimuth and elevation",
+     2, false},
+    {"Waaa eee",
+     'W',
+     A::kList,
+     {},
+     false,
+     &Gs232Session::go_az_el,
+     "turn to azimuth aaa, elevation eee",
+     2,
+     true},
+    {"Wsss aaa eee ...", 'W', A::kList, {}, false, nullptr, "timed list of pairs", 2, true},
+    {"T", 'T', A::kNone, {}, false, &Gs232Session::start_list, "start the timed list", 1 | 2, true},
+    {"N",
+     'N',
+     A::kNone,
+     {},
+     false,
+     &Gs232Session::list_point,
+     "timed list: point now and points stored",
+     1 | 2,
+     false},
+    {"X1-X4",
+     'X',
+     A::kSpeed,
+     {},
+     false,
+     &Gs232Session::speed,
+     "azimuth speed, 1 slowest to 4 fastest",
+     1,
+     true},
+    {"S", 'S', A::kNone, {}, false, &Gs232Session::stop_all, "stop everything", 1 | 2, false},
+    {"O",
+     'O',
+     A::kNone,
+     {},
+     false,
+     &Gs232Session::offset_az,
+     "offset calibration at the CCW stop",
+     1,
+     true},
+    {"F",
+     'F',
+     A::kNone,
+     {},
+     false,
+     &Gs232Session::full_scale_az,
+     "full scale calibration at the CW stop",
+     1,
+     true},
+    {"O2", 'O', A::kExact, "2", false, &Gs232Session::offset_el,
+     "elevation offset calibration at the bottom", 2, true},
+    {"F2", 'F', A::kExact, "2", false, &Gs232Session::full_scale_el,
+     "elevation full scale calibration at the top", 2, true},
+    {"H", 'H', A::kNone, {}, false, &Gs232Session::help_1, "help page 1", 0, false},
+    {"H2", 'H', A::kExact, "2", false, &Gs232Session::help_2, "help page 2", 0, false},
+    {"H3", 'H', A::kExact, "3", true, &Gs232Session::help_3, "help page 3 and the mode", 0, false},
+    {"P36", 'P', A::kExact, "36", true, &Gs232Session::scale_360, "360 degree azimuth scale", 4,
+     true},
+    {"P45", 'P', A::kExact, "45", true, &Gs232Session::scale_450, "450 degree azimuth scale", 4,
+     true},
+    // Z only changes what H3 reports (this session's needle), nothing else.
+    {"Z",
+     'Z',
+     A::kNone,
+     {},
+     true,
+     &Gs232Session::south_centre,
+     "toggle north / south centred needle",
+     4,
+     false},
+};
+
+std::span<const Gs232Session::Command> Gs232Session::commands() {
+  return kCommands;
+}
+
+namespace {
+
+// The help pages, built at compile time from the rows: a header, then
+// "name   help" lines with the name padded to seven columns (two spaces
+// after a longer one), as the manual's help screen prints them.
+constexpr std::string_view kPageHeader = "---------- COMMAND LIST 0 ----------\r\n";
+constexpr std::size_t kHeaderDigit = 24;
+
+constexpr std::size_t name_column(const Gs232Session::Command& c) {
+  return c.name.size() < 7 ? 7 : c.name.size() + 2;
+}
+
+constexpr std::size_t page_length(int page) {
+  std::size_t n = kPageHeader.size();
+  for (const Gs232Session::Command& c : Gs232Session::kCommands)
+    if ((c.help_pages & (1 << (page - 1))) != 0) n += name_column(c) + c.help.size() + 2;
+  return n;
+}
+
+template <int Page>
+constexpr std::array<char, page_length(Page)> make_page() {
+  std::array<char, page_length(Page)> text{};
+  std::size_t n = 0;
+  for (char ch : kPageHeader) text[n++] = ch;
+  text[kHeaderDigit] = static_cast<char>('0' + Page);
+  for (const Gs232Session::Command& c : Gs232Session::kCommands) {
+    if ((c.help_pages & (1 << (Page - 1))) == 0) continue;
+    const std::size_t end = n + name_column(c);
+    for (char ch : c.name) text[n++] = ch;
+    while (n < end) text[n++] = ' ';
+    for (char ch : c.help) text[n++] = ch;
+    text[n++] = '\r';
+    text[n++] = '\n';
+  }
+  return text;
+}
+
+constexpr auto kPage1 = make_page<1>();
+constexpr auto kPage2 = make_page<2>();
+constexpr auto kPage3 = make_page<3>();
+
+}  // namespace
+
+std::string_view Gs232Session::help_page(int page) {
+  switch (page) {
+    case 1:
+      return {kPage1.data(), kPage1.size()};
+    case 2:
+      return {kPage2.data(), kPage2.size()};
+    case 3:
+      return {kPage3.data(), kPage3.size()};
+    default:
+      return {};
+  }
+}
 
 void Gs232Session::done(ByteSink& out) {
   // The real controllers send a CR after every command. Hamlib's GS-232A/B
@@ -104,117 +258,173 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
   // Hamlib's GS-232B backend sends an extra CR after every command without a
   // reply; empty commands are ignored so that nothing answers it.
   if (line.empty()) return;
-  const char cmd = upper(line[0]);
-  const std::string_view rest = line.substr(1);
-  // Turning, speed, timed lists, calibration and P36/P45: refused with the
-  // controller's error to a read-only client (access.control_networks).
-  // S, A and E (stop) are not among them.
-  if (std::string_view("MWRLUDXTOFP").find(cmd) != std::string_view::npos &&
-      !may_control(controller_))
-    return out.write(kError);
-  if (cmd == 'M' || cmd == 'W') return position_command(cmd == 'W', rest, out);
-
-  // Every other command is a letter and at most three characters; spaces
-  // inside are ignored ("C 2" as the manual's help screen prints it).
-  char arg_buf[4];
+  const char letter = upper(line[0]);
+  const std::string_view rest = text::slice(line, 1);
+  // A read-only client (access.control_networks, the control lock) is
+  // refused every letter that can change something, before its argument is
+  // looked at: M, W, R, L, U, D, X, T, O, F and P. S, A and E (stop) work.
+  for (const Command& c : kCommands) {
+    if (c.letter == letter && c.changes_state && !may_control(controller_))
+      return out.write(kError);
+  }
+  // Every command but M and W is a letter and at most three characters;
+  // spaces inside are ignored ("C 2" as the manual's help screen prints it).
+  char arg_buf[3];
   std::size_t n = 0;
+  bool too_long = false;
   for (char c : rest) {
     if (c == ' ' || c == '\t') continue;
-    if (n == 3) return out.write(kError);
+    if (n == sizeof(arg_buf)) {
+      too_long = true;
+      break;
+    }
     arg_buf[n++] = upper(c);
   }
   const std::string_view arg(arg_buf, n);
-  const bool bare = arg.empty();
-  const bool b = is_b();
-
-  switch (cmd) {
-    case 'C':
-      if (bare || arg == "2") return report(bare ? 'C' : '2', out);
-      break;
-    case 'B':
-      if (bare) return report('B', out);
-      break;
-    case 'R':
-    case 'L':
-    case 'U':
-    case 'D':
-      if (bare) {
-        stop_list();
-        const AxisId axis = cmd == 'R' || cmd == 'L' ? AxisId::kAz : AxisId::kEl;
-        const Direction dir = cmd == 'R' || cmd == 'U' ? Direction::kCw : Direction::kCcw;
-        return reply(controller_.move(axis, dir), out);
-      }
-      break;
-    case 'A':
-    case 'E':
-      if (bare) {
-        stop_list();
-        const AxisId axis = cmd == 'A' ? AxisId::kAz : AxisId::kEl;
-        if (axis == AxisId::kEl && !controller_.has_el()) return out.write(kError);
-        controller_.move(axis, Direction::kNone);  // a faulted axis is stopped anyway
-        return done(out);
-      }
-      break;
-    case 'S':
-      if (bare) {
-        // Cancels the running command and the timed list's stepping; the list
-        // stays stored for another T, as on the real controller.
-        stop_list();
-        controller_.stop();
-        return done(out);
-      }
-      break;
-    case 'X':
-      if (arg.size() == 1 && arg[0] >= '1' && arg[0] <= '4') {
-        // Four steps over the speed range: X1 and X2 are the slow half of a
-        // two-speed drive, X3 and X4 the fast half. Takes effect while turning.
-        controller_.set_speed_pct((arg[0] - '0') * 25);
-        return done(out);
-      }
-      break;
-    case 'T':
-      if (bare && list_size_ > 0) {
-        // Point 1 again now (the long-form M / W already turned there), then
-        // one point every sss seconds: point k is due k-1 intervals after T.
-        list_index_ = 0;
-        next_step_at_ = controller_.now() + step_ms_;
-        running_ = go_to_point(0) == Error::kOk;
-        return running_ ? done(out) : out.write(kError);
-      }
-      break;
-    case 'N':
-      if (bare && list_size_ > 0)
-        return send(out, "+%04u+%04u\r\n", static_cast<unsigned>(list_index_ + 1u),
-                    static_cast<unsigned>(list_size_));
-      break;
-    case 'O':
-    case 'F':
-      if (bare || arg == "2") return calibration(bare ? AxisId::kAz : AxisId::kEl, cmd == 'F', out);
-      break;
-    case 'H':
-      if (bare) return help(1, out);
-      if (arg == "2") return help(2, out);
-      if (arg == "3" && b) return help(3, out);
-      break;
-    case 'P':
-      if (b && (arg == "36" || arg == "45")) {
-        // The GS-232B keeps the mode over power cycles; here it is a setting,
-        // which the port's SettingsSaver writes like every protocol change.
-        controller_.settings().set(Id::kGs232AzRange, arg == "36" ? 1 : 2);
-        return done(out);
-      }
-      break;
-    case 'Z':
-      if (b && bare) {
-        // Ignored in 450 mode, as on the GS-232B.
-        if (range() == gs232::AzRange::k360) south_centre_ = !south_centre_;
-        return done(out);
-      }
-      break;
-    default:
-      break;
+  for (const Command& c : kCommands) {
+    if (c.letter != letter || c.run == nullptr) continue;
+    if (c.arg == Arg::kList) return (this->*c.run)(rest, out);
+    if (too_long) break;
+    const bool matches = c.arg == Arg::kNone    ? arg.empty()
+                         : c.arg == Arg::kExact ? arg == c.arg_text
+                                                : arg.size() == 1 && arg[0] >= '1' && arg[0] <= '4';
+    if (!matches || (c.b_only && !is_b())) continue;
+    return (this->*c.run)(arg, out);
   }
   out.write(kError);
+}
+
+void Gs232Session::report_az(std::string_view, ByteSink& out) {
+  report('C', out);
+}
+
+void Gs232Session::report_el(std::string_view, ByteSink& out) {
+  report('B', out);
+}
+
+void Gs232Session::report_both(std::string_view, ByteSink& out) {
+  report('2', out);
+}
+
+void Gs232Session::turn(AxisId axis, Direction dir, ByteSink& out) {
+  stop_list();
+  reply(controller_.move(axis, dir), out);
+}
+
+void Gs232Session::turn_cw(std::string_view, ByteSink& out) {
+  turn(AxisId::kAz, Direction::kCw, out);
+}
+
+void Gs232Session::turn_ccw(std::string_view, ByteSink& out) {
+  turn(AxisId::kAz, Direction::kCcw, out);
+}
+
+void Gs232Session::turn_up(std::string_view, ByteSink& out) {
+  turn(AxisId::kEl, Direction::kCw, out);
+}
+
+void Gs232Session::turn_down(std::string_view, ByteSink& out) {
+  turn(AxisId::kEl, Direction::kCcw, out);
+}
+
+void Gs232Session::stop_axis(AxisId axis, ByteSink& out) {
+  stop_list();
+  if (axis == AxisId::kEl && !controller_.has_el()) return out.write(kError);
+  controller_.move(axis, Direction::kNone);  // a faulted axis is stopped anyway
+  done(out);
+}
+
+void Gs232Session::stop_az(std::string_view, ByteSink& out) {
+  stop_axis(AxisId::kAz, out);
+}
+
+void Gs232Session::stop_el(std::string_view, ByteSink& out) {
+  stop_axis(AxisId::kEl, out);
+}
+
+void Gs232Session::stop_all(std::string_view, ByteSink& out) {
+  // Cancels the running command and the timed list's stepping; the list
+  // stays stored for another T, as on the real controller.
+  stop_list();
+  controller_.stop();
+  done(out);
+}
+
+void Gs232Session::speed(std::string_view arg, ByteSink& out) {
+  // Four steps over the speed range: X1 and X2 are the slow half of a
+  // two-speed drive, X3 and X4 the fast half. Takes effect while turning.
+  controller_.set_speed_pct((arg[0] - '0') * 25);
+  done(out);
+}
+
+void Gs232Session::go_az(std::string_view fields, ByteSink& out) {
+  position_command(false, fields, out);
+}
+
+void Gs232Session::go_az_el(std::string_view fields, ByteSink& out) {
+  position_command(true, fields, out);
+}
+
+void Gs232Session::start_list(std::string_view, ByteSink& out) {
+  if (list_size_ == 0) return out.write(kError);
+  // Point 1 again now (the long-form M / W already turned there), then
+  // one point every sss seconds: point k is due k-1 intervals after T.
+  list_index_ = 0;
+  next_step_at_ = controller_.now() + step_ms_;
+  running_ = go_to_point(0) == Error::kOk;
+  return running_ ? done(out) : out.write(kError);
+}
+
+void Gs232Session::list_point(std::string_view, ByteSink& out) {
+  if (list_size_ == 0) return out.write(kError);
+  send(out, "+%04u+%04u\r\n", static_cast<unsigned>(list_index_ + 1u),
+       static_cast<unsigned>(list_size_));
+}
+
+void Gs232Session::offset_az(std::string_view, ByteSink& out) {
+  calibration(AxisId::kAz, false, out);
+}
+
+void Gs232Session::offset_el(std::string_view, ByteSink& out) {
+  calibration(AxisId::kEl, false, out);
+}
+
+void Gs232Session::full_scale_az(std::string_view, ByteSink& out) {
+  calibration(AxisId::kAz, true, out);
+}
+
+void Gs232Session::full_scale_el(std::string_view, ByteSink& out) {
+  calibration(AxisId::kEl, true, out);
+}
+
+void Gs232Session::help_1(std::string_view, ByteSink& out) {
+  help(1, out);
+}
+
+void Gs232Session::help_2(std::string_view, ByteSink& out) {
+  help(2, out);
+}
+
+void Gs232Session::help_3(std::string_view, ByteSink& out) {
+  help(3, out);
+}
+
+void Gs232Session::scale_360(std::string_view, ByteSink& out) {
+  // The GS-232B keeps the mode over power cycles; here it is a setting,
+  // which the port's SettingsSaver writes like every protocol change.
+  controller_.settings().set(Id::kGs232AzRange, 1);
+  done(out);
+}
+
+void Gs232Session::scale_450(std::string_view, ByteSink& out) {
+  controller_.settings().set(Id::kGs232AzRange, 2);
+  done(out);
+}
+
+void Gs232Session::south_centre(std::string_view, ByteSink& out) {
+  // Ignored in 450 mode, as on the GS-232B.
+  if (range() == gs232::AzRange::k360) south_centre_ = !south_centre_;
+  done(out);
 }
 
 void Gs232Session::position_command(bool with_el, std::string_view args, ByteSink& out) {
@@ -344,7 +554,7 @@ void Gs232Session::confirm(std::string_view answer, ByteSink& out) {
 }
 
 void Gs232Session::help(int page, ByteSink& out) {
-  out.write(gs232::help_page(page));
+  out.write(help_page(page));
   if (page != 3) return;
   send(out, "---------- MODE ----------\r\nmode %d Degree\r\n%s Center\r\n",
        gs232::full_scale_deg(range()), south_centre_ ? "S" : "N");

@@ -2,9 +2,11 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 
 #include "protocol/gs232_angles.hpp"
 #include "protocol/line_assembler.hpp"
+#include "protocol/line_reply.hpp"
 #include "protocol/session.hpp"
 
 namespace rotord::protocol {
@@ -25,6 +27,42 @@ class Gs232Session final : public Session {
   static constexpr std::size_t kMaxLineLength = 16 + kMaxListPoints * 10;
   static constexpr std::string_view kError = "?>\r\n";
   static constexpr std::string_view kTooManyConnections = kError;
+  /// Data replies end in CR LF; one that cannot fit is the error prompt.
+  static constexpr ReplyRules kReplyRules{"\r\n", kError};
+  static constexpr std::size_t kMaxReplyLength = 64;
+  using Reply = LineReply<kMaxReplyLength>;
+
+  /// What may follow a command's letter (spaces inside are ignored, and at
+  /// most three characters are; `M` and `W` take the rest of the line).
+  enum class Arg : std::uint8_t {
+    kNone,   ///< `C`
+    kExact,  ///< exactly Command::arg_text: `C2`, `P36`
+    kSpeed,  ///< one digit 1..4: `X1`..`X4`
+    kList,   ///< `M` / `W`: numbers to the end of the line (position_command)
+  };
+  /// One row of the command table (gs232_session.cpp). The help pages
+  /// (`H`, `H2`, `H3`) are generated from these rows at compile time, and
+  /// docs/protocols/gs232.md is checked against them (tests/docs).
+  struct Command {
+    std::string_view name;  ///< as the help page prints it: `C2`, `Maaa`, `X1-X4`
+    char letter;            ///< upper case; matched case-insensitively
+    Arg arg;
+    std::string_view arg_text;  ///< for kExact
+    bool b_only;                ///< the GS-232A answers `?>`
+    /// nullptr: another row of the same letter runs it (the long forms of
+    /// `M` and `W` share the short form's handler); the row gives help.
+    void (Gs232Session::*run)(std::string_view arg, ByteSink& out);
+    std::string_view help;
+    std::uint8_t help_pages;  ///< bit n-1: listed on page n (`H`, `H2`, `H3`)
+    /// Turns, sets the speed, runs a list, calibrates or changes the scale:
+    /// `?>` to a read-only client (Session::may_control). `S`, `A` and `E`
+    /// (stop) are not.
+    bool changes_state;
+  };
+  static const Command kCommands[];
+  static std::span<const Command> commands();
+  /// The help page `H`, `H2` or `H3` (without H3's mode lines); empty for others.
+  static std::string_view help_page(int page);
 
   explicit Gs232Session(Controller& controller) : controller_(controller) {}
 
@@ -62,6 +100,37 @@ class Gs232Session final : public Session {
   void calibration(AxisId axis, bool full_scale, ByteSink& out);
   void confirm(std::string_view answer, ByteSink& out);
   void help(int page, ByteSink& out);
+
+  // The handlers of the command table.
+  void report_az(std::string_view arg, ByteSink& out);
+  void report_el(std::string_view arg, ByteSink& out);
+  void report_both(std::string_view arg, ByteSink& out);
+  void turn_cw(std::string_view arg, ByteSink& out);
+  void turn_ccw(std::string_view arg, ByteSink& out);
+  void turn_up(std::string_view arg, ByteSink& out);
+  void turn_down(std::string_view arg, ByteSink& out);
+  void stop_az(std::string_view arg, ByteSink& out);
+  void stop_el(std::string_view arg, ByteSink& out);
+  void stop_all(std::string_view arg, ByteSink& out);
+  void speed(std::string_view arg, ByteSink& out);
+  void go_az(std::string_view arg, ByteSink& out);
+  void go_az_el(std::string_view arg, ByteSink& out);
+  void start_list(std::string_view arg, ByteSink& out);
+  void list_point(std::string_view arg, ByteSink& out);
+  void offset_az(std::string_view arg, ByteSink& out);
+  void offset_el(std::string_view arg, ByteSink& out);
+  void full_scale_az(std::string_view arg, ByteSink& out);
+  void full_scale_el(std::string_view arg, ByteSink& out);
+  void help_1(std::string_view arg, ByteSink& out);
+  void help_2(std::string_view arg, ByteSink& out);
+  void help_3(std::string_view arg, ByteSink& out);
+  void scale_360(std::string_view arg, ByteSink& out);
+  void scale_450(std::string_view arg, ByteSink& out);
+  void south_centre(std::string_view arg, ByteSink& out);
+  /// R, L, U, D: end a running list, then turn.
+  void turn(AxisId axis, Direction dir, ByteSink& out);
+  /// A, E: end a running list, stop one axis.
+  void stop_axis(AxisId axis, ByteSink& out);
 
   Controller& controller_;
   LineAssembler<kMaxLineLength> lines_;

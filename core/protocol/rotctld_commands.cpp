@@ -41,6 +41,10 @@ constexpr std::array<Command, 29> kCommands = {{
 
 }  // namespace
 
+std::span<const Command> commands() {
+  return kCommands;
+}
+
 const Command* find_command(unsigned char code) {
   for (const Command& c : kCommands) {
     if (c.code == code) return &c;

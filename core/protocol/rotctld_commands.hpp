@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 namespace rotord::protocol::rotctld {
@@ -53,6 +54,9 @@ struct Command {
   bool changes_state;
 };
 
+/// Every command, in rotctl's order (docs/protocols/rotctld.md is checked
+/// against it: tests/docs).
+std::span<const Command> commands();
 const Command* find_command(unsigned char code);
 const Command* find_command(std::string_view long_name);
 

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol::rotctld {
@@ -54,7 +55,7 @@ bool scan_float(std::string_view token, double& out, bool comma_is_point) {
   if (len == 0) return false;
   // "0x1A" would be 26 to sscanf; refuse it rather than read it as 0.
   if (len < n && (text[len] == 'x' || text[len] == 'X')) return false;
-  return text::parse_double(text.substr(0, len), out);
+  return text::parse_double(text::slice(text, 0, len), out);
 }
 
 bool scan_int(std::string_view token, long& out) {
@@ -63,7 +64,7 @@ bool scan_int(std::string_view token, long& out) {
   const std::size_t first_digit = i;
   while (i < token.size() && is_digit(token[i])) ++i;
   if (i == first_digit || i - first_digit > 9) return false;
-  return text::parse_int(token.substr(0, i), out);
+  return text::parse_int(text::slice(token, 0, i), out);
 }
 
 }  // namespace rotord::protocol::rotctld

@@ -1,7 +1,8 @@
 #pragma once
 #include <cstddef>
-#include <cstdio>
 #include <string_view>
+
+#include "protocol/line_reply.hpp"
 
 namespace rotord::protocol::rotctld {
 
@@ -13,35 +14,16 @@ enum class HamlibError : int {
   kNotImplemented = 4,  ///< RIG_ENIMPL: a command rotctld does not know
   kIo = 6,              ///< RIG_EIO: no position reading / no raw port
   kRejected = 9,        ///< RIG_ERJCTED: the rotator refuses (fault, limit)
+  kTruncated = 10,      ///< RIG_ETRUNC: the reply does not fit (never in practice)
   kNotAvailable = 11,   ///< RIG_ENAVAIL: e.g. elevation on an azimuth-only rotator
 };
 
-/// One whole reply, built in a fixed buffer and written with a single
-/// ByteSink::write (Gpredict reads each reply with one recv).
-class ReplyBuffer {
- public:
-  static constexpr std::size_t kCapacity = 1536;  ///< the longest reply is dump_caps
-
-  void append(std::string_view text) {
-    for (char c : text) put(c);
-  }
-  void put(char c) {
-    if (length_ < kCapacity) buf_[length_++] = c;
-  }
-  template <typename... Args>
-  void format(const char* fmt, Args... args) {
-    const std::size_t room = kCapacity - length_;
-    if (room == 0) return;
-    const int n = std::snprintf(buf_ + length_, room, fmt, args...);
-    if (n < 0) return;
-    length_ += static_cast<std::size_t>(n) < room ? static_cast<std::size_t>(n) : room - 1;
-  }
-  void clear() { length_ = 0; }
-  std::string_view view() const { return {buf_, length_}; }
-
- private:
-  char buf_[kCapacity];
-  std::size_t length_ = 0;
-};
+/// One whole reply, written with a single ByteSink::write (Gpredict reads
+/// each reply with one recv); the longest is dump_caps. One that cannot fit
+/// is RIG_ETRUNC's `RPRT -10` (line_reply.hpp: the policy of every line
+/// protocol).
+inline constexpr std::size_t kReplyCapacity = 1536;
+inline constexpr ReplyRules kReplyRules{"\n", "RPRT -10\n"};
+using ReplyBuffer = LineReply<kReplyCapacity>;
 
 }  // namespace rotord::protocol::rotctld

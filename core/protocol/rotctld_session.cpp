@@ -4,6 +4,7 @@
 #include "protocol/rotctld_session.hpp"
 
 #include "rotator/controller.hpp"
+#include "util/slice.hpp"
 
 namespace rotord::protocol {
 
@@ -47,7 +48,7 @@ void RotctldSession::consume(std::string_view bytes, ByteSink& out) {
       // rotctld sleeps in its connection thread and reads nothing meanwhile;
       // hold the input and run it when the pause ends. Beyond the buffer it
       // is dropped (a client that pauses and floods gets what fits).
-      const std::string_view rest = bytes.substr(i);
+      const std::string_view rest = text::slice(bytes, i);
       for (char c : rest) {
         if (pause_input_length_ < pause_input_.size()) pause_input_[pause_input_length_++] = c;
       }

@@ -120,7 +120,7 @@ class RotctldSession final : public Session {
   std::array<char, kPauseInputBytes> pause_input_{};
   std::size_t pause_input_length_ = 0;
 
-  rotctld::ReplyBuffer reply_;
+  rotctld::ReplyBuffer reply_{rotctld::kReplyRules};
 };
 
 }  // namespace rotord::protocol

@@ -6,26 +6,16 @@
 
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol {
 namespace {
 
-/// Formats one reply into a fixed buffer and writes it with CR LF, in one unit.
-void send(ByteSink& out, const char* fmt, auto... args) {
-  char buf[128];
-  const int n = std::snprintf(buf, sizeof(buf) - 2, fmt, args...);
-  if (n < 0) return;
-  std::size_t len =
-      static_cast<std::size_t>(n) < sizeof(buf) - 2 ? static_cast<std::size_t>(n) : sizeof(buf) - 3;
-  buf[len++] = '\r';
-  buf[len++] = '\n';
-  out.write(std::string_view(buf, len));
-}
-
-/// A fixed reply goes out as it is (never used as a format).
-void send(ByteSink& out, const char* line) {
-  send(out, "%s", line);
+/// One reply line, CR LF ended, in one write.
+template <typename... Args>
+void send(ByteSink& out, const char* fmt, Args... args) {
+  SeedSession::Reply(SeedSession::kReplyRules).line(out, fmt, args...);
 }
 
 void error(ByteSink& out, const char* reason) {
@@ -63,6 +53,18 @@ void SeedSession::receive(std::string_view bytes, ByteSink& out) {
   });
 }
 
+const SeedSession::Command SeedSession::kCommands[] = {
+    {"E", 0, &SeedSession::enable, "$E: enable the drive for this session", false},
+    {"D", 0, &SeedSession::disable, "$D: stop every motion and disable", false},
+    {"S", 1, &SeedSession::speed, "$S,n: speed 1..100 %", true},
+    {"R", 1, &SeedSession::run, "$R,cw|ccw|up|down: run until $D, a limit or a fault", true},
+    {"Q", 0, &SeedSession::query, "$Q: position, speed, enable, directions, fault", false},
+};
+
+std::span<const SeedSession::Command> SeedSession::commands() {
+  return kCommands;
+}
+
 void SeedSession::handle_line(std::string_view line, ByteSink& out) {
   line = text::trim(line);
   if (line.empty()) return;
@@ -76,58 +78,58 @@ void SeedSession::handle_line(std::string_view line, ByteSink& out) {
   for (;;) {
     const std::size_t comma = line.find(',');
     if (count == kMaxFields) return error(out, "SYNTAX");
-    fields[count++] = text::trim(line.substr(0, comma));
+    fields[count++] = text::trim(text::slice(line, 0, comma));
     if (comma == std::string_view::npos) break;
     line.remove_prefix(comma + 1);
   }
-  const std::string_view cmd = fields[0];
-  const std::string_view arg = fields[1];
-  auto is = [&](const char* name, std::size_t args) {
-    return text::iequals(cmd, name) && count == args + 1;
-  };
-  auto known = [&] {
-    for (const char* name : {"E", "D", "S", "R", "Q"}) {
-      if (text::iequals(cmd, name)) return true;
-    }
-    return false;
-  };
+  bool known = false;
+  for (const Command& c : kCommands) {
+    if (!text::iequals(fields[0], c.name)) continue;
+    known = true;
+    if (count != c.args + 1u) continue;
+    if (c.changes_state && !may_control(controller_)) return error(out, "DENIED");
+    return (this->*c.run)(fields[1], out);
+  }
+  error(out, known ? "SYNTAX" : "UNKNOWN");
+}
 
-  if (is("E", 0)) {
-    enabled_ = true;
-    return send(out, "$OK,E");
-  }
-  if (is("D", 0)) {
-    // Disable is also the stop: every motion ends, whoever started it.
-    controller_.stop();
-    enabled_ = false;
-    return send(out, "$OK,D");
-  }
-  // Speed and turning: refused to a read-only client (access.control_networks).
-  // E only arms this session; D is the stop and always works.
-  if ((is("S", 1) || is("R", 1)) && !may_control(controller_)) return error(out, "DENIED");
-  if (is("S", 1)) {
-    long pct = 0;
-    if (!text::parse_int(arg, pct)) return error(out, "SYNTAX");
-    if (pct < 1 || pct > 100) return error(out, "RANGE");
-    controller_.set_speed_pct(static_cast<int>(pct));
-    return send(out, "$OK,S,%ld", pct);
-  }
-  if (is("R", 1)) {
-    AxisId axis = AxisId::kAz;
-    Direction dir = Direction::kNone;
-    const char* name = "";
-    if (text::iequals(arg, "cw")) dir = Direction::kCw, name = "CW";
-    if (text::iequals(arg, "ccw")) dir = Direction::kCcw, name = "CCW";
-    if (text::iequals(arg, "up")) axis = AxisId::kEl, dir = Direction::kCw, name = "UP";
-    if (text::iequals(arg, "down")) axis = AxisId::kEl, dir = Direction::kCcw, name = "DOWN";
-    if (dir == Direction::kNone) return error(out, "SYNTAX");
-    if (!enabled_) return error(out, "DISABLED");
-    const Error e = controller_.move(axis, dir);
-    if (e != Error::kOk) return error(out, error_reason(e));
-    return send(out, "$OK,R,%s", name);
-  }
-  if (is("Q", 0)) return write_state(out);
-  error(out, known() ? "SYNTAX" : "UNKNOWN");
+void SeedSession::enable(std::string_view, ByteSink& out) {
+  enabled_ = true;
+  send(out, "$OK,E");
+}
+
+void SeedSession::disable(std::string_view, ByteSink& out) {
+  // Disable is also the stop: every motion ends, whoever started it.
+  controller_.stop();
+  enabled_ = false;
+  send(out, "$OK,D");
+}
+
+void SeedSession::speed(std::string_view arg, ByteSink& out) {
+  long pct = 0;
+  if (!text::parse_int(arg, pct)) return error(out, "SYNTAX");
+  if (pct < 1 || pct > 100) return error(out, "RANGE");
+  controller_.set_speed_pct(static_cast<int>(pct));
+  send(out, "$OK,S,%ld", pct);
+}
+
+void SeedSession::run(std::string_view arg, ByteSink& out) {
+  AxisId axis = AxisId::kAz;
+  Direction dir = Direction::kNone;
+  const char* name = "";
+  if (text::iequals(arg, "cw")) dir = Direction::kCw, name = "CW";
+  if (text::iequals(arg, "ccw")) dir = Direction::kCcw, name = "CCW";
+  if (text::iequals(arg, "up")) axis = AxisId::kEl, dir = Direction::kCw, name = "UP";
+  if (text::iequals(arg, "down")) axis = AxisId::kEl, dir = Direction::kCcw, name = "DOWN";
+  if (dir == Direction::kNone) return error(out, "SYNTAX");
+  if (!enabled_) return error(out, "DISABLED");
+  const Error e = controller_.move(axis, dir);
+  if (e != Error::kOk) return error(out, error_reason(e));
+  send(out, "$OK,R,%s", name);
+}
+
+void SeedSession::query(std::string_view, ByteSink& out) {
+  write_state(out);
 }
 
 void SeedSession::write_state(ByteSink& out) {

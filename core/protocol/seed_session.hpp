@@ -1,5 +1,9 @@
 #pragma once
+#include <cstdint>
+#include <span>
+
 #include "protocol/line_assembler.hpp"
+#include "protocol/line_reply.hpp"
 #include "protocol/session.hpp"
 
 namespace rotord::protocol {
@@ -14,7 +18,24 @@ namespace rotord::protocol {
 class SeedSession final : public Session {
  public:
   static constexpr std::size_t kMaxLineLength = 64;
+  static constexpr std::size_t kMaxReplyLength = 128;
   static constexpr std::string_view kTooManyConnections = "$ERR,BUSY\r\n";
+  /// CR LF lines; a reply that cannot fit is the too-long error.
+  static constexpr ReplyRules kReplyRules{"\r\n", "$ERR,TOOLONG\r\n"};
+  using Reply = LineReply<kMaxReplyLength>;
+
+  /// One row of the command table (seed_session.cpp); docs/protocols/seed.md
+  /// is checked against these rows (tests/docs).
+  struct Command {
+    std::string_view name;  ///< the letter after '$', case-insensitive
+    std::uint8_t args;      ///< comma-separated fields after it; others: SYNTAX
+    void (SeedSession::*run)(std::string_view arg, ByteSink& out);
+    std::string_view help;
+    /// `$ERR,DENIED` to a read-only client (Session::may_control). `$D`
+    /// (the stop) is not; `$E` only arms this session.
+    bool changes_state;
+  };
+  static std::span<const Command> commands();
 
   explicit SeedSession(Controller& controller) : controller_(controller) {}
 
@@ -26,6 +47,13 @@ class SeedSession final : public Session {
   bool enabled() const { return enabled_; }
 
  private:
+  static const Command kCommands[];
+
+  void enable(std::string_view arg, ByteSink& out);
+  void disable(std::string_view arg, ByteSink& out);
+  void speed(std::string_view arg, ByteSink& out);
+  void run(std::string_view arg, ByteSink& out);
+  void query(std::string_view arg, ByteSink& out);
   void write_state(ByteSink& out);
 
   Controller& controller_;

@@ -1,8 +1,9 @@
 #pragma once
 #include <string_view>
 
-#include "access/line_access.hpp"
 #include "access/peer.hpp"
+#include "net/line_access.hpp"
+#include "util/byte_sink.hpp"
 #include "util/time.hpp"
 
 namespace rotord {
@@ -10,15 +11,6 @@ namespace rotord {
 class Controller;
 
 namespace protocol {
-
-/// Where a session writes its replies. A transport sends each write() as one
-/// unit (one TCP segment where it can): Gpredict reads a reply with a single
-/// recv and breaks when a reply is split.
-class ByteSink {
- public:
-  virtual ~ByteSink() = default;
-  virtual void write(std::string_view bytes) = 0;
-};
 
 /// A protocol as a byte session: consumes bytes, appends replies, owns no
 /// socket. The same object is unit-tested, fuzzed and served on every port

@@ -11,26 +11,11 @@ namespace {
 
 using settings::Id;
 
-/// Formats one reply line into a fixed buffer and writes it with CR LF.
-class Reply {
- public:
-  // A fixed line goes out as it is (and a '%' in it stays a '%').
-  void send(ByteSink& out, const char* line) { send(out, "%s", line); }
-
-  template <typename... Args>
-  void send(ByteSink& out, const char* fmt, Args... args) {
-    int n = std::snprintf(buf_, sizeof(buf_) - 2, fmt, args...);
-    if (n < 0) return;
-    std::size_t len = static_cast<std::size_t>(n) < sizeof(buf_) - 2 ? static_cast<std::size_t>(n)
-                                                                     : sizeof(buf_) - 3;
-    buf_[len++] = '\r';
-    buf_[len++] = '\n';
-    out.write(std::string_view(buf_, len));
-  }
-
- private:
-  char buf_[192];
-};
+/// One reply line, CR LF ended, in one write.
+template <typename... Args>
+void send(ByteSink& out, const char* fmt, Args... args) {
+  WrcSession::Reply(WrcSession::kReplyRules).line(out, fmt, args...);
+}
 
 const char* error_reason(Error e) {
   switch (e) {
@@ -54,10 +39,49 @@ bool parse_float(std::string_view s, float& out) {
 
 }  // namespace
 
+// The command table: one row per command. Names are matched
+// case-insensitively; docs/protocols list and README's WRC table are checked
+// against these rows (tests/docs/command_docs_test.cpp).
+const WrcSession::Command WrcSession::kCommands[] = {
+    {"AZ", WrcSession::Arg::kRequired, &WrcSession::go_az,
+     "AZ <deg>: turn to an azimuth (compass, or unwrapped 360..max)", true},
+    {"AZ?", WrcSession::Arg::kNone, &WrcSession::get_az, "AZ?: the azimuth", false},
+    {"EL", WrcSession::Arg::kRequired, &WrcSession::go_el,
+     "EL <deg>: turn to an elevation (az/el rotators)", true},
+    {"EL?", WrcSession::Arg::kNone, &WrcSession::get_el, "EL?: the elevation", false},
+    {"MOVE", WrcSession::Arg::kRequired, &WrcSession::move,
+     "MOVE CW|CCW|UP|DOWN: turn until STOP or a limit", true},
+    {"STATE", WrcSession::Arg::kNone, &WrcSession::state, "STATE: position, speed and flags",
+     false},
+    {"FAULT?", WrcSession::Arg::kNone, &WrcSession::fault, "FAULT?: latched faults per axis",
+     false},
+    {"SPEED", WrcSession::Arg::kRequired, &WrcSession::set_speed, "SPEED <1..100>: speed in %",
+     true},
+    {"SPEED?", WrcSession::Arg::kNone, &WrcSession::get_speed, "SPEED?: the speed in %", false},
+    // STOP works for everyone, always.
+    {"STOP", WrcSession::Arg::kNone, &WrcSession::stop, "STOP: stop both axes", false},
+    {"PARK", WrcSession::Arg::kNone, &WrcSession::park, "PARK: go to the park position", true},
+    {"RESET", WrcSession::Arg::kNone, &WrcSession::reset,
+     "RESET: stop, clear latched faults, default speed", true},
+    {"MONITOR", WrcSession::Arg::kRequired, &WrcSession::monitor,
+     "MONITOR 1|0: push a STATE line every 100 ms", false},
+    {"INFO", WrcSession::Arg::kNone, &WrcSession::info, "INFO: name and version", false},
+    {"AZLIMITS?", WrcSession::Arg::kNone, &WrcSession::az_limits, "AZLIMITS?: the azimuth travel",
+     false},
+    {"AZOFFSET", WrcSession::Arg::kRequired, &WrcSession::set_az_offset,
+     "AZOFFSET <deg>: azimuth offset, saved", true},
+    {"AZOFFSET?", WrcSession::Arg::kNone, &WrcSession::get_az_offset,
+     "AZOFFSET?: the azimuth offset", false},
+};
+
+std::span<const WrcSession::Command> WrcSession::commands() {
+  return kCommands;
+}
+
 void WrcSession::receive(std::string_view bytes, ByteSink& out) {
   lines_.feed(bytes, [&](std::string_view line, bool overflowed) {
     if (overflowed) {
-      Reply().send(out, "ERROR COMMAND TOO LONG");
+      send(out, "ERROR COMMAND TOO LONG");
       return;
     }
     handle_line(line, out);
@@ -112,12 +136,11 @@ void WrcSession::write_state(ByteSink& out, const char* prefix) {
   add(s.az.switch_ccw, "L1");
   add(s.az.switch_cw, "L2");
   add(s.any_fault(), "FAULT");
-  Reply reply;
   if (s.el.present) {
-    reply.send(out, "%s AZ=%.1f EL=%.1f SPEED=%d FLAGS=%s", prefix, az_reading(s, 1),
-               one_decimal(s.el.position_deg), s.speed_pct, flags);
+    send(out, "%s AZ=%.1f EL=%.1f SPEED=%d FLAGS=%s", prefix, az_reading(s, 1),
+         one_decimal(s.el.position_deg), s.speed_pct, flags);
   } else {
-    reply.send(out, "%s AZ=%.1f SPEED=%d FLAGS=%s", prefix, az_reading(s, 1), s.speed_pct, flags);
+    send(out, "%s AZ=%.1f SPEED=%d FLAGS=%s", prefix, az_reading(s, 1), s.speed_pct, flags);
   }
 }
 
@@ -127,117 +150,132 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
   std::string_view rest = line;
   const std::string_view name = text::next_token(rest);
   const std::string_view arg = text::trim(rest);
-  const bool has_arg = !arg.empty();
-  Reply reply;
-  auto is = [&](const char* word) { return text::iequals(name, word); };
+  for (const Command& c : kCommands) {
+    if (!text::iequals(name, c.name) || (c.arg == Arg::kRequired && arg.empty())) continue;
+    // A read-only client (access.control_networks, the control lock) is
+    // refused before its argument is looked at.
+    if (c.changes_state && !may_control(controller_)) return send(out, "ERROR NOT ALLOWED");
+    if (c.arg == Arg::kNone && !arg.empty()) break;
+    return (this->*c.run)(arg, out);
+  }
+  send(out, "ERROR INVALID COMMAND");
+}
 
-  // The commands that move the rotator or change a setting; a read-only
-  // client (access.control_networks) gets an error for them. STOP is not
-  // among them.
-  if (has_arg && !may_control(controller_)) {
-    for (const char* word : {"AZ", "EL", "MOVE", "SPEED", "AZOFFSET"})
-      if (is(word)) return reply.send(out, "ERROR NOT ALLOWED");
-  }
-  if ((is("PARK") || is("RESET")) && !may_control(controller_))
-    return reply.send(out, "ERROR NOT ALLOWED");
+void WrcSession::go_az(std::string_view arg, ByteSink& out) {
+  float az = 0;
+  if (!parse_float(arg, az)) return send(out, "ERROR INVALID AZIMUTH");
+  const Error e = controller_.go_to(az, std::nullopt);
+  if (e == Error::kOutOfRange || e == Error::kInvalidArgument)
+    return send(out, "ERROR INVALID AZIMUTH");
+  if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
+  send(out, "OK AZ %.2f", static_cast<double>(az));
+}
 
-  if (is("AZ") && has_arg) {
-    float az = 0;
-    if (!parse_float(arg, az)) return reply.send(out, "ERROR INVALID AZIMUTH");
-    const Error e = controller_.go_to(az, std::nullopt);
-    if (e == Error::kOutOfRange || e == Error::kInvalidArgument)
-      return reply.send(out, "ERROR INVALID AZIMUTH");
-    if (e != Error::kOk) return reply.send(out, "ERROR %s", error_reason(e));
-    return reply.send(out, "OK AZ %.2f", static_cast<double>(az));
-  }
-  if (is("AZ?") && !has_arg) {
-    return reply.send(out, "OK AZ %.1f", az_reading(controller_.status(), 1));
-  }
-  if (is("EL") && has_arg) {
-    float el = 0;
-    if (!controller_.has_el()) return reply.send(out, "ERROR NOT SUPPORTED");
-    if (!parse_float(arg, el)) return reply.send(out, "ERROR INVALID ELEVATION");
-    const Error e = controller_.go_to(std::nullopt, el);
-    if (e == Error::kOutOfRange || e == Error::kInvalidArgument)
-      return reply.send(out, "ERROR INVALID ELEVATION");
-    if (e != Error::kOk) return reply.send(out, "ERROR %s", error_reason(e));
-    return reply.send(out, "OK EL %.2f", static_cast<double>(el));
-  }
-  if (is("EL?") && !has_arg) {
-    if (!controller_.has_el()) return reply.send(out, "ERROR NOT SUPPORTED");
-    return reply.send(out, "OK EL %.1f", one_decimal(controller_.status().el.position_deg));
-  }
-  if (is("MOVE") && has_arg) {
-    AxisId axis = AxisId::kAz;
-    Direction dir = Direction::kNone;
-    if (text::iequals(arg, "CW")) dir = Direction::kCw;
-    if (text::iequals(arg, "CCW")) dir = Direction::kCcw;
-    if (text::iequals(arg, "UP")) axis = AxisId::kEl, dir = Direction::kCw;
-    if (text::iequals(arg, "DOWN")) axis = AxisId::kEl, dir = Direction::kCcw;
-    if (dir == Direction::kNone) return reply.send(out, "ERROR INVALID DIRECTION");
-    const Error e = controller_.move(axis, dir);
-    if (e != Error::kOk) return reply.send(out, "ERROR %s", error_reason(e));
-    char upper[8] = {};
-    for (std::size_t i = 0; i < arg.size() && i < sizeof(upper) - 1; ++i)
-      upper[i] = (arg[i] >= 'a' && arg[i] <= 'z') ? static_cast<char>(arg[i] - 32) : arg[i];
-    return reply.send(out, "OK MOVE %s", upper);
-  }
-  if (is("STATE") && !has_arg) return write_state(out, "OK STATE");
-  if (is("FAULT?") && !has_arg) {
-    const RotatorStatus s = controller_.status();
-    if (s.el.present)
-      return reply.send(out, "OK FAULT AZ=%s EL=%s", axis_fault_name(s.az.fault),
-                        axis_fault_name(s.el.fault));
-    return reply.send(out, "OK FAULT AZ=%s", axis_fault_name(s.az.fault));
-  }
-  if (is("SPEED") && has_arg) {
-    long speed = 0;
-    if (!text::parse_int(arg, speed) || speed < 1 || speed > 100)
-      return reply.send(out, "ERROR INVALID SPEED");
-    controller_.set_speed_pct(static_cast<int>(speed));
-    // The WRC firmware prints the speed as an Arduino double: two decimals.
-    return reply.send(out, "OK SPEED %.2f", static_cast<double>(speed));
-  }
-  if (is("SPEED?") && !has_arg)
-    return reply.send(out, "OK SPEED %d", controller_.status().speed_pct);
-  if (is("STOP") && !has_arg) {
-    controller_.stop();
-    return reply.send(out, "OK STOP");
-  }
-  if (is("PARK") && !has_arg) {
-    const Error e = controller_.park();
-    if (e != Error::kOk) return reply.send(out, "ERROR %s", error_reason(e));
-    return reply.send(out, "OK PARK");
-  }
-  if (is("RESET") && !has_arg) {
-    if (controller_.reset() != Error::kOk) return reply.send(out, "ERROR ESTOP");
-    return reply.send(out, "OK RESET");
-  }
-  if (is("MONITOR") && has_arg) {
-    long on = 0;
-    if (!text::parse_int(arg, on) || (on != 0 && on != 1))
-      return reply.send(out, "ERROR INVALID ARGUMENT");
-    monitor_ = on == 1;
-    last_push_ = now_;
-    return reply.send(out, "OK MONITOR %d", monitor_ ? 1 : 0);
-  }
-  if (is("INFO") && !has_arg) return reply.send(out, "OK INFO rotord %s", version_);
-  if (is("AZLIMITS?") && !has_arg) {
-    const Limits l = controller_.limits();
-    return reply.send(out, "OK AZLIMITS MIN=%g MAX=%g", static_cast<double>(l.az_min_deg),
-                      static_cast<double>(l.az_max_deg));
-  }
-  if (is("AZOFFSET") && has_arg) {
-    float offset = 0;
-    if (!parse_float(arg, offset)) return reply.send(out, "ERROR INVALID AZIMUTH OFFSET");
-    if (controller_.settings().set(Id::kAzOffsetDeg, offset).error != Error::kOk)
-      return reply.send(out, "ERROR INVALID AZIMUTH OFFSET");
-    return reply.send(out, "OK AZOFFSET %.2f", static_cast<double>(offset));
-  }
-  if (is("AZOFFSET?") && !has_arg) {
-    return reply.send(out, "OK AZOFFSET %.2f", controller_.settings().get(Id::kAzOffsetDeg));
-  }
-  reply.send(out, "ERROR INVALID COMMAND");
+void WrcSession::get_az(std::string_view, ByteSink& out) {
+  send(out, "OK AZ %.1f", az_reading(controller_.status(), 1));
+}
+
+void WrcSession::go_el(std::string_view arg, ByteSink& out) {
+  float el = 0;
+  if (!controller_.has_el()) return send(out, "ERROR NOT SUPPORTED");
+  if (!parse_float(arg, el)) return send(out, "ERROR INVALID ELEVATION");
+  const Error e = controller_.go_to(std::nullopt, el);
+  if (e == Error::kOutOfRange || e == Error::kInvalidArgument)
+    return send(out, "ERROR INVALID ELEVATION");
+  if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
+  send(out, "OK EL %.2f", static_cast<double>(el));
+}
+
+void WrcSession::get_el(std::string_view, ByteSink& out) {
+  if (!controller_.has_el()) return send(out, "ERROR NOT SUPPORTED");
+  send(out, "OK EL %.1f", one_decimal(controller_.status().el.position_deg));
+}
+
+void WrcSession::move(std::string_view arg, ByteSink& out) {
+  AxisId axis = AxisId::kAz;
+  Direction dir = Direction::kNone;
+  if (text::iequals(arg, "CW")) dir = Direction::kCw;
+  if (text::iequals(arg, "CCW")) dir = Direction::kCcw;
+  if (text::iequals(arg, "UP")) axis = AxisId::kEl, dir = Direction::kCw;
+  if (text::iequals(arg, "DOWN")) axis = AxisId::kEl, dir = Direction::kCcw;
+  if (dir == Direction::kNone) return send(out, "ERROR INVALID DIRECTION");
+  const Error e = controller_.move(axis, dir);
+  if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
+  char upper[8] = {};
+  for (std::size_t i = 0; i < arg.size() && i < sizeof(upper) - 1; ++i)
+    upper[i] = (arg[i] >= 'a' && arg[i] <= 'z') ? static_cast<char>(arg[i] - 32) : arg[i];
+  send(out, "OK MOVE %s", upper);
+}
+
+void WrcSession::state(std::string_view, ByteSink& out) {
+  write_state(out, "OK STATE");
+}
+
+void WrcSession::fault(std::string_view, ByteSink& out) {
+  const RotatorStatus s = controller_.status();
+  if (s.el.present)
+    return send(out, "OK FAULT AZ=%s EL=%s", axis_fault_name(s.az.fault),
+                axis_fault_name(s.el.fault));
+  send(out, "OK FAULT AZ=%s", axis_fault_name(s.az.fault));
+}
+
+void WrcSession::set_speed(std::string_view arg, ByteSink& out) {
+  long speed = 0;
+  if (!text::parse_int(arg, speed) || speed < 1 || speed > 100)
+    return send(out, "ERROR INVALID SPEED");
+  controller_.set_speed_pct(static_cast<int>(speed));
+  // The WRC firmware prints the speed as an Arduino double: two decimals.
+  send(out, "OK SPEED %.2f", static_cast<double>(speed));
+}
+
+void WrcSession::get_speed(std::string_view, ByteSink& out) {
+  send(out, "OK SPEED %d", controller_.status().speed_pct);
+}
+
+void WrcSession::stop(std::string_view, ByteSink& out) {
+  controller_.stop();
+  send(out, "OK STOP");
+}
+
+void WrcSession::park(std::string_view, ByteSink& out) {
+  const Error e = controller_.park();
+  if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
+  send(out, "OK PARK");
+}
+
+void WrcSession::reset(std::string_view, ByteSink& out) {
+  if (controller_.reset() != Error::kOk) return send(out, "ERROR ESTOP");
+  send(out, "OK RESET");
+}
+
+void WrcSession::monitor(std::string_view arg, ByteSink& out) {
+  long on = 0;
+  if (!text::parse_int(arg, on) || (on != 0 && on != 1)) return send(out, "ERROR INVALID ARGUMENT");
+  monitor_ = on == 1;
+  last_push_ = now_;
+  send(out, "OK MONITOR %d", monitor_ ? 1 : 0);
+}
+
+void WrcSession::info(std::string_view, ByteSink& out) {
+  send(out, "OK INFO rotord %s", version_);
+}
+
+void WrcSession::az_limits(std::string_view, ByteSink& out) {
+  const Limits l = controller_.limits();
+  send(out, "OK AZLIMITS MIN=%g MAX=%g", static_cast<double>(l.az_min_deg),
+       static_cast<double>(l.az_max_deg));
+}
+
+void WrcSession::set_az_offset(std::string_view arg, ByteSink& out) {
+  float offset = 0;
+  if (!parse_float(arg, offset)) return send(out, "ERROR INVALID AZIMUTH OFFSET");
+  if (controller_.settings().set(Id::kAzOffsetDeg, offset).error != Error::kOk)
+    return send(out, "ERROR INVALID AZIMUTH OFFSET");
+  send(out, "OK AZOFFSET %.2f", static_cast<double>(offset));
+}
+
+void WrcSession::get_az_offset(std::string_view, ByteSink& out) {
+  send(out, "OK AZOFFSET %.2f", controller_.settings().get(Id::kAzOffsetDeg));
 }
 
 }  // namespace rotord::protocol

@@ -1,5 +1,9 @@
 #pragma once
+#include <cstdint>
+#include <span>
+
 #include "protocol/line_assembler.hpp"
+#include "protocol/line_reply.hpp"
 #include "protocol/session.hpp"
 
 namespace rotord::protocol {
@@ -25,8 +29,31 @@ class MonitorTap {
 class WrcSession final : public Session {
  public:
   static constexpr std::size_t kMaxLineLength = 128;
+  static constexpr std::size_t kMaxReplyLength = 192;
   static constexpr Millis kMonitorPeriodMs = 100;
   static constexpr std::string_view kTooManyConnections = "ERROR TOO MANY CONNECTIONS\r\n";
+  /// CR LF lines; a reply that cannot fit is this error (never seen in
+  /// practice: every reply is a bounded number or word).
+  static constexpr ReplyRules kReplyRules{"\r\n", "ERROR REPLY TOO LONG\r\n"};
+  using Reply = LineReply<kMaxReplyLength>;
+
+  /// Whether a command takes an argument after its name.
+  enum class Arg : std::uint8_t {
+    kNone,      ///< `STOP`: an argument makes the line an invalid command
+    kRequired,  ///< `AZ 200`: without one the name is no command (`AZ` alone is invalid)
+  };
+  /// One row of the command table (wrc_session.cpp): the docs' command list
+  /// is checked against these rows (tests/docs).
+  struct Command {
+    std::string_view name;  ///< matched case-insensitively
+    Arg arg;
+    void (WrcSession::*run)(std::string_view arg, ByteSink& out);
+    std::string_view help;
+    /// Moves the rotator or changes a setting: `ERROR NOT ALLOWED` to a
+    /// read-only client (Session::may_control), checked before the argument.
+    bool changes_state;
+  };
+  static std::span<const Command> commands();
 
   WrcSession(Controller& controller, const char* version, MonitorTap* tap = nullptr)
       : controller_(controller), version_(version), tap_(tap) {}
@@ -38,8 +65,29 @@ class WrcSession final : public Session {
   void handle_line(std::string_view line, ByteSink& out);
 
  private:
+  static const Command kCommands[];
+
   /// A STATE line: "OK STATE ..." answers a request, "STATE ..." is pushed.
   void write_state(ByteSink& out, const char* prefix);
+
+  // The handlers of the command table.
+  void go_az(std::string_view arg, ByteSink& out);
+  void get_az(std::string_view arg, ByteSink& out);
+  void go_el(std::string_view arg, ByteSink& out);
+  void get_el(std::string_view arg, ByteSink& out);
+  void move(std::string_view arg, ByteSink& out);
+  void state(std::string_view arg, ByteSink& out);
+  void fault(std::string_view arg, ByteSink& out);
+  void set_speed(std::string_view arg, ByteSink& out);
+  void get_speed(std::string_view arg, ByteSink& out);
+  void stop(std::string_view arg, ByteSink& out);
+  void park(std::string_view arg, ByteSink& out);
+  void reset(std::string_view arg, ByteSink& out);
+  void monitor(std::string_view arg, ByteSink& out);
+  void info(std::string_view arg, ByteSink& out);
+  void az_limits(std::string_view arg, ByteSink& out);
+  void set_az_offset(std::string_view arg, ByteSink& out);
+  void get_az_offset(std::string_view arg, ByteSink& out);
 
   Controller& controller_;
   const char* version_;

@@ -1,6 +1,7 @@
 #include "settings/network_list.hpp"
 
 #include "settings/settings.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::settings {
@@ -22,10 +23,10 @@ bool is_label(std::string_view label) {
 bool parse_ipv4_network(std::string_view text, Ipv4Network& out) {
   const std::size_t slash = text.find('/');
   std::uint32_t address = 0;
-  if (!parse_ipv4(text.substr(0, slash), address)) return false;
+  if (!parse_ipv4(text::slice(text, 0, slash), address)) return false;
   long prefix = 32;
   if (slash != std::string_view::npos) {
-    const std::string_view bits = text.substr(slash + 1);
+    const std::string_view bits = text::slice(text, slash + 1);
     if (bits.empty() || bits.size() > 2 || !text::parse_int(bits, prefix)) return false;
     if (prefix < 0 || prefix > 32) return false;
   }
@@ -47,7 +48,7 @@ bool is_hostname(std::string_view name) {
   if (name.empty() || name.size() > 253) return false;
   for (;;) {
     const std::size_t dot = name.find('.');
-    if (!is_label(name.substr(0, dot))) return false;
+    if (!is_label(text::slice(name, 0, dot))) return false;
     if (dot == std::string_view::npos) return true;
     name.remove_prefix(dot + 1);
   }

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "util/slice.hpp"
+
 namespace rotord::settings {
 
 /// Calls `each(item)` for every non-empty item of a comma- or space-separated list.
@@ -13,7 +15,7 @@ template <typename Each>
 void for_each_list_item(std::string_view list, Each&& each) {
   while (!list.empty()) {
     const std::size_t end = list.find_first_of(", ");
-    const std::string_view item = list.substr(0, end);
+    const std::string_view item = text::slice(list, 0, end);
     if (!item.empty()) each(item);
     if (end == std::string_view::npos) break;
     list.remove_prefix(end + 1);

@@ -1,7 +1,7 @@
 #pragma once
-#include "axis/axis_id.hpp"
 #include "sensors/pot_calibration.hpp"
 #include "settings/settings.hpp"
+#include "util/axis_id.hpp"
 
 namespace rotord::settings {
 

@@ -11,6 +11,7 @@
 #include "settings/network_list.hpp"
 #include "settings/pin_rules.hpp"
 #include "settings/pot_table.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::settings {
@@ -67,7 +68,7 @@ std::string_view choice_name(Id id, int index) {
     if (bar == std::string_view::npos) return {};
     rest.remove_prefix(bar + 1);
   }
-  return rest.substr(0, rest.find('|'));
+  return text::slice(rest, 0, rest.find('|'));
 }
 
 bool parse_ipv4(std::string_view text, std::uint32_t& out) {

@@ -11,7 +11,9 @@ namespace rotord::settings {
 // under one simulator profile does not carry that profile's geometry into
 // another, while a value the user changed wins under every profile.
 
-/// A set of settings, one bit per table row.
+/// A set of settings, one bit per table row. Indexed with [] in the core:
+/// test() and set() check the position and throw std::out_of_range, which
+/// links the exception runtime into the firmware (cmake/check-no-exceptions.cmake).
 using KeySet = std::bitset<kCount>;
 
 /// The stored document's format: 2 holds the user's layer only and names its

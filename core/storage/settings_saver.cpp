@@ -1,7 +1,7 @@
 #include "storage/settings_saver.hpp"
 
+#include "json/settings_json.hpp"
 #include "util/crc32.hpp"
-#include "web/settings_json.hpp"
 
 namespace rotord {
 namespace {

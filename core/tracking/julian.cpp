@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "util/slice.hpp"
+
 namespace rotord::tracking {
 namespace {
 
@@ -108,7 +110,7 @@ bool parse_utc(std::string_view s, std::int64_t& unix_ms) {
     }
     if (at == first) return false;
   }
-  const std::string_view zone = s.substr(at);
+  const std::string_view zone = text::slice(s, at);
   if (!(zone.empty() || zone == "Z" || zone == "z" || zone == "+00:00")) return false;
   if (month < 1 || month > 12 || day < 1 || day > days_in_month(year, month) || hour > 23 ||
       minute > 59 || second > 59)

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::tracking {
@@ -22,7 +23,7 @@ std::string_view strip_line_end(std::string_view line) {
 
 /// Columns `first`..`last` (1-based, inclusive, as the format is documented).
 std::string_view columns(std::string_view line, std::size_t first, std::size_t last) {
-  return line.substr(first - 1, last - first + 1);
+  return text::slice(line, first - 1, last - first + 1);
 }
 
 /// A decimal field: optional sign, digits with at most one '.', blanks around.
@@ -137,7 +138,8 @@ int tle_checksum(std::string_view line) {
 bool parse_catalog_number(std::string_view field, std::uint32_t& out) {
   if (field.size() != 5) return false;
   std::uint32_t rest = 0;
-  if (!unsigned_field(field.substr(1), rest, false) || text::trim(field.substr(1)).size() != 4) {
+  if (!unsigned_field(text::slice(field, 1), rest, false) ||
+      text::trim(text::slice(field, 1)).size() != 4) {
     // Old TLEs pad small numbers with blanks ("    5"): accept them, digits only.
     return unsigned_field(field, out, false);
   }
@@ -219,7 +221,7 @@ std::string_view TleSetReader::next_line() {
   if (rest_.empty()) return {};
   std::size_t end = 0;
   while (end < rest_.size() && rest_[end] != '\n') ++end;
-  std::string_view line = rest_.substr(0, end);
+  std::string_view line = text::slice(rest_, 0, end);
   rest_.remove_prefix(end < rest_.size() ? end + 1 : end);
   return strip_line_end(line);
 }

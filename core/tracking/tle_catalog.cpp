@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "tracking/sky_target.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::tracking {
@@ -16,8 +17,8 @@ class Lines {
   bool next(std::string_view& line) {
     if (rest_.empty()) return false;
     const std::size_t end = rest_.find('\n');
-    line = rest_.substr(0, end);
-    rest_ = end == std::string_view::npos ? std::string_view{} : rest_.substr(end + 1);
+    line = text::slice(rest_, 0, end);
+    rest_ = end == std::string_view::npos ? std::string_view{} : text::slice(rest_, end + 1);
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
       line.remove_suffix(1);
     return true;
@@ -165,7 +166,7 @@ TleCheck TleCatalog::put(std::string_view text, std::int64_t utc_ms) {
             }
           }
         }
-        bool known = find(s.line1.substr(2, 5)) != nullptr;
+        bool known = find(text::slice(s.line1, 2, 5)) != nullptr;
         for (std::size_t i = 0; i < seen_count && !known; ++i) known = seen[i] == tle.catalog;
         if (!known) {
           if (seen_count < kCapacity * 2) seen[seen_count++] = tle.catalog;
@@ -194,7 +195,7 @@ TleCheck TleCatalog::put(std::string_view text, std::int64_t utc_ms) {
           if (entries_[i].catalog == tle.catalog) e = &entries_[i];
         if (e == nullptr) e = &entries_[count_++];
         *e = Entry{};
-        copy_text(s.title.empty() ? s.line1.substr(2, 5) : s.title, e->name, sizeof e->name);
+        copy_text(s.title.empty() ? text::slice(s.line1, 2, 5) : s.title, e->name, sizeof e->name);
         copy_text(s.line1, e->line1, sizeof e->line1);
         copy_text(s.line2, e->line2, sizeof e->line2);
         e->catalog = tle.catalog;
@@ -293,7 +294,7 @@ void TleCatalog::read_text(std::string_view text) {
     if (!parse_tle(line1, line2, tle).ok()) continue;
     Entry& e = entries_[count_++];
     e = Entry{};
-    copy_text(title.empty() ? line1.substr(2, 5) : title, e.name, sizeof e.name);
+    copy_text(title.empty() ? text::slice(line1, 2, 5) : title, e.name, sizeof e.name);
     copy_text(line1, e.line1, sizeof e.line1);
     copy_text(line2, e.line2, sizeof e.line2);
     e.catalog = tle.catalog;

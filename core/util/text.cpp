@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "util/slice.hpp"
+
 namespace rotord::text {
 namespace {
 bool is_space(char c) {
@@ -93,7 +95,7 @@ std::string_view next_token(std::string_view& rest) {
   while (!rest.empty() && is_space(rest.front())) rest.remove_prefix(1);
   std::size_t end = 0;
   while (end < rest.size() && !is_space(rest[end])) ++end;
-  std::string_view token = rest.substr(0, end);
+  std::string_view token = text::slice(rest, 0, end);
   rest.remove_prefix(end);
   return token;
 }

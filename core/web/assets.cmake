@@ -1,7 +1,7 @@
 # The web UI (web/ in the source tree), gzipped with Debian's gzip at build
-# time and compiled into rotord_core as constant byte arrays (web_assets.cpp),
-# for both the Linux daemon and the Pico firmware. Included from
-# core/CMakeLists.txt after rotord_core is defined.
+# time and compiled into rotord_web (the web layer of rotord_core) as
+# constant byte arrays (web_assets.cpp), for both the Linux daemon and the
+# Pico firmware. Included from core/CMakeLists.txt after rotord_web is defined.
 find_program(ROTORD_GZIP gzip REQUIRED)
 set(ROTORD_WEB_DIR ${CMAKE_CURRENT_LIST_DIR}/../../web)  # the repo's web/, also when included from ports/pico_w
 file(GLOB ROTORD_WEB_FILES CONFIGURE_DEPENDS
@@ -14,4 +14,4 @@ add_custom_command(
   DEPENDS ${ROTORD_WEB_FILES} ${CMAKE_CURRENT_LIST_DIR}/embed_assets.cmake
   COMMENT "Embedding the web UI (gzip)"
   VERBATIM)
-target_sources(rotord_core PRIVATE ${ROTORD_WEB_ASSETS_CPP})
+target_sources(rotord_web PRIVATE ${ROTORD_WEB_ASSETS_CPP})

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "web/json_reader.hpp"
+#include "json/json_reader.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord::web {

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "settings/network_list.hpp"
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::web {
@@ -31,8 +32,8 @@ bool is_ipv6_literal(std::string_view inside) {
 bool is_name_or_mdns(std::string_view host, std::string_view name) {
   if (name.empty()) return false;
   if (text::iequals(host, name)) return true;
-  return host.size() == name.size() + 6 && text::iequals(host.substr(0, name.size()), name) &&
-         text::iequals(host.substr(name.size()), ".local");
+  return host.size() == name.size() + 6 && text::iequals(text::slice(host, 0, name.size()), name) &&
+         text::iequals(text::slice(host, name.size()), ".local");
 }
 
 bool in_allowed_hosts(std::string_view name, const settings::Settings& settings) {
@@ -50,14 +51,14 @@ bool host_of(std::string_view authority, std::string_view& name) {
   if (!authority.empty() && authority.front() == '[') {
     const std::size_t close = authority.find(']');
     if (close == std::string_view::npos) return false;
-    const std::string_view after = authority.substr(close + 1);
-    if (!after.empty() && (after.front() != ':' || !is_port(after.substr(1)))) return false;
-    name = authority.substr(0, close + 1);
-    return is_ipv6_literal(name.substr(1, name.size() - 2));
+    const std::string_view after = text::slice(authority, close + 1);
+    if (!after.empty() && (after.front() != ':' || !is_port(text::slice(after, 1)))) return false;
+    name = text::slice(authority, 0, close + 1);
+    return is_ipv6_literal(text::slice(name, 1, name.size() - 2));
   }
   const std::size_t colon = authority.rfind(':');
-  if (colon != std::string_view::npos && !is_port(authority.substr(colon + 1))) return false;
-  name = authority.substr(0, colon);
+  if (colon != std::string_view::npos && !is_port(text::slice(authority, colon + 1))) return false;
+  name = text::slice(authority, 0, colon);
   if (!name.empty() && name.back() == '.') name.remove_suffix(1);  // "rotord.local."
   return !name.empty();
 }
@@ -78,7 +79,7 @@ bool host_allowed(std::string_view host, const settings::Settings& settings,
     const std::string_view system(system_hostname);
     if (is_name_or_mdns(name, system)) return true;
     // A host named "pi.example.org" is also found as "pi" and "pi.local".
-    if (is_name_or_mdns(name, system.substr(0, system.find('.')))) return true;
+    if (is_name_or_mdns(name, text::slice(system, 0, system.find('.')))) return true;
   }
   return in_allowed_hosts(name, settings);
 }
@@ -88,7 +89,7 @@ bool origin_allowed(std::string_view origin, std::string_view host,
   if (origin.empty()) return true;
   const std::size_t scheme_end = origin.find("://");
   if (scheme_end == std::string_view::npos) return false;  // "null" and anything odd
-  const std::string_view authority = origin.substr(scheme_end + 3);
+  const std::string_view authority = text::slice(origin, scheme_end + 3);
   if (authority.empty() || authority.find('/') != std::string_view::npos) return false;
   if (!host.empty() && text::iequals(authority, host)) return true;
   std::string_view name;

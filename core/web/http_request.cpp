@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::web {
@@ -17,9 +18,9 @@ std::string_view trim_ows(std::string_view s) {
 bool contains_token(std::string_view list, std::string_view token) {
   while (!list.empty()) {
     const std::size_t comma = list.find(',');
-    std::string_view item = trim_ows(list.substr(0, comma));
+    std::string_view item = trim_ows(text::slice(list, 0, comma));
     const std::size_t semi = item.find(';');
-    if (text::iequals(trim_ows(item.substr(0, semi)), token)) return true;
+    if (text::iequals(trim_ows(text::slice(item, 0, semi)), token)) return true;
     if (comma == std::string_view::npos) break;
     list.remove_prefix(comma + 1);
   }
@@ -118,9 +119,9 @@ HttpRequestParser::Status HttpRequestParser::feed(std::string_view& in) {
 bool HttpRequestParser::parse_head() {
   std::string_view head(head_, head_length_);
   const std::size_t eol = head.find('\n');
-  std::string_view line = head.substr(0, eol);
+  std::string_view line = text::slice(head, 0, eol);
   std::string_view headers =
-      eol == std::string_view::npos ? std::string_view{} : head.substr(eol + 1);
+      eol == std::string_view::npos ? std::string_view{} : text::slice(head, eol + 1);
 
   // Request line: METHOD SP request-target SP HTTP-version
   const std::size_t sp1 = line.find(' ');
@@ -130,16 +131,16 @@ bool HttpRequestParser::parse_head() {
     fail(400, "malformed request line");
     return false;
   }
-  const std::string_view method = line.substr(0, sp1);
-  const std::string_view target = line.substr(sp1 + 1, sp2 - sp1 - 1);
-  const std::string_view version = line.substr(sp2 + 1);
+  const std::string_view method = text::slice(line, 0, sp1);
+  const std::string_view target = text::slice(line, sp1 + 1, sp2 - sp1 - 1);
+  const std::string_view version = text::slice(line, sp2 + 1);
   for (char c : method) {
     if (!is_token_char(c)) {
       fail(400, "malformed request line");
       return false;
     }
   }
-  if (version.substr(0, 5) != "HTTP/") {
+  if (!version.starts_with("HTTP/")) {
     fail(400, "malformed request line");
     return false;
   }
@@ -159,15 +160,16 @@ bool HttpRequestParser::parse_head() {
                     : method == "DELETE" ? Method::kDelete
                                          : Method::kOther;
   const std::size_t question = target.find('?');
-  request_.path = target.substr(0, question);
-  request_.query =
-      question == std::string_view::npos ? std::string_view{} : target.substr(question + 1);
+  request_.path = text::slice(target, 0, question);
+  request_.query = question == std::string_view::npos
+                       ? std::string_view{}
+                       : text::slice(target, question + 1, std::string_view::npos);
   request_.keep_alive = version == "HTTP/1.1";
 
   while (!headers.empty()) {
     const std::size_t nl = headers.find('\n');
-    const std::string_view field = headers.substr(0, nl);
-    headers = nl == std::string_view::npos ? std::string_view{} : headers.substr(nl + 1);
+    const std::string_view field = text::slice(headers, 0, nl);
+    headers = nl == std::string_view::npos ? std::string_view{} : text::slice(headers, nl + 1);
     if (field.front() == ' ' || field.front() == '\t') {
       fail(400, "folded header lines are not allowed");
       return false;
@@ -177,14 +179,14 @@ bool HttpRequestParser::parse_head() {
       fail(400, "malformed header line");
       return false;
     }
-    const std::string_view name = field.substr(0, colon);
+    const std::string_view name = text::slice(field, 0, colon);
     for (char c : name) {
       if (!is_token_char(c)) {
         fail(400, "malformed header name");
         return false;
       }
     }
-    if (!parse_header(name, trim_ows(field.substr(colon + 1)))) return false;
+    if (!parse_header(name, trim_ows(text::slice(field, colon + 1)))) return false;
   }
   if (content_length_ > kMaxBodyBytes) {
     fail(413, "request body too large");
@@ -222,7 +224,7 @@ bool HttpRequestParser::parse_header(std::string_view name, std::string_view val
     if (contains_token(value, "close")) request_.keep_alive = false;
     if (contains_token(value, "keep-alive")) request_.keep_alive = true;
   } else if (text::iequals(name, "Content-Type")) {
-    const std::string_view media = trim_ows(value.substr(0, value.find(';')));
+    const std::string_view media = trim_ows(text::slice(value, 0, value.find(';')));
     request_.json_body = text::iequals(media, "application/json");
   } else if (text::iequals(name, "If-None-Match")) {
     request_.if_none_match = value;

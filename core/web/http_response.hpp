@@ -2,8 +2,8 @@
 #include <cstddef>
 #include <string_view>
 
-#include "protocol/session.hpp"
-#include "web/json_writer.hpp"
+#include "json/json_writer.hpp"
+#include "util/byte_sink.hpp"
 
 namespace rotord::web {
 

@@ -57,7 +57,7 @@ void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
     api_.handle_metrics(request, out, options);
   } else if (request.path == "/healthz") {
     api_.handle_health(request, out, options);
-  } else if (request.path.substr(0, 5) == "/api/") {
+  } else if (request.path.starts_with("/api/")) {
     switch (api_.handle(request, out, options, peer())) {
       case Api::Outcome::kPending:
         pending_ = true;

@@ -5,8 +5,9 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "json/json_reader.hpp"
 #include "tracking/julian.hpp"
-#include "web/json_reader.hpp"
+#include "util/slice.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord::web {
@@ -19,12 +20,12 @@ using tracking::TargetKind;
 bool query_value(std::string_view query, std::string_view name, char* out, std::size_t capacity) {
   while (!query.empty()) {
     const std::size_t amp = query.find('&');
-    const std::string_view pair = query.substr(0, amp);
-    query = amp == std::string_view::npos ? std::string_view{} : query.substr(amp + 1);
+    const std::string_view pair = text::slice(query, 0, amp);
+    query = amp == std::string_view::npos ? std::string_view{} : text::slice(query, amp + 1);
     const std::size_t eq = pair.find('=');
-    if (pair.substr(0, eq) != name) continue;
+    if (text::slice(pair, 0, eq) != name) continue;
     const std::string_view value =
-        eq == std::string_view::npos ? std::string_view{} : pair.substr(eq + 1);
+        eq == std::string_view::npos ? std::string_view{} : text::slice(pair, eq + 1);
     auto hex = [](char h) {
       return h >= '0' && h <= '9'   ? h - '0'
              : h >= 'a' && h <= 'f' ? h - 'a' + 10

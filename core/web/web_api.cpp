@@ -4,8 +4,9 @@
 #include <cstdio>
 #include <cstring>
 
+#include "json/json_reader.hpp"
+#include "util/slice.hpp"
 #include "util/utc_time.hpp"
-#include "web/json_reader.hpp"
 
 namespace rotord::web {
 namespace {
@@ -253,67 +254,154 @@ void Api::arm_dead_man(AxisId axis, Millis hold_ms) {
   d.until = transport_now_ + hold_ms;
 }
 
+// The route table: every endpoint of the REST API, once. Paths are exact;
+// the same path may have a GET and a POST row.
+using N = Api::Need;
+using O = Api::Outcome;
+const Api::Route Api::kRoutes[] = {
+    {"/api/status", false, N::kRead, false, false, [](Api& a, const Call& c) { return a.get_status(c); },
+     "position, state, faults, limits, the lock"},
+    {"/api/events", false, N::kRead, false, false, [](Api& a, const Call& c) { return a.get_events(c); },
+     "the status as Server-Sent Events"},
+    {"/api/settings", false, N::kRead, false, false,
+     [](Api& a, const Call& c) {
+       a.get_settings(c.out, c.options);
+       return O::kDone;
+     },
+     "every setting (secrets masked)"},
+    {"/api/settings/schema", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.get_schema(c); },
+     "the settings table: type, unit, range, default, help"},
+    {"/api/auth", false, N::kRead, false, false,
+     [](Api& a, const Call& c) {
+       a.get_auth(c.caller, c.out, c.options);
+       return O::kDone;
+     },
+     "who the caller is, and the lock"},
+    {"/api/station", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.get_station(c); },
+     "the rotords seen on the MQTT broker (docs/mqtt.md)"},
+    {"/api/tokens", false, N::kAdmin, false, false,
+     [](Api& a, const Call& c) {
+       a.get_tokens(c.out, c.options);
+       return O::kDone;
+     },
+     "the bearer tokens' names and scopes"},
+    {"/api/goto", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_goto(c); },
+     "go to az and/or el"},
+    {"/api/move", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_move(c); },
+     "hold-to-move with a dead-man"},
+    // STOP: always, for anyone, with any body.
+    {"/api/stop", true, N::kPublic, false, false, [](Api& a, const Call& c) { return a.post_stop(c); },
+     "stop everything"},
+    {"/api/park", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_park(c); },
+     "go to the park position"},
+    {"/api/mode", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_mode(c); },
+     "idle (stop) or park"},
+    {"/api/reset", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_reset(c); },
+     "stop, clear latched faults"},
+    {"/api/speed", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_speed(c); },
+     "speed in %"},
+    {"/api/settings", true, N::kControl, true, true,
+     [](Api& a, const Call& c) {
+       a.post_settings(c.request.body, c.out, c.options, c.caller);
+       return O::kDone;
+     },
+     "change settings (partial), saved"},
+    {"/api/settings/reset", true, N::kAdmin, true, true,
+     [](Api& a, const Call& c) {
+       a.reset_settings(c.out, c.options);
+       return O::kDone;
+     },
+     "every setting back to its default (not the password or tokens)"},
+    {"/api/reboot", true, N::kControl, true, true,
+     [](Api& a, const Call& c) { return a.post_reboot(c); }, "restart the controller"},
+    {"/api/login", true, N::kPublic, false, true,
+     [](Api& a, const Call& c) { return a.login(c.request, c.out, c.options, c.peer); },
+     "log in with the web password: a session cookie"},
+    {"/api/logout", true, N::kPublic, false, true,
+     [](Api& a, const Call& c) {
+       a.logout(c.caller, c.out, c.options);
+       return O::kDone;
+     },
+     "end the session"},
+    {"/api/password", true, N::kAdmin, false, true,
+     [](Api& a, const Call& c) {
+       return a.set_password(c.request, c.out, c.options, c.caller, c.peer);
+     },
+     "set, change or clear the web password"},
+    {"/api/tokens", true, N::kAdmin, false, true,
+     [](Api& a, const Call& c) {
+       a.create_token(c.request, c.out, c.options);
+       return O::kDone;
+     },
+     "make a bearer token (shown once)"},
+    {"/api/tokens/revoke", true, N::kAdmin, false, true,
+     [](Api& a, const Call& c) {
+       a.revoke_token(c.request, c.out, c.options);
+       return O::kDone;
+     },
+     "revoke a bearer token"},
+    {"/api/lock", true, N::kControl, false, true,
+     [](Api& a, const Call& c) {
+       a.lock(c.request, c.out, c.options, c.caller);
+       return O::kDone;
+     },
+     "take the control lock for N minutes"},
+    {"/api/unlock", true, N::kControl, false, true,
+     [](Api& a, const Call& c) {
+       a.unlock(c.caller, c.out, c.options);
+       return O::kDone;
+     },
+     "release the control lock"},    // Tracking (track_api.cpp): the handler tells the methods apart and
+    // checks the bodies (PUT /api/tle takes the TLE text as it is: another
+    // site's form cannot send a PUT).
+    {"/api/tle", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.run_track(c); }, "the stored TLEs"},
+    {"/api/tle", true, N::kControl, true, false,
+     [](Api& a, const Call& c) { return a.run_track(c); },
+     "PUT: store TLEs (a paste, all or nothing); DELETE ?object=: remove one", "PUT DELETE"},
+    {"/api/passes", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.run_track(c); },
+     "the next passes of an object, the Sun or the Moon"},
+    {"/api/track", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.run_track(c); }, "the tracking mode's state and plan"},
+    {"/api/track", true, N::kControl, true, false,
+     [](Api& a, const Call& c) { return a.run_track(c); },
+     "POST: track an object, the Sun, the Moon or az/el; DELETE: end the track", "POST DELETE"},
+};
+
+std::span<const Api::Route> Api::routes() {
+  return kRoutes;
+}
+
+bool Api::takes_method(const Route& route, std::string_view method) {
+  if (route.verbs.empty()) return method == "POST";
+  std::string_view rest = route.verbs;
+  while (!rest.empty()) {
+    const std::size_t space = rest.find(' ');
+    if (text::slice(rest, 0, space) == method) return true;
+    rest = space == std::string_view::npos ? std::string_view{} : text::slice(rest, space + 1);
+  }
+  return false;
+}
+
 Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
                          const ResponseOptions& options, const access::Peer& peer) {
-  // Who may call each route once access control is on (web.password set):
-  // kPublic anyone, kRead a login or any token, kControl a login or a
-  // control token, kAdmin the web login only. `locked`: refused to all but
-  // the control lock's holder while it is held.
-  enum class Need : unsigned char { kPublic, kRead, kControl, kAdmin };
-  struct Route {
-    const char* path;
-    bool post;
-    Need need;
-    bool locked;
-  };
-  static constexpr Route kRoutes[] = {
-      {"/api/status", false, Need::kRead, false},
-      {"/api/events", false, Need::kRead, false},
-      {"/api/settings", false, Need::kRead, false},
-      {"/api/settings/schema", false, Need::kRead, false},
-      {"/api/auth", false, Need::kRead, false},
-      {"/api/tokens", false, Need::kAdmin, false},
-      {"/api/goto", true, Need::kControl, true},
-      {"/api/move", true, Need::kControl, true},
-      {"/api/stop", true, Need::kPublic, false},  // STOP: always, for anyone
-      {"/api/park", true, Need::kControl, true},
-      {"/api/mode", true, Need::kControl, true},
-      {"/api/reset", true, Need::kControl, true},
-      {"/api/speed", true, Need::kControl, true},
-      {"/api/settings", true, Need::kControl, true},
-      {"/api/settings/reset", true, Need::kAdmin, true},
-      {"/api/reboot", true, Need::kControl, true},
-      {"/api/login", true, Need::kPublic, false},
-      {"/api/logout", true, Need::kPublic, false},
-      {"/api/password", true, Need::kAdmin, false},
-      {"/api/tokens", true, Need::kAdmin, false},
-      {"/api/tokens/revoke", true, Need::kAdmin, false},
-      {"/api/lock", true, Need::kControl, false},
-      {"/api/unlock", true, Need::kControl, false},
-      // Tracking (track_api.cpp): "post" rows also take PUT and DELETE,
-      // which the handler tells apart.
-      {"/api/tle", false, Need::kRead, false},
-      {"/api/tle", true, Need::kControl, true},
-      {"/api/passes", false, Need::kRead, false},
-      {"/api/track", false, Need::kRead, false},
-      {"/api/track", true, Need::kControl, true},
-  };
   const std::string_view path = request.path;
   // PUT and DELETE change state as POST does (the tracking routes).
   const bool is_post = request.method == Method::kPost || request.method == Method::kPut ||
                        request.method == Method::kDelete;
   const bool is_get = request.method == Method::kGet || request.method == Method::kHead;
-  bool path_known = false;
   bool allows_get = false;
   bool allows_post = false;
   const Route* route = nullptr;
   for (const Route& r : kRoutes) {
     if (path != r.path) continue;
-    path_known = true;
     (r.post ? allows_post : allows_get) = true;
     if (r.post == is_post) route = &r;
   }
-  if (!path_known) {
+  if (!allows_get && !allows_post) {
     send_error(out, 404, "no such API endpoint", options);
     return Outcome::kDone;
   }
@@ -365,252 +453,270 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
     send_locked(out, options);
     return Outcome::kDone;
   }
-
-  Controller& c = ctx_.controller;
-  if (is_get) {
-    if (path == "/api/status") {
-      send_json(out, 200, options, [this](JsonWriter& w) { write_status(w); });
-    } else if (path == "/api/events") {
-      if (request.method == Method::kHead) {
-        write_head(out, 200, "text/event-stream", -1, {false, true, {}});
-        return Outcome::kClose;
-      }
-      // The stream ends when the connection closes: no length, no keep-alive.
-      write_head(out, 200, "text/event-stream", -1, {false, false, "Cache-Control: no-store\r\n"});
-      return Outcome::kStartEvents;
-    } else if (path == "/api/settings") {
-      get_settings(out, options);
-    } else if (path == "/api/auth") {
-      get_auth(caller, out, options);
-    } else if (path == "/api/tokens") {
-      get_tokens(out, options);
-    } else if (is_track_path(path)) {
-      handle_track(request, out, options);
-    } else {
-      send_json(out, 200, options, [this](JsonWriter& w) {
-        write_settings_schema(ctx_.defaults != nullptr ? *ctx_.defaults : settings::Settings(), w);
-      });
-    }
-    return Outcome::kDone;
-  }
-
-  // POST. A body must be JSON, declared as such: a cross-site HTML form or
-  // no-cors fetch cannot send that header, so another web page open in the
-  // same browser cannot move the antenna. STOP is exempt: it must always work.
-  if (is_track_path(path)) {
-    handle_track(request, out, options);  // checks its own methods and bodies
-    return Outcome::kDone;
-  }
-  if (request.method != Method::kPost) {
+  // A state-changing row takes POST, or the methods it names (verbs).
+  if (route->post && !takes_method(*route, request.method_text)) {
+    char allow[64];
+    std::snprintf(allow, sizeof allow, "Allow: %s%.*s\r\n", allows_get ? "GET, HEAD, " : "",
+                  static_cast<int>(route->verbs.empty() ? 4 : route->verbs.size()),
+                  route->verbs.empty() ? "POST" : route->verbs.data());
+    for (char* c = allow; *c != '\0'; ++c)
+      if (*c == ' ' && c[-1] != ',' && c[-1] != ':') *c = ',';  // "PUT DELETE" -> "PUT,DELETE"
     ResponseOptions o = options;
-    o.extra_headers = allows_get ? "Allow: GET, HEAD, POST\r\n" : "Allow: POST\r\n";
+    o.extra_headers = allow;
     send_error(out, 405, "method not allowed here", o);
     return Outcome::kDone;
   }
-  if (path != "/api/stop" && !request.json_body) {
+  // A POST body must be JSON, declared as such: a cross-site HTML form or
+  // no-cors fetch cannot send that header, so another web page open in the
+  // same browser cannot move the antenna.
+  if (route->post && route->json_body && !request.json_body) {
     send_error(out, 415, "send Content-Type: application/json", options);
     return Outcome::kDone;
   }
+  return route->run(*this, Call{request, out, options, caller, peer});
+}
 
-  if (path == "/api/stop") {
+Api::Outcome Api::get_status(const Call& call) {
+  send_json(call.out, 200, call.options, [this](JsonWriter& w) { write_status(w); });
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::get_station(const Call& call) {
+  if (station_ == nullptr) {
+    send_error(call.out, 404, "no station: MQTT is off (mqtt.enabled)", call.options);
+  } else {
+    send_json(call.out, 200, call.options, [this](JsonWriter& w) { station_->write_station(w); });
+  }
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::get_events(const Call& call) {
+  if (call.request.method == Method::kHead) {
+    write_head(call.out, 200, "text/event-stream", -1, {false, true, {}});
+    return Outcome::kClose;
+  }
+  // The stream ends when the connection closes: no length, no keep-alive.
+  write_head(call.out, 200, "text/event-stream", -1, {false, false, "Cache-Control: no-store\r\n"});
+  return Outcome::kStartEvents;
+}
+
+Api::Outcome Api::get_schema(const Call& call) {
+  send_json(call.out, 200, call.options, [this](JsonWriter& w) {
+    write_settings_schema(ctx_.defaults != nullptr ? *ctx_.defaults : settings::Settings(), w);
+  });
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::post_stop(const Call& call) {
+  dead_man_ = {};
+  ctx_.controller.stop();
+  send_ok(call.out, call.options);
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::post_goto(const Call& call) {
+  protocol::ByteSink& out = call.out;
+  const ResponseOptions& options = call.options;
+  Controller& c = ctx_.controller;
+  Member m[] = {
+      {"az", JsonType::kNumber}, {"el", JsonType::kNumber}, {"unwrapped", JsonType::kBool}};
+  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
+  if (!m[0].present && !m[1].present) {
+    send_error(out, 400, "give az and/or el (degrees)", options);
+    return Outcome::kDone;
+  }
+  const AzTarget mode =
+      m[2].present && m[2].value.boolean ? AzTarget::kUnwrapped : AzTarget::kCompass;
+  const Limits l = c.limits();
+  char message[128];
+  if (m[0].present && !c.resolve_az(static_cast<float>(m[0].value.number), mode)) {
+    std::snprintf(message, sizeof(message), "az %g is outside the travel %g..%g", m[0].value.number,
+                  static_cast<double>(l.az_min_deg), static_cast<double>(l.az_max_deg));
+    send_error(out, 422, message, options);
+    return Outcome::kDone;
+  }
+  if (m[1].present && l.has_el &&
+      (m[1].value.number < l.el_min_deg || m[1].value.number > l.el_max_deg)) {
+    std::snprintf(message, sizeof(message), "el %g is outside the travel %g..%g", m[1].value.number,
+                  static_cast<double>(l.el_min_deg), static_cast<double>(l.el_max_deg));
+    send_error(out, 422, message, options);
+    return Outcome::kDone;
+  }
+  std::optional<float> az;
+  std::optional<float> el;
+  if (m[0].present) az = static_cast<float>(m[0].value.number);
+  if (m[1].present) el = static_cast<float>(m[1].value.number);
+  const Error e = c.go_to(az, el, mode);
+  if (e != Error::kOk) {
+    send_command_error(e, out, options);
+    return Outcome::kDone;
+  }
+  const RotatorStatus s = c.status();
+  send_json(out, 200, options, [&](JsonWriter& w) {
+    w.begin_object().member("ok", true).key("az_target");
+    if (az) {
+      w.number(s.az.target_deg);
+    } else {
+      w.null();
+    }
+    w.key("el_target");
+    if (el) {
+      w.number(s.el.target_deg);
+    } else {
+      w.null();
+    }
+    w.end_object();
+  });
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::post_move(const Call& call) {
+  protocol::ByteSink& out = call.out;
+  const ResponseOptions& options = call.options;
+  Controller& c = ctx_.controller;
+  Member m[] = {{"axis", JsonType::kString},
+                {"dir", JsonType::kString},
+                {"speed", JsonType::kNumber},
+                {"hold_ms", JsonType::kNumber}};
+  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
+  if (!m[1].present) {
+    send_error(out, 400, "give dir: cw, ccw, up, down or stop", options);
+    return Outcome::kDone;
+  }
+  const std::string_view dir_text = m[1].value.text;
+  Direction dir = Direction::kNone;
+  std::optional<AxisId> axis;
+  if (dir_text == "cw" || dir_text == "ccw") {
+    dir = dir_text == "cw" ? Direction::kCw : Direction::kCcw;
+  } else if (dir_text == "up" || dir_text == "down") {
+    dir = dir_text == "up" ? Direction::kCw : Direction::kCcw;
+    axis = AxisId::kEl;
+  } else if (dir_text != "stop") {
+    send_error(out, 422, "dir must be cw, ccw, up, down or stop", options);
+    return Outcome::kDone;
+  }
+  if (m[0].present) {
+    const std::string_view a = m[0].value.text;
+    if (a != "az" && a != "el") {
+      send_error(out, 422, "axis must be az or el", options);
+      return Outcome::kDone;
+    }
+    const AxisId named = a == "az" ? AxisId::kAz : AxisId::kEl;
+    if (axis && *axis != named) {
+      send_error(out, 422, "up and down move the elevation axis", options);
+      return Outcome::kDone;
+    }
+    axis = named;
+  }
+  int speed = -1;
+  if (m[2].present) {
+    const double v = m[2].value.number;
+    if (!is_whole(v) || v < 1 || v > 100) {
+      send_error(out, 422, "speed must be a whole number 1..100 (%)", options);
+      return Outcome::kDone;
+    }
+    speed = static_cast<int>(v);
+  }
+  Millis hold = kDefaultHoldMs;
+  if (m[3].present) {
+    const double v = m[3].value.number;
+    if (!is_whole(v) ||
+        (v != 0 && (v < static_cast<double>(kMinHoldMs) || v > static_cast<double>(kMaxHoldMs)))) {
+      send_error(out, 422, "hold_ms must be 0 (no dead-man) or 100..10000", options);
+      return Outcome::kDone;
+    }
+    hold = static_cast<Millis>(v);
+  }
+  if (dir == Direction::kNone && !axis) {
     dead_man_ = {};
     c.stop();
     send_ok(out, options);
-  } else if (path == "/api/goto") {
-    Member m[] = {
-        {"az", JsonType::kNumber}, {"el", JsonType::kNumber}, {"unwrapped", JsonType::kBool}};
-    if (!read_members(request.body, m, out, options)) return Outcome::kDone;
-    if (!m[0].present && !m[1].present) {
-      send_error(out, 400, "give az and/or el (degrees)", options);
-      return Outcome::kDone;
-    }
-    const AzTarget mode =
-        m[2].present && m[2].value.boolean ? AzTarget::kUnwrapped : AzTarget::kCompass;
-    const Limits l = c.limits();
-    char message[128];
-    if (m[0].present && !c.resolve_az(static_cast<float>(m[0].value.number), mode)) {
-      std::snprintf(message, sizeof(message), "az %g is outside the travel %g..%g",
-                    m[0].value.number, static_cast<double>(l.az_min_deg),
-                    static_cast<double>(l.az_max_deg));
-      send_error(out, 422, message, options);
-      return Outcome::kDone;
-    }
-    if (m[1].present && l.has_el &&
-        (m[1].value.number < l.el_min_deg || m[1].value.number > l.el_max_deg)) {
-      std::snprintf(message, sizeof(message), "el %g is outside the travel %g..%g",
-                    m[1].value.number, static_cast<double>(l.el_min_deg),
-                    static_cast<double>(l.el_max_deg));
-      send_error(out, 422, message, options);
-      return Outcome::kDone;
-    }
-    std::optional<float> az;
-    std::optional<float> el;
-    if (m[0].present) az = static_cast<float>(m[0].value.number);
-    if (m[1].present) el = static_cast<float>(m[1].value.number);
-    const Error e = c.go_to(az, el, mode);
+    return Outcome::kDone;
+  }
+  const AxisId moved = axis.value_or(AxisId::kAz);
+  const Error e = c.move(moved, dir, speed);
+  if (e != Error::kOk) {
+    send_command_error(e, out, options);
+    return Outcome::kDone;
+  }
+  arm_dead_man(moved, dir == Direction::kNone ? 0 : hold);
+  send_ok(out, options);
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::post_park(const Call& call) {
+  if (const Error e = ctx_.controller.park(); e != Error::kOk) {
+    send_command_error(e, call.out, call.options);
+    return Outcome::kDone;
+  }
+  send_ok(call.out, call.options);
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::post_mode(const Call& call) {
+  protocol::ByteSink& out = call.out;
+  const ResponseOptions& options = call.options;
+  Controller& c = ctx_.controller;
+  Member m[] = {{"mode", JsonType::kString}};
+  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
+  const std::string_view mode = m[0].value.text;
+  if (!m[0].present) {
+    send_error(out, 400, "give mode: idle or park", options);
+  } else if (mode == "idle") {
+    c.stop();
+    send_ok(out, options);
+  } else if (mode == "park") {
+    const Error e = c.park();
     if (e != Error::kOk) {
       send_command_error(e, out, options);
-      return Outcome::kDone;
-    }
-    const RotatorStatus s = c.status();
-    send_json(out, 200, options, [&](JsonWriter& w) {
-      w.begin_object().member("ok", true).key("az_target");
-      if (az) {
-        w.number(s.az.target_deg);
-      } else {
-        w.null();
-      }
-      w.key("el_target");
-      if (el) {
-        w.number(s.el.target_deg);
-      } else {
-        w.null();
-      }
-      w.end_object();
-    });
-  } else if (path == "/api/move") {
-    Member m[] = {{"axis", JsonType::kString},
-                  {"dir", JsonType::kString},
-                  {"speed", JsonType::kNumber},
-                  {"hold_ms", JsonType::kNumber}};
-    if (!read_members(request.body, m, out, options)) return Outcome::kDone;
-    if (!m[1].present) {
-      send_error(out, 400, "give dir: cw, ccw, up, down or stop", options);
-      return Outcome::kDone;
-    }
-    const std::string_view dir_text = m[1].value.text;
-    Direction dir = Direction::kNone;
-    std::optional<AxisId> axis;
-    if (dir_text == "cw" || dir_text == "ccw") {
-      dir = dir_text == "cw" ? Direction::kCw : Direction::kCcw;
-    } else if (dir_text == "up" || dir_text == "down") {
-      dir = dir_text == "up" ? Direction::kCw : Direction::kCcw;
-      axis = AxisId::kEl;
-    } else if (dir_text != "stop") {
-      send_error(out, 422, "dir must be cw, ccw, up, down or stop", options);
-      return Outcome::kDone;
-    }
-    if (m[0].present) {
-      const std::string_view a = m[0].value.text;
-      if (a != "az" && a != "el") {
-        send_error(out, 422, "axis must be az or el", options);
-        return Outcome::kDone;
-      }
-      const AxisId named = a == "az" ? AxisId::kAz : AxisId::kEl;
-      if (axis && *axis != named) {
-        send_error(out, 422, "up and down move the elevation axis", options);
-        return Outcome::kDone;
-      }
-      axis = named;
-    }
-    int speed = -1;
-    if (m[2].present) {
-      const double v = m[2].value.number;
-      if (!is_whole(v) || v < 1 || v > 100) {
-        send_error(out, 422, "speed must be a whole number 1..100 (%)", options);
-        return Outcome::kDone;
-      }
-      speed = static_cast<int>(v);
-    }
-    Millis hold = kDefaultHoldMs;
-    if (m[3].present) {
-      const double v = m[3].value.number;
-      if (!is_whole(v) || (v != 0 && (v < static_cast<double>(kMinHoldMs) ||
-                                      v > static_cast<double>(kMaxHoldMs)))) {
-        send_error(out, 422, "hold_ms must be 0 (no dead-man) or 100..10000", options);
-        return Outcome::kDone;
-      }
-      hold = static_cast<Millis>(v);
-    }
-    if (dir == Direction::kNone && !axis) {
-      dead_man_ = {};
-      c.stop();
-      send_ok(out, options);
-      return Outcome::kDone;
-    }
-    const AxisId moved = axis.value_or(AxisId::kAz);
-    const Error e = c.move(moved, dir, speed);
-    if (e != Error::kOk) {
-      send_command_error(e, out, options);
-      return Outcome::kDone;
-    }
-    arm_dead_man(moved, dir == Direction::kNone ? 0 : hold);
-    send_ok(out, options);
-  } else if (path == "/api/park") {
-    if (const Error e = c.park(); e != Error::kOk) {
-      send_command_error(e, out, options);
-      return Outcome::kDone;
-    }
-    send_ok(out, options);
-  } else if (path == "/api/mode") {
-    Member m[] = {{"mode", JsonType::kString}};
-    if (!read_members(request.body, m, out, options)) return Outcome::kDone;
-    const std::string_view mode = m[0].value.text;
-    if (!m[0].present) {
-      send_error(out, 400, "give mode: idle or park", options);
-    } else if (mode == "idle") {
-      c.stop();
-      send_ok(out, options);
-    } else if (mode == "park") {
-      const Error e = c.park();
-      if (e != Error::kOk) {
-        send_command_error(e, out, options);
-      } else {
-        send_ok(out, options);
-      }
-    } else if (mode == "goto" || mode == "manual") {
-      send_error(out, 422, "goto and manual start with POST /api/goto and /api/move", options);
-    } else {
-      send_error(out, 422, "mode must be idle or park", options);
-    }
-  } else if (path == "/api/reset") {
-    if (c.reset() == Error::kOk) {
-      send_ok(out, options);
-    } else {
-      send_error(out, 409, "the emergency stop is active: release it, then reset", options);
-    }
-  } else if (path == "/api/speed") {
-    Member m[] = {{"speed_pct", JsonType::kNumber}};
-    if (!read_members(request.body, m, out, options)) return Outcome::kDone;
-    if (!m[0].present) {
-      send_error(out, 400, "give speed_pct", options);
-    } else if (!is_whole(m[0].value.number) ||
-               c.set_speed_pct(static_cast<int>(m[0].value.number)) != Error::kOk) {
-      send_error(out, 422, "speed_pct must be a whole number 1..100", options);
     } else {
       send_ok(out, options);
     }
-  } else if (path == "/api/settings") {
-    post_settings(request.body, out, options, caller);
-  } else if (path == "/api/settings/reset") {
-    reset_settings(out, options);
-  } else if (path == "/api/reboot") {
-    if (ctx_.reboot == nullptr || !ctx_.reboot->request_reboot()) {
-      send_error(out, 501, "this port cannot restart the controller", options);
-      return Outcome::kDone;
-    }
-    ResponseOptions o = options;
-    o.keep_alive = false;
-    send_json(out, 202, o, [](JsonWriter& w) {
-      w.begin_object().member("ok", true).member("rebooting", true).end_object();
-    });
-    return Outcome::kClose;
-  } else if (path == "/api/login") {
-    return login(request, out, options, peer);
-  } else if (path == "/api/logout") {
-    logout(caller, out, options);
-  } else if (path == "/api/password") {
-    return set_password(request, out, options, caller, peer);
-  } else if (path == "/api/tokens") {
-    create_token(request, out, options);
-  } else if (path == "/api/tokens/revoke") {
-    revoke_token(request, out, options);
-  } else if (path == "/api/lock") {
-    lock(request, out, options, caller);
-  } else if (path == "/api/unlock") {
-    unlock(caller, out, options);
+  } else if (mode == "goto" || mode == "manual") {
+    send_error(out, 422, "goto and manual start with POST /api/goto and /api/move", options);
+  } else {
+    send_error(out, 422, "mode must be idle or park", options);
   }
   return Outcome::kDone;
+}
+
+Api::Outcome Api::post_reset(const Call& call) {
+  if (ctx_.controller.reset() == Error::kOk) {
+    send_ok(call.out, call.options);
+  } else {
+    send_error(call.out, 409, "the emergency stop is active: release it, then reset", call.options);
+  }
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::post_speed(const Call& call) {
+  protocol::ByteSink& out = call.out;
+  const ResponseOptions& options = call.options;
+  Controller& c = ctx_.controller;
+  Member m[] = {{"speed_pct", JsonType::kNumber}};
+  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
+  if (!m[0].present) {
+    send_error(out, 400, "give speed_pct", options);
+  } else if (!is_whole(m[0].value.number) ||
+             c.set_speed_pct(static_cast<int>(m[0].value.number)) != Error::kOk) {
+    send_error(out, 422, "speed_pct must be a whole number 1..100", options);
+  } else {
+    send_ok(out, options);
+  }
+  return Outcome::kDone;
+}
+
+Api::Outcome Api::post_reboot(const Call& call) {
+  if (ctx_.reboot == nullptr || !ctx_.reboot->request_reboot()) {
+    send_error(call.out, 501, "this port cannot restart the controller", call.options);
+    return Outcome::kDone;
+  }
+  ResponseOptions o = call.options;
+  o.keep_alive = false;
+  send_json(call.out, 202, o, [](JsonWriter& w) {
+    w.begin_object().member("ok", true).member("rebooting", true).end_object();
+  });
+  return Outcome::kClose;
 }
 
 void Api::get_settings(protocol::ByteSink& out, const ResponseOptions& options) {
@@ -657,7 +763,7 @@ void Api::post_settings(std::string_view body, protocol::ByteSink& out,
   }
   if (r.changed.any() && !persist(out, options)) {
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (r.changed.test(n)) values.copy_value(static_cast<Id>(n), backup_);
+      if (r.changed[n]) values.copy_value(static_cast<Id>(n), backup_);
     return;
   }
   send_changed(out, options, r.changed);
@@ -679,13 +785,13 @@ void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options
     // controller to everyone (POST /api/password with "" does that).
     if ((settings::def(id).flags & settings::kHidden) != 0) continue;
     if (!values.same_value(id, defaults)) {
-      changed.set(n);
+      changed[n] = true;
       values.copy_value(id, defaults);
     }
   }
   if (changed.any() && !persist(out, options)) {
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed.test(n)) values.copy_value(static_cast<Id>(n), backup_);
+      if (changed[n]) values.copy_value(static_cast<Id>(n), backup_);
     return;
   }
   send_changed(out, options, changed);
@@ -713,10 +819,10 @@ void Api::send_changed(protocol::ByteSink& out, const ResponseOptions& options,
     w.begin_object().member("ok", true).member("saved", ctx_.storage != nullptr);
     w.key("changed").begin_array();
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed.test(n)) w.string(settings::def(static_cast<Id>(n)).key);
+      if (changed[n]) w.string(settings::def(static_cast<Id>(n)).key);
     w.end_array().key("restart_required").begin_array();
     for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed.test(n) && (settings::def(static_cast<Id>(n)).flags & settings::kRestart))
+      if (changed[n] && (settings::def(static_cast<Id>(n)).flags & settings::kRestart))
         w.string(settings::def(static_cast<Id>(n)).key);
     w.end_array().end_object();
   });

@@ -1,16 +1,19 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <span>
+#include <string_view>
 
 #include "hal/storage.hpp"
 #include "hal/wall_clock.hpp"
+#include "json/settings_json.hpp"
 #include "metrics/registry.hpp"
 #include "rotator/controller.hpp"
 #include "tracking/pass_finder.hpp"
 #include "tracking/tle_catalog.hpp"
 #include "web/http_request.hpp"
 #include "web/http_response.hpp"
-#include "web/settings_json.hpp"
+#include "web/station_source.hpp"
 #include "web/web_auth.hpp"
 
 namespace rotord::web {
@@ -84,6 +87,41 @@ class Api {
   const char* host_name() const { return ctx_.host_name; }
 
   enum class Outcome : unsigned char { kDone, kStartEvents, kClose, kPending };
+
+  /// Who may call a route once access control is on (web.password set):
+  /// kPublic anyone, kRead a login or any token, kControl a login or a
+  /// control token, kAdmin the web login only.
+  enum class Need : unsigned char { kPublic, kRead, kControl, kAdmin };
+  /// What a route's handler is given.
+  struct Call {
+    const HttpRequest& request;
+    protocol::ByteSink& out;
+    const ResponseOptions& options;
+    const Caller& caller;
+    const access::Peer& peer;
+  };
+  /// One row of the REST API's route table (web_api.cpp). handle() finds the
+  /// row, answers 404/405 and the access checks from it, then runs it; the
+  /// endpoint table of docs/web_api.md is checked against these rows
+  /// (tests/docs).
+  struct Route {
+    std::string_view path;
+    bool post;  ///< POST; else GET (and HEAD)
+    Need need;
+    /// Refused (423) to all but the control lock's holder while it is held.
+    bool locked;
+    /// The body must be declared JSON (415 otherwise): a cross-site form
+    /// cannot send that header. Only STOP takes anything: it must always work.
+    bool json_body;
+    Outcome (*run)(Api& api, const Call& call);
+    std::string_view help;
+    /// A state-changing row's methods when not POST, e.g. "PUT DELETE"
+    /// (the tracking routes); empty: POST.
+    std::string_view verbs = {};
+  };
+  static std::span<const Route> routes();
+  /// Whether a state-changing row takes `method` ("POST", or its verbs).
+  static bool takes_method(const Route& route, std::string_view method);
   /// Answers one request whose path starts with /api/, from `peer`.
   /// kStartEvents: the response head of an event stream went out and events
   /// follow (poll). kPending: a login or a new password is being hashed;
@@ -133,6 +171,8 @@ class Api {
   void write_status(JsonWriter& w) const;
   Controller& controller() { return ctx_.controller; }
   WebAuth& auth() { return auth_; }
+  /// GET /api/station's data (the MQTT station); nullptr: 404.
+  void set_station(const StationSource* station) { station_ = station; }
 
  private:
   /// A failed login (or a refused credential): counted by the access layer
@@ -144,6 +184,22 @@ class Api {
       auth_.count_refused();
     if (ctx_.metrics != nullptr) ctx_.metrics->protocol(metrics::Protocol::kHttp).on_auth_failure();
   }
+  static const Route kRoutes[];
+
+  // The REST commands (web_api.cpp); the access endpoints are in auth_api.cpp.
+  Outcome get_status(const Call& call);
+  Outcome get_events(const Call& call);
+  Outcome get_station(const Call& call);
+  Outcome get_schema(const Call& call);
+  Outcome post_stop(const Call& call);
+  Outcome post_goto(const Call& call);
+  Outcome post_move(const Call& call);
+  Outcome post_park(const Call& call);
+  Outcome post_mode(const Call& call);
+  Outcome post_reset(const Call& call);
+  Outcome post_speed(const Call& call);
+  Outcome post_reboot(const Call& call);
+
   void get_settings(protocol::ByteSink& out, const ResponseOptions& options);
   void post_settings(std::string_view body, protocol::ByteSink& out, const ResponseOptions& options,
                      const Caller& caller);
@@ -170,11 +226,12 @@ class Api {
             Caller caller);
   void unlock(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
   // Tracking's endpoints (track_api.cpp).
-  static bool is_track_path(std::string_view path) {
-    return path == "/api/tle" || path == "/api/passes" || path == "/api/track";
-  }
   void handle_track(const HttpRequest& request, protocol::ByteSink& out,
                     const ResponseOptions& options);
+  Outcome run_track(const Call& call) {
+    handle_track(call.request, call.out, call.options);
+    return Outcome::kDone;
+  }
   void get_tles(protocol::ByteSink& out, const ResponseOptions& options);
   void put_tles(const HttpRequest& request, protocol::ByteSink& out,
                 const ResponseOptions& options);
@@ -208,6 +265,7 @@ class Api {
 
   ApiContext ctx_;
   WebAuth auth_;
+  const StationSource* station_ = nullptr;
   Caller last_caller_;
   Millis transport_now_ = 0;
   std::array<DeadMan, 2> dead_man_{};

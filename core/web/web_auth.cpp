@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::web {
@@ -12,10 +13,10 @@ namespace {
 std::string_view bearer_token(std::string_view authorization) {
   constexpr std::string_view kScheme = "Bearer";
   if (authorization.size() <= kScheme.size() ||
-      !text::iequals(authorization.substr(0, kScheme.size()), kScheme) ||
+      !text::iequals(text::slice(authorization, 0, kScheme.size()), kScheme) ||
       authorization[kScheme.size()] != ' ')
     return {};
-  std::string_view token = authorization.substr(kScheme.size() + 1);
+  std::string_view token = text::slice(authorization, kScheme.size() + 1);
   while (!token.empty() && token.front() == ' ') token.remove_prefix(1);
   return token;
 }

@@ -9,6 +9,7 @@
 
 #include "legacy_profile_guess.hpp"
 #include "log.hpp"
+#include "print_config.hpp"
 #include "safe_stop.hpp"
 #include "services.hpp"
 #include "sysfs_pwm.hpp"
@@ -87,12 +88,9 @@ bool Daemon::setup() {
                options_.sim_profile.c_str());
     return false;
   }
-  for (const auto& o : profile->overrides) {
-    const auto id = settings::find(o.key);
-    if (!id || settings_.set(*id, o.value).error != Error::kOk) {
-      log::error("profile %s sets an invalid %s", profile->name, o.key);
-      return false;
-    }
+  if (std::string error; !apply_profile(*profile, settings_, error)) {
+    log::error("%s", error.c_str());
+    return false;
   }
   defaults_ = settings_;
   if (!load_settings(profile)) return false;
@@ -143,8 +141,7 @@ AxisIo Daemon::axis_io(AxisId axis) {
 }
 
 bool Daemon::load_settings(const sim::Profile* profile) {
-  storage_ = std::make_unique<FileStorage>(
-      options_.config_path.empty() ? FileStorage::default_path() : options_.config_path);
+  storage_ = std::make_unique<FileStorage>(settings_path(options_));
   if (const std::string why = storage_->unusable_reason(); !why.empty()) {
     // A FIFO would block the first read forever, before any port listens.
     log::error("settings file %s %s", storage_->path().c_str(), why.c_str());
@@ -232,6 +229,9 @@ bool Daemon::start_controller() {
   api_context.tles = tles_.get();
   api_context.tle_storage = tle_storage_.get();
   api_ = std::make_unique<web::Api>(api_context);
+  mqtt_ = MqttClient::create(settings_, host_name_,
+                             "http://" + host_name_ + ":" + std::to_string(options_.web_port) + "/",
+                             *api_);
 
   std::error_code ec;
   const auto bind = asio::ip::make_address(options_.bind, ec);
@@ -325,6 +325,7 @@ void Daemon::reboot() {
   log::info("restarting the controller");
   stop_motors(controller_.get(), nullptr);
   servers_.clear();
+  mqtt_.reset();
   api_.reset();
   controller_.reset();
   if (gpio_) {
@@ -359,6 +360,12 @@ int Daemon::run() {
   metrics_.start_us = steady_us();
   if (clock_control_) clock_control_->start();
   schedule_tick();
+  // Every port listens (setup() returned true only then): clients may come.
+  notifier_.ready("ready");
+  announce();
+  if (notifier_.watchdog_us() != 0)
+    log::debug("systemd watchdog every %llu ms, fed from the control tick",
+               static_cast<unsigned long long>(notifier_.watchdog_us() / 1000));
   io_.run();
   stop_motors(controller_.get(), gpio_.get());
   const std::string outputs = driver_outputs();
@@ -393,11 +400,32 @@ void Daemon::StdoutLog::write(std::string_view bytes) {
 
 void Daemon::stop() {
   stop_motors(controller_.get(), gpio_.get());
+  notifier_.stopping();
+  avahi_.reset();               // withdrawn from the network at once
   save_changed_settings(true);  // a change still in its quiet time
   timer_.cancel();
+  mqtt_.reset();
   servers_.clear();
   serial_lines_.clear();
   io_.stop();
+}
+
+void Daemon::announce() {
+  if (options_.avahi != "on") return;
+  std::error_code ec;
+  if (asio::ip::make_address(options_.bind, ec).is_loopback()) {
+    log::info("avahi: bound to %s, not announced on the network", options_.bind.c_str());
+    return;
+  }
+  const auto port = [this](protocol::Personality p) {
+    return static_cast<std::uint16_t>(options_.line_ports[static_cast<std::size_t>(p)]);
+  };
+  using protocol::Personality;
+  avahi_ = std::make_unique<AvahiPublisher>(
+      net::ServicePorts{static_cast<std::uint16_t>(options_.web_port), port(Personality::kRotctld),
+                        port(Personality::kWrc), port(Personality::kGs232),
+                        port(Personality::kEasycomm), port(Personality::kSeed)},
+      ROTORD_VERSION);
 }
 
 std::int64_t Daemon::steady_us() {
@@ -416,6 +444,8 @@ void Daemon::schedule_tick() {
     if (ticks_.poll(steady_us())) {
       report_late_tick(before);
       on_tick();
+      // Only a loop that ticks feeds the watchdog.
+      notifier_.tick(steady_us());
     }
     schedule_tick();
   });
@@ -466,6 +496,7 @@ void Daemon::serve(Millis wall_ms) {
     const auto until = std::chrono::steady_clock::now() + kHashBudget;
     while (api_->auth_busy() && std::chrono::steady_clock::now() < until) api_->work();
   }
+  if (mqtt_) mqtt_->poll(wall_ms);
   for (auto& server : servers_) server->poll(wall_ms);
   for (auto& line : serial_lines_) line->poll(wall_ms);
   save_changed_settings(false);

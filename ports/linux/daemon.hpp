@@ -3,15 +3,18 @@
 #include <memory>
 #include <vector>
 
+#include "avahi_publisher.hpp"
 #include "clock_control.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
 #include "loop/tick_scheduler.hpp"
 #include "mbed_crypto.hpp"
 #include "metrics/registry.hpp"
+#include "mqtt_client.hpp"
 #include "options.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
+#include "service_notify.hpp"
 #include "settings/settings.hpp"
 #include "sim/sim_rotator.hpp"
 #include "storage/settings_saver.hpp"
@@ -83,6 +86,9 @@ class Daemon final : private web::RebootHook {
   /// Saves what the protocols changed (after the saver's quiet time, or at
   /// once when `now`), and says so.
   void save_changed_settings(bool now);
+  /// Announces the ports through avahi-daemon (--avahi on), unless rotord
+  /// listens on a loopback address nobody else can reach.
+  void announce();
 
   Options options_;
   asio::io_context io_;
@@ -90,6 +96,8 @@ class Daemon final : private web::RebootHook {
   /// The loop's wake-ups for the control tick, on an absolute schedule.
   TickScheduler ticks_{kTickMs * 1000};
   SteadyClock steady_clock_;
+  /// READY=1, WATCHDOG=1 and STOPPING=1 to systemd (nothing outside it).
+  ServiceNotifier notifier_;
   /// Connections, error replies, ticks and saves for GET /metrics; outlives
   /// controller restarts, so counters only reset with the process.
   metrics::Registry metrics_;
@@ -126,10 +134,12 @@ class Daemon final : private web::RebootHook {
   int exit_code_ = 0;
   std::unique_ptr<Controller> controller_;
   std::unique_ptr<web::Api> api_;
+  std::unique_ptr<MqttClient> mqtt_;  ///< mqtt.enabled: on the station's broker
   bool reboot_pending_ = false;
   std::chrono::steady_clock::time_point reboot_at_;
   std::vector<std::unique_ptr<TcpServer>> servers_;
   std::vector<std::unique_ptr<SerialTransport>> serial_lines_;
+  std::unique_ptr<AvahiPublisher> avahi_;  ///< --avahi on, not bound to loopback
   std::chrono::steady_clock::time_point wall_start_;
   Millis now_ms_ = 0;
 };

@@ -41,7 +41,32 @@ bool write_all(int fd, std::string_view data) {
 
 }  // namespace
 
+namespace {
+
+/// The first directory of $STATE_DIRECTORY (systemd lists one per
+/// StateDirectory= entry, separated by colons), or "" outside a service.
+std::string state_directory() {
+  const char* dirs = std::getenv("STATE_DIRECTORY");
+  if (dirs == nullptr || dirs[0] != '/') return {};
+  const std::string all = dirs;
+  return all.substr(0, all.find(':'));
+}
+
+}  // namespace
+
+const char* FileStorage::default_path_origin() {
+  if (!state_directory().empty()) return "$STATE_DIRECTORY (systemd)";
+  if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg != nullptr && xdg[0] == '/')
+    return "$XDG_CONFIG_HOME";
+  if (const char* home = std::getenv("HOME"); home != nullptr && home[0] != '\0')
+    return "$HOME/.config";
+  return "the working directory";
+}
+
 std::string FileStorage::default_path() {
+  // The service's own directory first: systemd sets it only for the unit, so
+  // rotord run by hand keeps using the user's file.
+  if (const std::string state = state_directory(); !state.empty()) return state + "/settings.json";
   if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg != nullptr && xdg[0] == '/')
     return std::string(xdg) + "/rotord/settings.json";
   if (const char* home = std::getenv("HOME"); home != nullptr && home[0] != '\0')

@@ -13,8 +13,13 @@ class FileStorage final : public hal::Storage {
  public:
   explicit FileStorage(std::string path) : path_(std::move(path)) {}
 
+  /// Under systemd's StateDirectory=rotord, $STATE_DIRECTORY/settings.json
+  /// (/var/lib/rotord/settings.json); run by hand,
   /// $XDG_CONFIG_HOME/rotord/settings.json, else ~/.config/rotord/settings.json.
   static std::string default_path();
+  /// Which of those default_path() took: "$STATE_DIRECTORY (systemd)",
+  /// "$XDG_CONFIG_HOME", "$HOME/.config" or "the working directory".
+  static const char* default_path_origin();
 
   /// Why the path cannot hold the settings ("is a FIFO, not a regular
   /// file"); empty when it can (a regular file, or nothing there yet).

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "axis/axis_config.hpp"
+#include "gpiod_wiring.hpp"
 #include "log.hpp"
 #include "sensors/magnetometer.hpp"
 #include "sysfs_pwm.hpp"
@@ -12,59 +13,6 @@ namespace rotord::linux_port {
 namespace {
 
 using settings::Id;
-
-/// The settings of one axis's wiring.
-struct AxisKeys {
-  const char* name;
-  Id drive, sensor;
-  Id relay_fwd, relay_rev, speed;
-  std::optional<Id> has_brake, brake;
-  Id limit_cw, limit_ccw;
-  std::optional<Id> t1, t2;
-  Id ma3, button_fwd, button_rev;
-  Id iio_device, iio_channel;
-  Id pwm_fwd, pwm_rev;
-};
-
-constexpr AxisKeys kAzKeys{"az",
-                           Id::kAzDrive,
-                           Id::kAzSensor,
-                           Id::kGpiodAzCw,
-                           Id::kGpiodAzCcw,
-                           Id::kGpiodAzSpeed,
-                           Id::kAzHasBrake,
-                           Id::kGpiodAzBrake,
-                           Id::kGpiodAzL2,
-                           Id::kGpiodAzL1,
-                           Id::kGpiodAzT1,
-                           Id::kGpiodAzT2,
-                           Id::kGpiodAzMa3,
-                           Id::kGpiodBtnCw,
-                           Id::kGpiodBtnCcw,
-                           Id::kIioAzDevice,
-                           Id::kIioAzChannel,
-                           Id::kPwmAzCw,
-                           Id::kPwmAzCcw};
-
-constexpr AxisKeys kElKeys{"el",
-                           Id::kElDrive,
-                           Id::kElSensor,
-                           Id::kGpiodElUp,
-                           Id::kGpiodElDown,
-                           Id::kGpiodElSpeed,
-                           std::nullopt,
-                           std::nullopt,
-                           Id::kGpiodElLimitUp,
-                           Id::kGpiodElLimitDown,
-                           std::nullopt,
-                           std::nullopt,
-                           Id::kGpiodElMa3,
-                           Id::kGpiodBtnUp,
-                           Id::kGpiodBtnDown,
-                           Id::kIioElDevice,
-                           Id::kIioElChannel,
-                           Id::kPwmElUp,
-                           Id::kPwmElDown};
 
 const char* key(Id id) {
   return settings::def(id).key;

@@ -8,7 +8,6 @@
 #include <memory>
 #include <string>
 
-#include "axis/axis_id.hpp"
 #include "axis/axis_io.hpp"
 #include "gpio_line.hpp"
 #include "hal/pwm_out.hpp"
@@ -16,6 +15,7 @@
 #include "iio_adc.hpp"
 #include "ma3_edge_timer.hpp"
 #include "settings/settings.hpp"
+#include "util/axis_id.hpp"
 
 namespace rotord::linux_port {
 

@@ -1,6 +1,6 @@
 #pragma once
+#include "json/settings_json.hpp"
 #include "sim/profiles.hpp"
-#include "web/settings_json.hpp"
 
 namespace rotord::linux_port {
 

@@ -1,8 +1,11 @@
 #include "log.hpp"
 
+#include <sys/stat.h>
+
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 
 namespace rotord::linux_port::log {
@@ -10,6 +13,7 @@ namespace {
 
 Level g_level = Level::kInfo;
 Format g_format = Format::kText;
+bool g_journal = false;
 
 void append_json_string(std::string& out, std::string_view s) {
   out += '"';
@@ -57,7 +61,7 @@ void vwrite(Level level, const char* fmt, va_list args, bool always = false) {
     std::vsnprintf(message.data(), message.size(), fmt, args);
     message.resize(static_cast<std::size_t>(n));
   }
-  const std::string line = format_line(g_format, level, message, unix_ms_now()) + "\n";
+  const std::string line = format_line(g_format, level, message, unix_ms_now(), g_journal) + "\n";
   std::FILE* stream = level <= Level::kWarn ? stderr : stdout;
   // A closed terminal or pipe (SIGPIPE is ignored) makes this fail: nothing
   // else to do with a log line nobody can read.
@@ -96,17 +100,52 @@ const char* level_name(Level level) {
   return "?";
 }
 
-void configure(Level level, Format format) {
+void configure(Level level, Format format, bool journal) {
   g_level = level;
   g_format = format;
+  g_journal = journal;
+}
+
+bool stdio_is_journal() {
+  const char* stream = std::getenv("JOURNAL_STREAM");
+  if (stream == nullptr) return false;
+  unsigned long long dev = 0;
+  unsigned long long ino = 0;
+  if (std::sscanf(stream, "%llu:%llu", &dev, &ino) != 2) return false;
+  // Inherited by a child whose output goes elsewhere (a pipe, a file), the
+  // variable alone would be wrong: only the very stream journald gave counts.
+  for (const int fd : {1, 2}) {
+    struct stat st {};
+    if (::fstat(fd, &st) == 0 && st.st_dev == dev && st.st_ino == ino) return true;
+  }
+  return false;
+}
+
+int syslog_priority(Level level) {
+  switch (level) {
+    case Level::kError:
+      return 3;  // LOG_ERR
+    case Level::kWarn:
+      return 4;  // LOG_WARNING
+    case Level::kInfo:
+      return 6;  // LOG_INFO
+    case Level::kDebug:
+      return 7;  // LOG_DEBUG
+  }
+  return 6;
 }
 
 bool enabled(Level level) {
   return level <= g_level;
 }
 
-std::string format_line(Format format, Level level, std::string_view message,
-                        std::int64_t unix_ms) {
+std::string format_line(Format format, Level level, std::string_view message, std::int64_t unix_ms,
+                        bool journal) {
+  std::string line;
+  if (journal) {
+    line = "<" + std::to_string(syslog_priority(level)) + ">";
+    if (format == Format::kText) return line.append(message);
+  }
   if (format == Format::kText) return "rotord: " + std::string(message);
   const std::time_t seconds = static_cast<std::time_t>(unix_ms / 1000);
   std::tm utc{};
@@ -115,7 +154,7 @@ std::string format_line(Format format, Level level, std::string_view message,
   std::snprintf(time, sizeof time, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900,
                 utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec,
                 static_cast<int>(unix_ms % 1000));
-  std::string line = "{\"time\":\"";
+  line += "{\"time\":\"";
   line += time;
   line += "\",\"level\":\"";
   line += level_name(level);

@@ -5,6 +5,11 @@
 // journald and a terminal tell them apart); JSON is one object per line on
 // the same streams:
 //   {"time":"2026-11-24T10:15:00.123Z","level":"info","msg":"ready"}
+// Under systemd (JOURNAL_STREAM names standard output or error, see
+// systemd.exec(5)) every line starts with its syslog priority, "<3>" error,
+// "<4>" warning, "<6>" info, "<7>" debug, which journald turns into the
+// entry's priority (`journalctl -p warning -u rotord`), and text lines drop
+// the "rotord: " the journal already shows as rotord[pid].
 // One process-wide setting, made once by main() before anything logs.
 #include <cstdint>
 #include <string>
@@ -19,13 +24,21 @@ enum class Format : std::uint8_t { kText, kJson };
 bool parse_level(std::string_view text, Level& level);
 const char* level_name(Level level);
 
-void configure(Level level, Format format);
+/// `journal`: lines carry the syslog priority prefix (see above).
+void configure(Level level, Format format, bool journal = false);
+/// Whether standard output or error is connected to the journal: the
+/// device and inode in $JOURNAL_STREAM are those of fd 1 or 2.
+bool stdio_is_journal();
+/// The syslog priority journald reads from the "<N>" prefix.
+int syslog_priority(Level level);
 /// Whether a message at `level` is written (skip building costly ones).
 bool enabled(Level level);
 
 /// One line as it goes out, without the line end: the text form or the
-/// JSON object, `unix_ms` its time. Exposed for tests.
-std::string format_line(Format format, Level level, std::string_view message, std::int64_t unix_ms);
+/// JSON object, `unix_ms` its time; `journal` adds the priority prefix.
+/// Exposed for tests.
+std::string format_line(Format format, Level level, std::string_view message, std::int64_t unix_ms,
+                        bool journal = false);
 
 /// printf-style; the message has no "rotord: " prefix and no line end.
 void error(const char* fmt, ...) __attribute__((format(printf, 1, 2)));

@@ -1,8 +1,12 @@
 #include <CLI/CLI.hpp>
+#include <set>
+#include <string>
 
 #include "daemon.hpp"
 #include "log.hpp"
+#include "outputs_off.hpp"
 #include "predict_cli.hpp"
+#include "print_config.hpp"
 
 int main(int argc, char** argv) {
   rotord::linux_port::Options o;
@@ -35,24 +39,21 @@ int main(int argc, char** argv) {
   app.add_option("--web-port", o.web_port, "Web UI and REST API port (0 disables)")
       ->check(port)
       ->capture_default_str();
-  app.add_option("--rotctld-port", o.rotctld_port, "Hamlib rotctld port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
-  app.add_option("--wrc-port", o.wrc_port, "WRC text protocol port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
-  app.add_option("--gs232-port", o.gs232_port, "Yaesu GS-232 port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
-  app.add_option("--easycomm-port", o.easycomm_port, "Easycomm II/III port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
-  app.add_option("--seed-port", o.seed_port, "Seed $cmd,arg protocol port (0 disables)")
-      ->check(port)
-      ->capture_default_str();
+  // --wrc-port, --rotctld-port, --gs232-port, --easycomm-port, --seed-port:
+  // one per row of the protocol registry.
+  for (const rotord::protocol::ProtocolInfo& p : rotord::protocol::protocols()) {
+    std::string help = std::string(p.name) + " port (0 disables)";
+    if (!p.tcp_by_default)
+      help += "; off unless given (the Pico W uses " + std::to_string(p.tcp_port) + ")";
+    app.add_option("--" + std::string(p.key) + "-port",
+                   o.line_ports[static_cast<std::size_t>(p.personality)], help)
+        ->check(port)
+        ->capture_default_str();
+  }
   app.add_option("--pty", o.ptys,
-                 "Serve a protocol on a new pseudo-terminal, PERSONALITY[:LINK] (easycomm, seed, "
-                 "...); rotord prints its path and makes LINK a symlink to it. Repeatable")
+                 "Serve a protocol on a new pseudo-terminal, PERSONALITY[:LINK] (wrc, rotctld, "
+                 "gs232, easycomm, seed); rotord prints its path and makes LINK a symlink to it. "
+                 "Repeatable")
       ->take_all()
       ->allow_extra_args(false);
   app.add_option("--serial", o.serials,
@@ -69,6 +70,21 @@ int main(int argc, char** argv) {
                  "text (\"rotord: ...\" lines) or json (one object per line: time, level, msg)")
       ->check(CLI::IsMember({"text", "json"}))
       ->capture_default_str();
+  app.add_option("--avahi", o.avahi,
+                 "on: announce the web UI (_http._tcp) and rotctld (_rotctld._tcp, the other "
+                 "ports as TXT records) through avahi-daemon when it runs; off: do not")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  bool print_config = false;
+  app.add_flag("--print-config", print_config,
+               "Print the settings rotord would run with and where each comes from (default, "
+               "profile, file), the options and the settings file, then exit");
+  bool outputs_off = false;
+  app.add_flag("--outputs-off", outputs_off,
+               "Drive every output the settings wire off (GPIO lines inactive and released, PWM "
+               "duty 0 and disabled), then exit: the systemd unit's ExecStopPost, after any "
+               "exit of rotord, kill -9 included")
+      ->excludes("--print-config");
   // Subcommands that use the tracking layer and exit, no daemon started.
   rotord::linux_port::PredictOptions predict;
   const auto commands = rotord::linux_port::add_predict_commands(app, predict);
@@ -84,10 +100,19 @@ int main(int argc, char** argv) {
   }
   if (commands.predict->parsed()) return rotord::linux_port::run_predict(predict);
   if (commands.passes->parsed()) return rotord::linux_port::run_passes(predict);
+  if (print_config) {
+    std::set<std::string> given;
+    for (const CLI::Option* option : app.get_options()) {
+      if (option->count() > 0) given.insert(option->get_name());
+    }
+    return rotord::linux_port::print_config(o, given, stdout);
+  }
   namespace log = rotord::linux_port::log;
   log::Level level = log::Level::kInfo;
   log::parse_level(o.log_level, level);
-  log::configure(level, o.log_format == "json" ? log::Format::kJson : log::Format::kText);
+  log::configure(level, o.log_format == "json" ? log::Format::kJson : log::Format::kText,
+                 log::stdio_is_journal());
+  if (outputs_off) return rotord::linux_port::run_outputs_off(o);
   rotord::linux_port::Daemon daemon(o);
   return daemon.run();
 }

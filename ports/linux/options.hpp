@@ -1,12 +1,22 @@
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "protocol/protocol_registry.hpp"
 
 namespace rotord::linux_port {
 
 /// Command-line options of rotord (see main.cpp for their help texts).
 struct Options {
+  static std::array<int, protocol::kPersonalityCount> default_line_ports() {
+    std::array<int, protocol::kPersonalityCount> ports{};
+    for (const protocol::ProtocolInfo& p : protocol::protocols())
+      ports[static_cast<std::size_t>(p.personality)] = p.tcp_by_default ? p.tcp_port : 0;
+    return ports;
+  }
+
   std::string config_path;
   std::string hw = "sim";  ///< sim or gpiod
   std::string sim_profile = "g5500";
@@ -18,15 +28,14 @@ struct Options {
   std::uint32_t sim_seed = 1;
   std::string bind = "0.0.0.0";
   int web_port = 8080;
-  int rotctld_port = 4533;
-  int wrc_port = 1234;
-  int gs232_port = 4601;
-  int easycomm_port = 4602;
-  int seed_port = 0;
+  /// --KEY-port of each line protocol, indexed by protocol::Personality;
+  /// defaults from the protocol registry (0: off).
+  std::array<int, protocol::kPersonalityCount> line_ports = default_line_ports();
   std::vector<std::string> ptys;     ///< --pty PERSONALITY[:LINK]
   std::vector<std::string> serials;  ///< --serial PERSONALITY:DEVICE[:BAUD]
   std::string log_level = "info";    ///< error, warn, info or debug (log.hpp)
   std::string log_format = "text";   ///< text or json
+  std::string avahi = "on";          ///< on: announce through avahi-daemon (avahi_publisher.hpp)
 };
 
 }  // namespace rotord::linux_port

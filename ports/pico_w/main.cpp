@@ -15,20 +15,21 @@
 
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
+#include "json/settings_json.hpp"
+#include "log_port.hpp"
 #include "loop/tick_scheduler.hpp"
 #include "lwip_transport.hpp"
 #include "ma3_pio.hpp"
 #include "metrics/registry.hpp"
 #include "pico/binary_info.h"
 #include "pico/cyw43_arch.h"
+#include "pico/stdio/driver.h"
+#include "pico/stdio_usb.h"
 #include "pico/stdlib.h"
 #include "pico_crypto.hpp"
 #include "pico_flash.hpp"
 #include "pico_hal.hpp"
-#include "protocol/easycomm_session.hpp"
-#include "protocol/gs232_session.hpp"
-#include "protocol/rotctld_session.hpp"
-#include "protocol/wrc_session.hpp"
+#include "protocol/protocol_registry.hpp"
 #include "rotator/controller.hpp"
 #include "settings/pin_rules.hpp"
 #include "settings/settings.hpp"
@@ -39,7 +40,6 @@
 #include "usb_cdc_port.hpp"
 #include "usb_personality.hpp"
 #include "web/http_session.hpp"
-#include "web/settings_json.hpp"
 #include "web/web_api.hpp"
 #include "wifi.hpp"
 #include "wifi_secrets.h"
@@ -47,12 +47,15 @@
 namespace rotord::pico_w {
 namespace {
 
-/// The USB log port as a ByteSink.
+/// The USB log port as a ByteSink for output that only matters as it
+/// happens (WRC MONITOR lines): never kept for a later reader.
 class LogPortSink final : public protocol::ByteSink {
  public:
-  void write(std::string_view bytes) override {
-    std::fwrite(bytes.data(), 1, bytes.size(), stdout);
-  }
+  explicit LogPortSink(usb_port::LogPort& log) : log_(log) {}
+  void write(std::string_view bytes) override { log_.write_live(bytes); }
+
+ private:
+  usb_port::LogPort& log_;
 };
 
 constexpr Millis kTickMs = 10;  // 100 Hz, as on Linux
@@ -61,16 +64,43 @@ constexpr Millis kTickMs = 10;  // 100 Hz, as on Linux
 // a turning motor within 2 s (12 deg on a 6 deg/s G-5500; the reset puts
 // every pin back to an input with its pull-down, i.e. relays off).
 constexpr std::uint32_t kWatchdogMs = 2000;
-constexpr std::uint16_t kWrcPort = 1234;
-constexpr std::size_t kWrcSlots = 4;  // net.max_clients is clamped to this
-constexpr std::uint16_t kGs232Port = 4601;
-constexpr std::size_t kGs232Slots = 2;  // under 1 KB each; PstRotator or N1MM plus one
-constexpr std::uint16_t kEasycommPort = 4602;
-constexpr std::size_t kEasycommSlots = 2;  // a tracker plus one
-constexpr std::uint16_t kRotctldPort = 4533;
+// Every line protocol of the registry (core/protocol/protocol_registry.hpp)
+// on its TCP port, with a static pool of connection slots each;
+// net.max_clients is clamped to the pool. lwIP's pools (config/lwipopts.h)
+// are sized for these 17 slots plus the web's 4 and 6 listeners.
+using protocol::Personality;
+template <Personality P>
+constexpr std::size_t kTcpSlots = 0;
+template <>
+constexpr std::size_t kTcpSlots<Personality::kWrc> = 4;
 // ~2.6 KB each (a whole reply, the arguments, input held by \pause): Gpredict
 // or SatNOGS, a logger and a rotctl at once.
-constexpr std::size_t kRotctldSlots = 3;
+template <>
+constexpr std::size_t kTcpSlots<Personality::kRotctld> = 3;
+template <>
+constexpr std::size_t kTcpSlots<Personality::kGs232> =
+    2;  // under 1 KB each; PstRotator or N1MM plus one
+template <>
+constexpr std::size_t kTcpSlots<Personality::kEasycomm> = 2;  // a tracker plus one
+// A jog panel or script plus one; about 100 B each.
+template <>
+constexpr std::size_t kTcpSlots<Personality::kSeed> = 2;
+// A new personality in the registry fails to build here until it is served
+// (or this says why not).
+static_assert(protocol::kPersonalityCount == 5, "serve every personality on TCP");
+
+/// Builds a session of personality P for a static pool (returned by value:
+/// guaranteed copy elision builds it in its slot).
+template <Personality P>
+struct MakeSession {
+  const protocol::SessionDeps* deps;
+  typename protocol::SessionOf<P>::type operator()() const {
+    return protocol::SessionOf<P>::make(*deps);
+  }
+};
+template <Personality P>
+using LineService =
+    lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>, MakeSession<P>>;
 constexpr std::uint16_t kHttpPort = 80;
 // A browser holds a page connection and the event stream, plus short API
 // requests; each HTTP session is ~6 KB of RAM (request head and body buffers).
@@ -145,6 +175,27 @@ class Reboot final : public web::RebootHook {
   bool requested_ = false;
 };
 
+// The USB log port (CDC 0), printf's only output (log_port.hpp): what is
+// printed while no terminal has the port open waits in its ring.
+TinyUsbCdcPort g_log_cdc(ROTORD_USB_LOG_CDC);
+usb_port::LogPort g_log(g_log_cdc);
+
+void log_out_chars(const char* buf, int length) {
+  g_log.write(std::string_view(buf, static_cast<std::size_t>(length)));
+}
+
+stdio_driver_t g_log_driver = {
+    .out_chars = log_out_chars,
+    .out_flush = nullptr,
+    .in_chars = nullptr,
+    .set_chars_available_callback = nullptr,
+    .next = nullptr,
+#if PICO_STDIO_ENABLE_CRLF_SUPPORT
+    .last_ended_with_cr = false,
+    .crlf_enabled = PICO_STDIO_DEFAULT_CRLF,
+#endif
+};
+
 // Hardware objects: static storage, built once the settings (and so the
 // pins) are known; an unwired pin (-1) leaves its object empty and the core
 // sees nullptr ("not fitted").
@@ -166,15 +217,42 @@ tracking::TleCatalog g_tles;
 // document buffer is the start-up one, free once the settings are loaded.
 // Only the user's changes over g_defaults go to flash (settings_layers.hpp).
 SettingsSaver g_saver(g_settings, g_defaults, g_storage, g_boot_document, sizeof g_boot_document);
-std::optional<PicoAdc> g_az_pot, g_el_pot;
-std::optional<Ma3PioInput> g_az_ma3_pio, g_el_ma3_pio;
-std::optional<Ma3EdgeInput> g_az_ma3_irq, g_el_ma3_irq;
-std::optional<PicoSwitch> g_az_t1, g_az_t2, g_az_limit_cw, g_az_limit_ccw;
-std::optional<PicoSwitch> g_el_limit_up, g_el_limit_down;
-std::optional<PicoSwitch> g_btn_cw, g_btn_ccw, g_btn_up, g_btn_down;
+/// The pins.* settings of one axis's wiring: the Pico's counterpart of the
+/// Linux port's gpiod.* key table (ports/linux/gpiod_io.cpp). "fwd" is CW on
+/// the azimuth and up on the elevation.
+struct AxisPins {
+  const char* name;
+  Id drive, sensor;
+  Id relay_fwd, relay_rev, speed;
+  std::optional<Id> brake;
+  Id pwm_fwd, pwm_rev;
+  Id pot;
+  Id limit_cw, limit_ccw;  ///< L2 / L1 on the azimuth
+  std::optional<Id> t1, t2;
+  Id ma3, button_fwd, button_rev;
+  bool may_use_magnetometer;  ///< the I2C magnetometer is an azimuth sensor only
+};
+
+constexpr AxisPins kAxisPins[] = {
+    {"az", Id::kAzDrive, Id::kAzSensor, Id::kPinAzCw, Id::kPinAzCcw, Id::kPinAzSpeed,
+     Id::kPinAzBrake, Id::kPinAzPwmCw, Id::kPinAzPwmCcw, Id::kPinAzPot, Id::kPinAzL2, Id::kPinAzL1,
+     Id::kPinAzT1, Id::kPinAzT2, Id::kPinAzMa3, Id::kPinBtnCw, Id::kPinBtnCcw, true},
+    {"el", Id::kElDrive, Id::kElSensor, Id::kPinElUp, Id::kPinElDown, Id::kPinElSpeed, std::nullopt,
+     Id::kPinElPwmUp, Id::kPinElPwmDown, Id::kPinElPot, Id::kPinElLimitUp, Id::kPinElLimitDown,
+     std::nullopt, std::nullopt, Id::kPinElMa3, Id::kPinBtnUp, Id::kPinBtnDown, false},
+};
+
+/// The hardware objects of one axis, in static storage (g_axes).
+struct AxisParts {
+  std::optional<PicoDriveSink> drive;
+  std::optional<PicoAdc> pot;
+  std::optional<Ma3PioInput> ma3_pio;
+  std::optional<Ma3EdgeInput> ma3_irq;
+  std::optional<PicoSwitch> t1, t2, limit_cw, limit_ccw, button_fwd, button_rev;
+};
+AxisParts g_axes[2];  // az, el: the order of kAxisPins
 std::optional<PicoSwitch> g_estop;
 std::optional<PicoI2c> g_i2c;
-std::optional<PicoDriveSink> g_az_drive, g_el_drive;
 
 /// Builds the object for a wired pin and returns it, or nullptr.
 template <class T, class... Args>
@@ -266,6 +344,44 @@ void report_settings(const web::LoadOutcome& r) {
   }
 }
 
+/// The pin of `id`, or kNoPin for a role the axis does not have.
+int pin(const settings::Settings& s, std::optional<Id> id) {
+  return id ? s.i(*id) : kNoPin;
+}
+
+/// Step 1 for one axis: its outputs, built and written off.
+void fit_drive(const settings::Settings& s, const AxisPins& k, AxisParts& parts) {
+  parts.drive.emplace(drive_pins(s.i(k.drive), s.i(k.relay_fwd), s.i(k.relay_rev), s.i(k.speed),
+                                 pin(s, k.brake), s.i(k.pwm_fwd), s.i(k.pwm_rev)));
+}
+
+/// Step 2 for one axis: its inputs, from the pins.* settings.
+AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& parts) {
+  AxisIo io;
+  io.drive = &*parts.drive;
+  if (PicoAdc* adc = fit(parts.pot, s.i(k.pot))) {
+    adc->begin();
+    io.pot = adc;
+  }
+  io.t1 = fit_switch(parts.t1, pin(s, k.t1));
+  io.t2 = fit_switch(parts.t2, pin(s, k.t2));
+  io.limit_ccw = fit_switch(parts.limit_ccw, s.i(k.limit_ccw));
+  io.limit_cw = fit_switch(parts.limit_cw, s.i(k.limit_cw));
+  if (s.i(k.sensor) == static_cast<int>(SensorType::kMa3))
+    io.ma3 = fit_ma3(parts.ma3_pio, parts.ma3_irq, s.i(k.ma3), k.name);
+  if (k.may_use_magnetometer && s.i(k.sensor) == static_cast<int>(SensorType::kMag)) {
+    if (PicoI2c* bus = fit(g_i2c, s.i(Id::kPinI2cSda), s.i(Id::kPinI2cScl))) {
+      bus->begin();
+      io.i2c = bus;
+    }
+  }
+  if (s.b(Id::kButtonsEnabled)) {
+    io.button_fwd = fit_switch(parts.button_fwd, s.i(k.button_fwd));
+    io.button_rev = fit_switch(parts.button_rev, s.i(k.button_rev));
+  }
+  return io;
+}
+
 [[noreturn]] void run() {
   // 1. Outputs off. Until the pins are known every GPIO is still an input
   // with its reset pull-down (relays off); the settings come first because
@@ -275,66 +391,33 @@ void report_settings(const web::LoadOutcome& r) {
   apply_wifi_secrets(g_settings);
   const web::LoadOutcome loaded = load_stored_settings();
   const auto p = [&settings](Id id) { return settings.i(id); };
-  g_az_drive.emplace(drive_pins(p(Id::kAzDrive), p(Id::kPinAzCw), p(Id::kPinAzCcw),
-                                p(Id::kPinAzSpeed), p(Id::kPinAzBrake), p(Id::kPinAzPwmCw),
-                                p(Id::kPinAzPwmCcw)));
-  g_el_drive.emplace(drive_pins(p(Id::kElDrive), p(Id::kPinElUp), p(Id::kPinElDown),
-                                p(Id::kPinElSpeed), kNoPin, p(Id::kPinElPwmUp),
-                                p(Id::kPinElPwmDown)));
-  g_az_drive->begin();
+  AxisParts& az = g_axes[0];
+  AxisParts& el = g_axes[1];
+  fit_drive(settings, kAxisPins[0], az);
+  fit_drive(settings, kAxisPins[1], el);
+  az.drive->begin();
   const bool has_el = settings.b(Id::kElEnabled);
-  if (has_el) g_el_drive->begin();
+  if (has_el) el.drive->begin();
 
   // USB before stdio: pico_stdio_usb logs on CDC 0 of our TinyUSB device,
   // CDC 1 carries usb.personality (usb_device.c says why two ports).
-  const usb_port::Personality usb_personality =
+  const std::optional<Personality> usb_personality =
       usb_port::personality_from_setting(settings.i(Id::kUsbPersonality));
-  rotord_usb_init(usb_personality == usb_port::Personality::kOff
-                      ? nullptr
-                      : usb_port::personality_name(usb_personality));
+  rotord_usb_init(usb_personality ? usb_port::personality_name(usb_personality) : nullptr);
   stdio_init_all();
+  // printf into the log port's ring rather than through pico_stdio_usb's
+  // driver, which drops whatever is printed while no terminal listens: the
+  // banner, the settings report and the Wi-Fi lines below all come before a
+  // terminal can open the port, and are sent when one does.
+  stdio_set_driver_enabled(&stdio_usb, false);
+  stdio_set_driver_enabled(&g_log_driver, true);
   std::printf("rotord %s (Pico W)%s\n", ROTORD_VERSION,
               watchdog_caused_reboot() ? ": restarted by the watchdog" : "");
   report_settings(loaded);
 
-  // 2. Inputs, from the pins.* settings.
-  AxisIo az_io, el_io;
-  az_io.drive = &*g_az_drive;
-  if (PicoAdc* adc = fit(g_az_pot, p(Id::kPinAzPot))) {
-    adc->begin();
-    az_io.pot = adc;
-  }
-  az_io.t1 = fit_switch(g_az_t1, p(Id::kPinAzT1));
-  az_io.t2 = fit_switch(g_az_t2, p(Id::kPinAzT2));
-  az_io.limit_ccw = fit_switch(g_az_limit_ccw, p(Id::kPinAzL1));
-  az_io.limit_cw = fit_switch(g_az_limit_cw, p(Id::kPinAzL2));
-  if (settings.i(Id::kAzSensor) == static_cast<int>(SensorType::kMa3))
-    az_io.ma3 = fit_ma3(g_az_ma3_pio, g_az_ma3_irq, p(Id::kPinAzMa3), "az");
-  if (settings.i(Id::kAzSensor) == static_cast<int>(SensorType::kMag)) {
-    if (PicoI2c* bus = fit(g_i2c, p(Id::kPinI2cSda), p(Id::kPinI2cScl))) {
-      bus->begin();
-      az_io.i2c = bus;
-    }
-  }
-  if (settings.b(Id::kButtonsEnabled)) {
-    az_io.button_fwd = fit_switch(g_btn_cw, p(Id::kPinBtnCw));
-    az_io.button_rev = fit_switch(g_btn_ccw, p(Id::kPinBtnCcw));
-  }
-  if (has_el) {
-    el_io.drive = &*g_el_drive;
-    if (PicoAdc* adc = fit(g_el_pot, p(Id::kPinElPot))) {
-      adc->begin();
-      el_io.pot = adc;
-    }
-    el_io.limit_cw = fit_switch(g_el_limit_up, p(Id::kPinElLimitUp));
-    el_io.limit_ccw = fit_switch(g_el_limit_down, p(Id::kPinElLimitDown));
-    if (settings.i(Id::kElSensor) == static_cast<int>(SensorType::kMa3))
-      el_io.ma3 = fit_ma3(g_el_ma3_pio, g_el_ma3_irq, p(Id::kPinElMa3), "el");
-    if (settings.b(Id::kButtonsEnabled)) {
-      el_io.button_fwd = fit_switch(g_btn_up, p(Id::kPinBtnUp));
-      el_io.button_rev = fit_switch(g_btn_down, p(Id::kPinBtnDown));
-    }
-  }
+  // 2. Inputs, from the pins.* settings (kAxisPins).
+  const AxisIo az_io = fit_inputs(settings, kAxisPins[0], az);
+  const AxisIo el_io = has_el ? fit_inputs(settings, kAxisPins[1], el) : AxisIo{};
   static Controller controller(settings, az_io, el_io);
   if (PicoSwitch* estop = fit_switch(g_estop, p(Id::kPinEstop))) {
     controller.attach_estop(estop);
@@ -348,7 +431,7 @@ void report_settings(const web::LoadOutcome& r) {
   static usb_port::PersonalitySessions usb_sessions(usb_personality, controller, ROTORD_VERSION);
   static TinyUsbCdcPort usb_cdc(ROTORD_USB_PROTOCOL_CDC);
   static std::optional<usb_port::UsbCdcLink> usb_link;
-  if (usb_personality != usb_port::Personality::kOff) {
+  if (usb_personality) {
     usb_link.emplace(usb_cdc, usb_sessions);
     std::printf("rotord: %s on USB (the second USB serial port)\n",
                 usb_port::personality_name(usb_personality));
@@ -372,43 +455,42 @@ void report_settings(const web::LoadOutcome& r) {
   if (!network) std::printf("rotord: Wi-Fi chip init failed; running without network\n");
 
   // wifi.*, net.*, time.* as loaded at boot (they all need a restart).
-  static Wifi wifi(Wifi::config_from(settings, ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000}));
+  Wifi::Config wifi_config =
+      Wifi::config_from(settings, ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000});
+  // Announced by mDNS, as rotord on Linux announces them through Avahi.
+  wifi_config.ports =
+      net::ServicePorts{kHttpPort, kRotctldPort, kWrcPort, kGs232Port, kEasycommPort, 0};
+  static Wifi wifi(wifi_config);
   // WRC MONITOR lines also go to the USB log port as they happen, where the
-  // WRC firmware prints them (stdout is that port: pico_stdio_usb on CDC 0).
-  static LogPortSink log_port;
+  // WRC firmware prints them, but only while a terminal listens (log_port.hpp).
+  static LogPortSink log_port(g_log);
   static protocol::MonitorTap monitor_tap(log_port);
-  auto make_wrc = [] { return protocol::WrcSession(controller, ROTORD_VERSION, &monitor_tap); };
+  static const protocol::SessionDeps deps{controller, ROTORD_VERSION, &monitor_tap};
   // Every server admits by net/admission.hpp with the live settings (idle
   // eviction, per-address cap, allow-list), as on Linux.
-  auto line_config = [&settings](const char* name, std::uint16_t port, std::string_view busy,
-                                 metrics::Protocol protocol) {
+  auto line_config = [&settings](Personality personality) {
+    const protocol::ProtocolInfo& info = protocol::protocol_info(personality);
     lwip_port::ServerConfig config;
-    config.name = name;
-    config.port = port;
+    config.name = info.name.data();  // a string literal
+    config.port = info.tcp_port;
     config.max_clients = static_cast<std::size_t>(settings.i(Id::kNetMaxClients));
-    config.reject_message = busy;
+    config.reject_message = info.refusal;
     config.settings = &settings;
     config.metrics = &registry;
-    config.protocol = protocol;
+    config.protocol = info.metric;
     return config;
   };
-  static lwip_port::StaticService<protocol::WrcSession, kWrcSlots, decltype(make_wrc)> wrc(
-      line_config("WRC text protocol", kWrcPort, protocol::WrcSession::kTooManyConnections,
-                  metrics::Protocol::kWrc),
-      make_wrc);
-  // Yaesu GS-232A/B (gs232.variant) for PstRotator, N1MM+, HRD, Hamlib 601/603.
-  auto make_gs232 = [] { return protocol::Gs232Session(controller); };
-  static lwip_port::StaticService<protocol::Gs232Session, kGs232Slots, decltype(make_gs232)> gs232(
-      line_config("Yaesu GS-232", kGs232Port, protocol::Gs232Session::kTooManyConnections,
-                  metrics::Protocol::kGs232),
-      make_gs232);
-  // Hamlib rotctld for Gpredict, SatNOGS, rotctl -m 2 (docs/protocols/rotctld.md).
-  auto make_rotctld = [] { return protocol::RotctldSession(controller, ROTORD_VERSION); };
-  static lwip_port::StaticService<protocol::RotctldSession, kRotctldSlots, decltype(make_rotctld)>
-      rotctld(
-          line_config("Hamlib rotctld", kRotctldPort, protocol::RotctldSession::kTooManyConnections,
-                      metrics::Protocol::kRotctld),
-          make_rotctld);
+  static LineService<Personality::kWrc> wrc(line_config(Personality::kWrc),
+                                            MakeSession<Personality::kWrc>{&deps});
+  static LineService<Personality::kRotctld> rotctld(line_config(Personality::kRotctld),
+                                                    MakeSession<Personality::kRotctld>{&deps});
+  static LineService<Personality::kGs232> gs232(line_config(Personality::kGs232),
+                                                MakeSession<Personality::kGs232>{&deps});
+  static LineService<Personality::kEasycomm> easycomm(line_config(Personality::kEasycomm),
+                                                      MakeSession<Personality::kEasycomm>{&deps});
+  // The seed protocol: on the Pico's TCP too since issue 11 (port 4603).
+  static LineService<Personality::kSeed> seed(line_config(Personality::kSeed),
+                                              MakeSession<Personality::kSeed>{&deps});
   // POST /api/settings persists to the flash slots (RAM only when the
   // program image would overlap them).
   hal::Storage* const storage = g_flash.region_free() ? &g_saver : nullptr;
@@ -455,16 +537,8 @@ void report_settings(const web::LoadOutcome& r) {
   http_config.protocol = metrics::Protocol::kHttp;
   static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
       http_config, make_http);
-  // Easycomm II/III for Easycomm trackers and Hamlib 202/204 (docs/protocols/easycomm.md).
-  auto make_easycomm = [] { return protocol::EasycommSession(controller, ROTORD_VERSION); };
-  static lwip_port::StaticService<protocol::EasycommSession, kEasycommSlots,
-                                  decltype(make_easycomm)>
-      easycomm(
-          line_config("Easycomm II/III", kEasycommPort,
-                      protocol::EasycommSession::kTooManyConnections, metrics::Protocol::kEasycomm),
-          make_easycomm);
-  lwip_port::TcpServer* const servers[] = {&wrc.server(), &gs232.server(), &rotctld.server(),
-                                           &easycomm.server(), &http.server()};
+  lwip_port::TcpServer* const servers[] = {&wrc.server(),      &rotctld.server(), &gs232.server(),
+                                           &easycomm.server(), &seed.server(),    &http.server()};
   if (network) {
     wifi.begin(now_ms());
     // lwIP listens on every address, so the servers work on the station and
@@ -489,6 +563,7 @@ void report_settings(const web::LoadOutcome& r) {
     watchdog_update();
     // USB every pass: neither TinyUSB's task nor the link waits for the host.
     rotord_usb_task();
+    g_log.service();
     if (usb_link) usb_link->service();
     if (network) cyw43_arch_poll();
     if (ticks.poll(static_cast<std::int64_t>(time_us_64()))) {

@@ -1,48 +1,39 @@
 #include "usb_personality.hpp"
 
+#include <new>
+
+#include "settings/settings.hpp"
+
 namespace rotord::usb_port {
 
-Personality personality_from_setting(int value) {
-  if (value < 0 || value >= kPersonalityCount) return Personality::kOff;
-  return static_cast<Personality>(value);
+std::optional<protocol::Personality> personality_from_setting(int value) {
+  const settings::Id id = settings::Id::kUsbPersonality;
+  if (value < 0 || value >= settings::choice_count(id)) return std::nullopt;
+  const protocol::ProtocolInfo* p = protocol::find_protocol(settings::choice_name(id, value));
+  if (p == nullptr) return std::nullopt;
+  return p->personality;
 }
 
-const char* personality_name(Personality personality) {
-  switch (personality) {
-    case Personality::kOff:
-      break;
-    case Personality::kGs232:
-      return "Yaesu GS-232";
-    case Personality::kEasycomm:
-      return "Easycomm II/III";
-    case Personality::kSeed:
-      return "seed $cmd protocol";
-    case Personality::kWrc:
-      return "WRC text protocol";
-    case Personality::kRotctld:
-      return "Hamlib rotctld";
-  }
-  return "off";
+const char* personality_name(std::optional<protocol::Personality> personality) {
+  // The registry's names are string literals: NUL-terminated.
+  return personality ? protocol::protocol_info(*personality).name.data() : "off";
+}
+
+void PersonalitySessions::end() {
+  if (live_ != nullptr) live_->~Session();
+  live_ = nullptr;
 }
 
 protocol::Session& PersonalitySessions::renew() {
-  // emplace destroys the previous session first, then builds in place: the
-  // sessions hold a Controller& and need not be movable.
-  switch (personality_) {
-    case Personality::kOff:
-      break;
-    case Personality::kGs232:
-      return session_.emplace<protocol::Gs232Session>(controller_);
-    case Personality::kEasycomm:
-      return session_.emplace<protocol::EasycommSession>(controller_, version_);
-    case Personality::kSeed:
-      return session_.emplace<protocol::SeedSession>(controller_);
-    case Personality::kWrc:
-      return session_.emplace<protocol::WrcSession>(controller_, version_);
-    case Personality::kRotctld:
-      return session_.emplace<protocol::RotctldSession>(controller_, version_);
-  }
-  return session_.emplace<Silent>();
+  if (!personality_) return silent_;
+  // The previous session goes first, then the new one is built in place
+  // (make() returns a prvalue: no copy, no temporary on the stack).
+  end();
+  live_ = protocol::with_session_type(*personality_, [this](auto session) -> protocol::Session* {
+    using S = typename decltype(session)::type;
+    return ::new (static_cast<void*>(storage_)) S(decltype(session)::make(deps_));
+  });
+  return *live_;
 }
 
 }  // namespace rotord::usb_port

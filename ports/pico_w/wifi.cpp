@@ -61,6 +61,8 @@ Wifi::Config Wifi::config_from(const settings::Settings& s, Millis join_timeout_
   copy_text(c.ssid, s.text(Id::kWifiSsid));
   copy_text(c.password, s.text(Id::kWifiPassword));
   copy_text(c.ap_password, s.text(Id::kWifiApPassword));
+  c.ap_policy.has_password = std::strlen(c.ap_password) >= 8;  // WPA2 needs 8..63
+  c.ap_policy.open_minutes = s.i(Id::kWifiApOpenMinutes);
   copy_text(c.hostname, s.text(Id::kNetHostname));
   c.static_ipv4 = static_ipv4_from(s);
   c.sntp = s.b(Id::kTimeSntpEnabled) && !s.text(Id::kTimeSntpServer).empty();
@@ -109,7 +111,16 @@ void Wifi::start_join(Millis now) {
 
 void Wifi::step(Millis now) {
   if (state_ == State::kAccessPoint) {
+    if (setup_ap_closed(now)) return;
     retry_station_from_access_point(now);
+    return;
+  }
+  if (state_ == State::kOff) {
+    // The open AP's window is over: only the configured network remains.
+    if (config_.ssid[0] != '\0' && now - ap_started_ >= kApRetryMs) {
+      ap_started_ = now;
+      start_station(now);
+    }
     return;
   }
   if (state_ != State::kJoining && state_ != State::kStation) return;
@@ -177,7 +188,33 @@ void Wifi::retry_station_from_access_point(Millis now) {
   start_station(now);  // falls back to the AP again after the join timeout
 }
 
+bool Wifi::setup_ap_closed(Millis now) {
+  // Milliseconds since boot: the loop's clock starts at power-on.
+  int stations = 0;
+  if (state_ == State::kAccessPoint) cyw43_wifi_ap_get_stas(&cyw43_state, &stations, nullptr);
+  if (config_.ap_policy.may_offer(now, stations)) return false;
+  if (!ap_window_over_logged_) {
+    std::printf(
+        "rotord: the open access point '%s' is offered only %d min after power-on "
+        "(wifi.ap_open_minutes); power-cycle to open it again, or set wifi.ap_password\n",
+        kApSsid, config_.ap_policy.open_minutes);
+    ap_window_over_logged_ = true;
+  }
+  if (state_ == State::kAccessPoint) {
+    dhcp_.stop();
+    if (mdns_on_[CYW43_ITF_AP]) {
+      mdns_resp_remove_netif(&cyw43_state.netif[CYW43_ITF_AP]);
+      mdns_on_[CYW43_ITF_AP] = false;
+    }
+    cyw43_arch_disable_ap_mode();
+  }
+  state_ = State::kOff;
+  ap_started_ = now;  // the configured network is tried again every kApRetryMs
+  return true;
+}
+
 void Wifi::start_access_point(Millis now) {
+  if (setup_ap_closed(now)) return;
   const bool open = std::strlen(config_.ap_password) < 8;  // WPA2 needs 8..63
   cyw43_arch_enable_ap_mode(kApSsid, open ? nullptr : config_.ap_password,
                             open ? CYW43_AUTH_OPEN : CYW43_AUTH_WPA2_AES_PSK);
@@ -201,9 +238,25 @@ void Wifi::announce(int itf) {
     std::printf("rotord: mDNS not available on this interface\n");
     return;
   }
-  mdns_resp_add_service(n, config_.hostname, "_http", DNSSD_PROTO_TCP, kHttpPort, nullptr, nullptr);
+  mdns_resp_add_service(n, config_.hostname, net::kHttpService, DNSSD_PROTO_TCP, config_.ports.web,
+                        &Wifi::http_txt, this);
+  if (config_.ports.rotctld != 0)
+    mdns_resp_add_service(n, config_.hostname, net::kRotctldService, DNSSD_PROTO_TCP,
+                          config_.ports.rotctld, &Wifi::rotctld_txt, this);
   mdns_on_[itf] = true;
   std::printf("rotord: mDNS name %s.local\n", config_.hostname);
+}
+
+void Wifi::http_txt(mdns_service* service, void*) {
+  mdns_resp_add_service_txtitem(service, net::kHttpTxt,
+                                static_cast<u8_t>(std::strlen(net::kHttpTxt)));
+}
+
+void Wifi::rotctld_txt(mdns_service* service, void* self) {
+  // The same records as Linux's Avahi announcement (core/net/dns_sd.hpp).
+  const net::RotctldTxt txt(static_cast<const Wifi*>(self)->config_.ports, ROTORD_VERSION);
+  for (std::size_t n = 0; n < txt.size(); ++n)
+    mdns_resp_add_service_txtitem(service, txt[n], static_cast<u8_t>(std::strlen(txt[n])));
 }
 
 void Wifi::log_address(const char* what, int itf) {

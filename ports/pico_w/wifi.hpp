@@ -14,9 +14,13 @@
 #include <optional>
 
 #include "dhcp_server.hpp"
+#include "net/dns_sd.hpp"
+#include "net/setup_ap.hpp"
 #include "net_config.hpp"
 #include "settings/settings.hpp"
 #include "util/time.hpp"
+
+struct mdns_service;
 
 namespace rotord::pico_w {
 
@@ -34,14 +38,18 @@ class Wifi {
   /// Copies of the settings (they may change at run time; the network takes
   /// them at boot, as their restart flag says).
   struct Config {
-    char ssid[33] = "";         ///< empty: start the setup access point
-    char password[64] = "";     ///< empty: open network
-    char ap_password[64] = "";  ///< empty (or under 8 characters): open AP
-    char hostname[33] = "";     ///< mDNS and DHCP name; empty: no mDNS
+    char ssid[33] = "";            ///< empty: start the setup access point
+    char password[64] = "";        ///< empty: open network
+    char ap_password[64] = "";     ///< empty (or under 8 characters): open AP
+    net::SetupApPolicy ap_policy;  ///< how long an open AP may be offered
+    char hostname[33] = "";        ///< mDNS and DHCP name; empty: no mDNS
     std::optional<StaticIpv4> static_ipv4;
     bool sntp = false;
     char sntp_server[64] = "";
     Millis join_timeout_ms = 30'000;
+    /// Announced by mDNS (core/net/dns_sd.hpp): the web UI as _http._tcp,
+    /// rotctld as _rotctld._tcp with the other ports as TXT records.
+    net::ServicePorts ports{kHttpPort};
   };
   static Config config_from(const settings::Settings& s, Millis join_timeout_ms);
 
@@ -56,9 +64,15 @@ class Wifi {
   void start_join(Millis now);
   void start_access_point(Millis now);
   void retry_station_from_access_point(Millis now);
+  /// The open AP's window has passed: closes it (or does not open it) and
+  /// keeps trying the configured network, if there is one.
+  bool setup_ap_closed(Millis now);
   void station_up();
   static void log_address(const char* what, int itf);
   void announce(int itf);
+  /// lwIP's TXT callbacks (service_get_txt_fn_t).
+  static void http_txt(mdns_service* service, void* self);
+  static void rotctld_txt(mdns_service* service, void* self);
 
   Config config_;
   lwip_port::DhcpServer dhcp_;  ///< hands out addresses on the setup AP
@@ -68,6 +82,7 @@ class Wifi {
   int last_status_ = 0;
   bool mdns_on_[2] = {false, false};  ///< per cyw43 interface (STA, AP)
   bool sntp_started_ = false;
+  bool ap_window_over_logged_ = false;
 };
 
 }  // namespace rotord::pico_w

@@ -3,12 +3,13 @@
 #   flash = text + data (code, constants, initial values of variables)
 #   RAM   = data + bss  (static variables; stacks and heap not included)
 # Two views:
-#   core_library_*  every object of librotord_core.a, before --gc-sections: an
-#                   upper bound that needs no knowledge of the core's API;
+#   core_library_*  every object of the core's layer libraries (librotord_<layer>.a,
+#                   core/layers.cmake), summed, before --gc-sections: an upper
+#                   bound that needs no knowledge of the core's API;
 #   firmware_core_* size_probe.cpp linked with the core minus the same image
 #                   without it: what the core, with the newlib/libgcc code it
 #                   pulls in (soft float, formatting), adds to a firmware.
-#   cmake -DSIZE=... -DCORE_LIBRARY=... -DPROBE=... -DBASELINE=... -DBUDGETS=... -P size-report.cmake
+#   cmake -DSIZE=... "-DCORE_LIBRARIES=a.a;b.a" -DPROBE=... -DBASELINE=... -DBUDGETS=... -P size-report.cmake
 cmake_minimum_required(VERSION 3.25)
 
 # Returns "text;data;bss" of one line of `size -B` output.
@@ -28,7 +29,11 @@ function(elf_size image out)
   set(${out} "${numbers}" PARENT_SCOPE)
 endfunction()
 
-execute_process(COMMAND ${SIZE} -B -t ${CORE_LIBRARY} OUTPUT_VARIABLE text
+if(NOT CORE_LIBRARIES)
+  message(FATAL_ERROR "size-report.cmake: CORE_LIBRARIES (the core's layer libraries) not given")
+endif()
+# -t: one TOTALS line over every object of every library given.
+execute_process(COMMAND ${SIZE} -B -t ${CORE_LIBRARIES} OUTPUT_VARIABLE text
                 COMMAND_ERROR_IS_FATAL ANY)
 string(REGEX MATCH "[^\n]*\\(TOTALS\\)" totals "${text}")
 parse_berkeley("${totals}" library)
@@ -68,7 +73,7 @@ function(row label text data bss)
 endfunction()
 
 message("Core on Cortex-M0+, bytes            text    data     bss")
-row("librotord_core.a, all objects " ${lib_text} ${lib_data} ${lib_bss})
+row("core libraries, all objects   " ${lib_text} ${lib_data} ${lib_bss})
 row("firmware-like image           " ${probe_text} ${probe_data} ${probe_bss})
 row("same image without the core   " ${base_text} ${base_data} ${base_bss})
 

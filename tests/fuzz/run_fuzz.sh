@@ -34,6 +34,11 @@ for target in "$src"/tests/fuzz/fuzz_*.cpp; do
     -o "$out/$name"
   echo "== $name: $runs runs"
   mkdir -p "$out/$name.corpus"
-  "$out/$name" -runs="$runs" -max_len=4096 -len_control=0 -seed=1 "$out/$name.corpus" 2>&1 | tail -n 3
+  # Seed inputs (tests/fuzz/seeds/<target>/) start the search from real
+  # documents; new inputs go to the first, writable, corpus directory.
+  seeds=()
+  [ -d "$src/tests/fuzz/seeds/$name" ] && seeds=("$src/tests/fuzz/seeds/$name")
+  "$out/$name" -runs="$runs" -max_len=4096 -len_control=0 -seed=1 "$out/$name.corpus" \
+    "${seeds[@]}" 2>&1 | tail -n 3
 done
 echo "fuzz: all targets ran clean"

@@ -123,6 +123,25 @@ TEST_F(WebAuth, ReadOnlyTokenIsRefusedAGotoAControlTokenIsNot) {
   EXPECT_EQ(status("-b " + jar + " " + base + "/api/status"), 401);
 }
 
+TEST_F(WebAuth, MetricsNeedAReadTokenOnceAccessControlIsOnAndPromtoolReadsThem) {
+  jar = dir + "/jar";
+  EXPECT_EQ(status(base + "/metrics"), 200);  // off by default
+  turn_on();
+  const std::string reader = token("prometheus", "read");
+  // Positions, targets and connections are not for strangers; health is.
+  EXPECT_EQ(status(base + "/metrics"), 401);
+  EXPECT_EQ(status(base + "/healthz"), 200);
+  EXPECT_EQ(status("--json '{\"password\":\"wrong one\"}' " + base + "/api/login"), 401);
+  const CommandOutput scrape = run_command("timeout 20 curl -s " + reader + " " + base +
+                                           "/metrics | promtool check metrics");
+  EXPECT_EQ(scrape.rc, 0) << scrape.out;
+  // The failed login is counted as an HTTP auth failure.
+  const std::string page = curl(reader + " " + base + "/metrics");
+  EXPECT_NE(page.find("rotord_auth_failures_total{protocol=\"http\"} "), std::string::npos);
+  EXPECT_EQ(page.find("rotord_auth_failures_total{protocol=\"http\"} 0\n"), std::string::npos)
+      << page;
+}
+
 TEST_F(WebAuth, TheControlLockBindsRotctlUntilReleased) {
   jar = dir + "/jar";
   turn_on();

@@ -1,12 +1,15 @@
-// The WRC text protocol over real TCP sockets to a running rotord on the
+// The WRC text protocol over real TCP sockets, and over a pseudo-terminal
+// (--pty wrc) with socat as the serial program, to a running rotord on the
 // simulated G-5500, on a manual clock the tests advance.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "shell.hpp"
 
 namespace rotord::testing {
 namespace {
@@ -133,6 +136,35 @@ TEST_F(WrcOverTcp, SigtermStopsTheMotorsAndExitsCleanly) {
   EXPECT_EQ(c.ask("MOVE CW\n"), "OK MOVE CW");
   EXPECT_EQ(daemon->terminate(), 0);
   EXPECT_NE(daemon->output().find("stopping the motors"), std::string::npos);
+}
+
+/// `--pty wrc` (issue 11: every personality on every transport): a serial
+/// program opens the pty, commands it, closes it; the next one finds the
+/// same pty and the rotator where the first left it.
+TEST(WrcOverPty, ASerialProgramTurnsTheRotatorThroughThePty) {
+  const std::string dir = make_temp_dir("rotord-wrc");
+  const std::string link = dir + "/wrc";
+  DaemonProcess daemon({"--sim", "g5500", "--clock", "manual", "--pty", "wrc:" + link});
+  ASSERT_TRUE(daemon.ready()) << daemon.output();
+  EXPECT_NE(daemon.output().find("WRC text protocol on pty "), std::string::npos)
+      << daemon.output();
+  // socat is the serial program: raw, no echo, as a terminal program opens a COM port.
+  auto talk = [&](const std::string& lines) {
+    return run_command("printf '" + lines + "' | timeout 5 socat -t1 - " + link + ",raw,echo=0");
+  };
+  const CommandOutput first = talk("AZ 200\\r\\nSPEED?\\r\\nFOO\\r\\n");
+  EXPECT_EQ(first.out, "OK AZ 200.00\r\nOK SPEED 100\r\nERROR INVALID COMMAND\r\n");
+  double az = -1;
+  for (int n = 0; n < 60 && std::abs(az - 200.0) > 1.0; ++n) {  // up to 60 s of controller time
+    ASSERT_GE(daemon.advance_ms(2000), 0);
+    const CommandOutput state = talk("STATE\\r\\n");
+    ASSERT_EQ(state.out.rfind("OK STATE AZ=", 0), 0u) << state.out;
+    az = field(state.out, "AZ");
+  }
+  EXPECT_NEAR(az, 200.0, 1.0);
+  EXPECT_EQ(talk("STOP\\r\\n").out, "OK STOP\r\n");
+  EXPECT_EQ(daemon.terminate(), 0);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -5,9 +5,9 @@
 #include <string>
 
 #include "fake_flash.hpp"
+#include "json/settings_json.hpp"
 #include "settings_bases.hpp"
 #include "util/crc32.hpp"
-#include "web/settings_json.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord {

@@ -6,10 +6,10 @@
 
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
+#include "json/json_reader.hpp"
 #include "memory_storage.hpp"
 #include "web/assets.hpp"
 #include "web/http_session.hpp"
-#include "web/json_reader.hpp"
 
 namespace rotord::web {
 namespace {
@@ -279,8 +279,9 @@ TEST_F(HttpApi, SchemaComesFromTheTable) {
   const HttpResponse res = get("/api/settings/schema");
   EXPECT_EQ(res.status, 200);
   EXPECT_TRUE(JsonObjectReader(res.body).valid());
-  EXPECT_TRUE(has(res, R"("groups":["Rotator","Azimuth","Elevation","Magnetometer","Pins",)"
-                       R"("Raspberry Pi","GS-232","USB","Network","Access","Station","Tracking"])"))
+  EXPECT_TRUE(
+      has(res, R"("groups":["Rotator","Azimuth","Elevation","Magnetometer","Pins",)"
+               R"("Raspberry Pi","GS-232","USB","Network","Access","Station","MQTT","Tracking"])"))
       << res.body;
   EXPECT_TRUE(has(res, R"({"key":"az.drive","type":"enum","unit":"","min":0,"max":3,)"
                        R"("default":"relay","group":"Azimuth")"));

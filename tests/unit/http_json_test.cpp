@@ -4,8 +4,8 @@
 #include <string>
 
 #include "http_test_client.hpp"
-#include "web/json_reader.hpp"
-#include "web/json_writer.hpp"
+#include "json/json_reader.hpp"
+#include "json/json_writer.hpp"
 
 namespace rotord::web {
 namespace {

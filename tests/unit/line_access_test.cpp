@@ -2,7 +2,7 @@
 // access.control_networks gets its queries answered and STOP obeyed, and
 // every command that moves the rotator or changes a setting refused in its
 // protocol's own way; a line port follows access.serial_control.
-#include "access/line_access.hpp"
+#include "net/line_access.hpp"
 
 #include <gtest/gtest.h>
 

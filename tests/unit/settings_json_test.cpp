@@ -1,6 +1,6 @@
 // The settings document: round trip, all-or-nothing application, and loading
 // from storage (a corrupt or invalid document leaves the defaults alone).
-#include "web/settings_json.hpp"
+#include "json/settings_json.hpp"
 
 #include <gtest/gtest.h>
 

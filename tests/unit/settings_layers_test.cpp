@@ -8,9 +8,9 @@
 
 #include <string>
 
+#include "json/settings_json.hpp"
 #include "memory_storage.hpp"
 #include "string_sink.hpp"
-#include "web/settings_json.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord {

@@ -10,9 +10,9 @@
 
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
+#include "json/settings_json.hpp"
 #include "memory_storage.hpp"
 #include "web/http_session.hpp"
-#include "web/settings_json.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord {

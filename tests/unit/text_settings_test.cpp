@@ -9,12 +9,12 @@
 
 #include "hal/flash.hpp"
 #include "http_test_client.hpp"
+#include "json/settings_json.hpp"
 #include "memory_storage.hpp"
 #include "settings/settings.hpp"
 #include "settings_bases.hpp"
 #include "storage/flash_slots.hpp"
 #include "util/utc_time.hpp"
-#include "web/settings_json.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord {

@@ -114,7 +114,7 @@ TEST(UsbCdcLinkRotctl, Hamlib603ReadsAndSetsThePositionThroughTheLink) {
   testing::FakeRotator rotator{false};
   PtyCdc cdc;
   ASSERT_TRUE(cdc.ok());
-  usb_port::PersonalitySessions sessions(usb_port::Personality::kGs232, *rotator.controller,
+  usb_port::PersonalitySessions sessions(protocol::Personality::kGs232, *rotator.controller,
                                          "test");
   usb_port::UsbCdcLink link(cdc, sessions);
 

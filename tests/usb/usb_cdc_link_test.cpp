@@ -1,14 +1,13 @@
 // The Pico W's USB CDC link (ports/pico_w/usb_cdc_link.cpp) on the host: the
 // real sessions on a fake rotator, with a fake CDC interface in place of
-// TinyUSB (the hardware boundary). The fake behaves as TinyUSB's CDC class
-// does for the link: a bounded TX FIFO the host drains when it reads, an RX
-// FIFO the host fills, DTR and an open counter.
+// TinyUSB (the hardware boundary, fake_cdc.hpp).
 #include <gtest/gtest.h>
 
 #include <cctype>
 #include <ostream>
 #include <string>
 
+#include "fake_cdc.hpp"
 #include "fake_rotator.hpp"
 #include "settings/settings.hpp"
 #include "usb_cdc_link.hpp"
@@ -17,63 +16,11 @@
 namespace rotord {
 namespace {
 
-using usb_port::Personality;
+using protocol::Personality;
 using usb_port::PersonalitySessions;
 using usb_port::UsbCdcLink;
 
-class FakeCdc final : public usb_port::CdcPort {
- public:
-  static constexpr std::size_t kFifoBytes = 256;  // CFG_TUD_CDC_TX_BUFSIZE
-
-  // --- The host's side ---------------------------------------------------
-  void plug() { mounted_ = true; }
-  void unplug() {
-    mounted_ = false;
-    dtr_ = false;  // a bus reset clears the line state
-  }
-  void open() {
-    dtr_ = true;
-    ++opens_;
-  }
-  void close() { dtr_ = false; }
-  void send(std::string bytes) { rx_ += bytes; }
-  /// What the host reads: everything the device has queued and flushed.
-  std::string take() {
-    std::string got = tx_;
-    tx_.clear();
-    return got;
-  }
-  std::size_t unread_input() const { return rx_.size(); }
-  std::size_t queued_output() const { return tx_.size(); }
-  int flushes() const { return flushes_; }
-
-  // --- CdcPort -------------------------------------------------------------
-  bool connected() const override { return mounted_; }
-  bool dtr() const override { return dtr_; }
-  std::uint32_t opens() const override { return opens_; }
-  std::size_t read(char* buffer, std::size_t max_bytes) override {
-    const std::size_t n = std::min(max_bytes, rx_.size());
-    rx_.copy(buffer, n);
-    rx_.erase(0, n);
-    return n;
-  }
-  std::size_t write_available() const override { return kFifoBytes - tx_.size(); }
-  std::size_t write(const char* data, std::size_t bytes) override {
-    const std::size_t n = std::min(bytes, write_available());
-    tx_.append(data, n);
-    return n;
-  }
-  void flush() override { ++flushes_; }
-  void discard_output() override { tx_.clear(); }
-  void discard_input() override { rx_.clear(); }
-
- private:
-  bool mounted_ = false;
-  bool dtr_ = false;
-  std::uint32_t opens_ = 0;
-  std::string rx_, tx_;
-  int flushes_ = 0;
-};
+using testing::FakeCdc;
 
 class UsbCdcLinkTest : public ::testing::Test {
  protected:
@@ -315,15 +262,28 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
-TEST(UsbPersonality, TheSettingsChoicesMatchTheEnum) {
-  const settings::Def& def = settings::def(settings::Id::kUsbPersonality);
-  EXPECT_STREQ(def.choices, usb_port::kPersonalityChoices);
-  EXPECT_EQ(def.max, usb_port::kPersonalityCount - 1);
+TEST(UsbPersonality, TheSettingsChoicesAreOffAndTheRegistrysKeys) {
+  const settings::Id id = settings::Id::kUsbPersonality;
+  const settings::Def& def = settings::def(id);
+  ASSERT_EQ(settings::choice_count(id), static_cast<int>(protocol::kPersonalityCount) + 1);
+  EXPECT_EQ(def.max, static_cast<int>(protocol::kPersonalityCount));
+  EXPECT_EQ(settings::choice_name(id, 0), "off");
+  for (const protocol::ProtocolInfo& p : protocol::protocols()) {
+    bool offered = false;
+    for (int n = 1; n < settings::choice_count(id); ++n) {
+      if (settings::choice_name(id, n) != p.key) continue;
+      offered = true;
+      EXPECT_EQ(usb_port::personality_from_setting(n), p.personality) << p.key;
+    }
+    EXPECT_TRUE(offered) << p.key << " is no usb.personality choice";
+  }
   EXPECT_EQ(usb_port::personality_from_setting(static_cast<int>(def.default_value)),
             Personality::kGs232);
-  EXPECT_EQ(usb_port::personality_from_setting(-1), Personality::kOff);
-  EXPECT_EQ(usb_port::personality_from_setting(6), Personality::kOff);
+  EXPECT_EQ(usb_port::personality_from_setting(0), std::nullopt);
+  EXPECT_EQ(usb_port::personality_from_setting(-1), std::nullopt);
+  EXPECT_EQ(usb_port::personality_from_setting(6), std::nullopt);
   EXPECT_STREQ(usb_port::personality_name(Personality::kEasycomm), "Easycomm II/III");
+  EXPECT_STREQ(usb_port::personality_name(std::nullopt), "off");
 }
 
 }  // namespace

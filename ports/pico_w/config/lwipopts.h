@@ -20,9 +20,11 @@
 // copy (lwip_transport.hpp, ServerConfig::is_immutable).
 #define MEMP_NUM_PBUF 32
 
-// Connections: 4 clients on each of up to 4 protocol ports, plus refused
-// clients and pcbs in TIME_WAIT. Listeners: one per protocol port.
-#define MEMP_NUM_TCP_PCB 20
+// Connections: the static slots of main.cpp (web 4, WRC 4, rotctld 3,
+// GS-232 2, Easycomm 2, seed 2: 17), plus 5 for refused clients and pcbs in
+// TIME_WAIT. Listeners: one per protocol port (web, WRC, rotctld, GS-232,
+// Easycomm, seed: 6).
+#define MEMP_NUM_TCP_PCB 22
 #define MEMP_NUM_TCP_PCB_LISTEN 6
 #define MEMP_NUM_UDP_PCB 6
 
@@ -36,12 +38,12 @@
 #define LWIP_DNS 1
 #define LWIP_DHCP 1
 #define LWIP_TCP_KEEPALIVE 1
-// mDNS (rotord.local, _http._tcp): multicast needs IGMP, the responder keeps
+// mDNS (rotord.local, _http._tcp and _rotctld._tcp): multicast needs IGMP, the responder keeps
 // per-netif data and runs a few timers of its own (probing, announcing).
 #define LWIP_MDNS_RESPONDER 1
 #define LWIP_IGMP 1
 #define LWIP_NUM_NETIF_CLIENT_DATA 1
-#define MDNS_MAX_SERVICES 1
+#define MDNS_MAX_SERVICES 2
 // SNTP (apps/sntp, time.sntp_server): one server, by name through DNS. The
 // time goes to sntp_clock.cpp, kept as an offset to the monotonic clock; no
 // RTC is set (GET /api/status time_utc reads it).

@@ -1,0 +1,65 @@
+"""Footprint and cost: the core's flash and static RAM on the Cortex-M0+
+(tests/embedded's size report: build-embedded, arm-none-eabi), and the
+instructions one control tick executes under callgrind (valgrind), a count
+that repeats from run to run, unlike a time."""
+import os
+import re
+import shutil
+import subprocess
+
+TICKS = 6000  # 60 s of virtual time: a g5500 go-to (300, 60), moving then idle
+
+
+def callgrind_instructions(build_dir, mode):
+    out = os.path.join(build_dir, "bench", f"callgrind.{mode[2:]}.out")
+    subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
+                    os.path.join(build_dir, "bench", "rotord_bench"), mode, str(TICKS)],
+                   check=True, capture_output=True)
+    with open(out) as f:
+        for line in f:
+            if line.startswith("summary:") or line.startswith("totals:"):
+                return int(line.split()[1])
+    raise RuntimeError("no callgrind summary")
+
+
+def tick_rows(build_dir):
+    if shutil.which("valgrind") is None:
+        raise RuntimeError("valgrind not installed (scripts/install-deps.sh)")
+    with_tick = callgrind_instructions(build_dir, "--ticks")
+    sim_only = callgrind_instructions(build_dir, "--sim-only")
+    return [{"name": "footprint/tick_instructions",
+             "inputs": {"ticks": TICKS, "profile_g5500": 1},
+             "metrics": {"instructions_per_tick": (with_tick - sim_only) / TICKS}}]
+
+
+def m0_rows():
+    """Builds only what the size report needs (ccache makes reruns quick)."""
+    src = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    if shutil.which("arm-none-eabi-gcc") is None:
+        raise RuntimeError("arm-none-eabi-gcc not installed")
+    env = dict(os.environ, CCACHE_BASEDIR="/work", CCACHE_NOHASHDIR="true")
+    launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"] \
+        if shutil.which("ccache") else []
+    subprocess.run(["cmake", "--preset", "embedded", *launcher], cwd=src, env=env, check=True,
+                   capture_output=True)
+    subprocess.run(["cmake", "--build", "--preset", "embedded", "-j2", "--target", "m0_size_probe",
+                    "m0_size_baseline", "rotord_core"], cwd=src, env=env, check=True,
+                   capture_output=True)
+    out = subprocess.run(["ctest", "--preset", "embedded", "-R", "^m0_size_budget$", "-V"],
+                         cwd=src, env=env, capture_output=True, text=True).stdout
+    metrics = {}
+    for name, value, budget in re.findall(r"(\w+_(?:flash|ram)) = (\d+) of (\d+)", out):
+        metrics[name + "_bytes"] = int(value)
+        metrics[name + "_budget_bytes"] = int(budget)
+    if not metrics:
+        raise RuntimeError("size report not found in ctest output")
+    return [{"name": "footprint/core_m0plus", "inputs": {"minsizerel": 1}, "metrics": metrics}]
+
+
+def run(build_dir):
+    rows = tick_rows(build_dir)
+    try:
+        rows += m0_rows()
+    except (OSError, subprocess.CalledProcessError, RuntimeError) as e:
+        print(f"bench: M0+ size report skipped: {e}")
+    return rows

@@ -1,0 +1,51 @@
+// rotord_bench: the in-process benchmarks (control quality on the simulator
+// in virtual time, the bound check, tick cost). Writes a JSON list of
+// {"name", "inputs", "metrics"} rows; bench/run.py adds the rest and prints
+// the table. Benchmarks print numbers; no test asserts on them.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "bounds.hpp"
+#include "control_quality.hpp"
+#include "results.hpp"
+#include "tick_cost.hpp"
+#include "tracking_error.hpp"
+#include "tracking_mode.hpp"
+
+int main(int argc, char** argv) {
+  using namespace rotord::bench;
+  const char* out_path = nullptr;
+  for (int i = 1; i < argc; ++i) {
+    const bool ticks = std::strcmp(argv[i], "--ticks") == 0;
+    if ((ticks || std::strcmp(argv[i], "--sim-only") == 0) && i + 1 < argc) {
+      run_steps_only(std::atol(argv[i + 1]), ticks);  // for callgrind
+      return 0;
+    }
+    if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out_path = argv[++i];
+  }
+  std::vector<Result> results;
+  int rows = 0;
+  const double dev_s =
+      max_csv_bound_deviation_s(ROTORD_BENCH_DATA_DIR "/time_optimal_bounds.csv", &rows);
+  results.push_back(
+      {"bounds/csv_check", {{"rows", static_cast<double>(rows)}}, {{"max_deviation_s", dev_s}}});
+  if (dev_s < 0 || dev_s > 0.002) {
+    std::fprintf(stderr, "bench: bound formulas disagree with time_optimal_bounds.csv (%.4f s)\n",
+                 dev_s);
+    return 1;
+  }
+  for (Result& r : run_control_quality()) results.push_back(std::move(r));
+  for (Result& r : run_tracking_error()) results.push_back(std::move(r));
+  for (Result& r : run_tracking_mode()) results.push_back(std::move(r));
+  results.push_back(run_tick_cost());
+  std::FILE* out = out_path ? std::fopen(out_path, "w") : stdout;
+  if (out == nullptr) {
+    std::perror(out_path);
+    return 1;
+  }
+  write_json(out, results);
+  if (out != stdout) std::fclose(out);
+  return 0;
+}

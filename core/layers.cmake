@@ -1,0 +1,64 @@
+# The core's layers and what each may include: read by core/CMakeLists.txt
+# (one static library per layer, linked to the layers below it) and by
+# cmake/check_layers.cmake (run on every build: a wrong-way #include fails
+# it, naming the file, the include and the rule). README.md, "Layout",
+# draws the same graph.
+#
+# ROTORD_LAYER_<name>: the layers <name> builds on directly. A layer may
+# include its own headers and those of every layer it reaches through these
+# lists (util through anything, for instance); nothing else. Every directory
+# below core/ is a layer and must be listed in ROTORD_LAYERS; the graph must
+# have no cycle.
+
+# Bottom to top (the order the libraries are defined in).
+set(ROTORD_LAYERS
+    util hal motion access tracking sensors settings json storage input axis net rotator
+    protocol metrics loop web mqtt)
+
+# Errors, text, CRC-32, time, and the ids every layer shares (AxisId,
+# Direction) and the ByteSink every writer streams into.
+set(ROTORD_LAYER_util "")
+# Small hardware interfaces a port implements.
+set(ROTORD_LAYER_hal util)
+# Angle arithmetic and overlap path choice.
+set(ROTORD_LAYER_motion util)
+# Credentials and who holds what: password hashes, tokens, web sessions, the
+# login limit, the control lock, the peer a session talks to. Below settings,
+# which checks the stored credentials with these formats (issue 11's graph had
+# no access layer yet).
+set(ROTORD_LAYER_access util)
+# SGP4/SDP4, observer geometry, Sun and Moon, places, passes; the TLE store
+# (saved through a hal::Storage).
+set(ROTORD_LAYER_tracking motion hal)
+# Position decoding and calibration.
+set(ROTORD_LAYER_sensors hal motion)
+# The one settings table. Also on sensors: the pot calibration rows are
+# checked with PotCalibration's own rule (one rule, not a copy that could
+# drift from what the sensor accepts); and on access: password-hash and
+# token rows with access's own parsers.
+set(ROTORD_LAYER_settings util access sensors)
+# The JSON codec (reader, writer, the settings document and its load/save
+# on a hal::Storage): under web and storage, which both speak it.
+set(ROTORD_LAYER_json settings hal)
+# Flash slots, the settings saver.
+set(ROTORD_LAYER_storage json settings hal)
+# Button debouncing, manual buttons.
+set(ROTORD_LAYER_input hal settings)
+# Position tracking and the motion state machine of one axis.
+set(ROTORD_LAYER_axis sensors motion settings)
+# Who may connect and who may control, from the settings' network lists.
+set(ROTORD_LAYER_net access settings)
+# The Controller: axes, buttons, park, the control lock.
+set(ROTORD_LAYER_rotator axis input tracking settings access)
+# Byte sessions of the line protocols; the allow-list from net.
+set(ROTORD_LAYER_protocol rotator net)
+# Counters per protocol and the Prometheus writer. Above protocol: each
+# protocol's error reply is recognised by that protocol's own constant.
+set(ROTORD_LAYER_metrics protocol hal)
+# The tick scheduler; its lateness is a metrics::Histogram.
+set(ROTORD_LAYER_loop metrics)
+# HTTP session, REST API, the metrics page, the embedded web UI.
+set(ROTORD_LAYER_web protocol rotator json storage metrics loop)
+# MQTT (docs/mqtt.md): state, commands through the REST API's handlers, Home
+# Assistant discovery, the station table; above web, whose API it calls.
+set(ROTORD_LAYER_mqtt web)

@@ -1,0 +1,332 @@
+#include "mqtt/bridge.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "json/json_writer.hpp"
+#include "mqtt/fixed_sink.hpp"
+
+namespace rotord::mqtt {
+namespace {
+
+using settings::Id;
+
+/// The commands the broker may send: the REST API's POST endpoints of the
+/// same names. STOP is obeyed whatever mqtt.control says.
+constexpr std::string_view kCommands[] = {"goto", "move", "stop", "park", "reset", "speed"};
+
+bool known_command(std::string_view name) {
+  for (std::string_view c : kCommands)
+    if (c == name) return true;
+  return false;
+}
+
+int tenths(float deg) {
+  return std::isfinite(deg) ? static_cast<int>(std::lround(deg * 10.0f)) : 0;
+}
+
+std::size_t copy_text(std::string_view from, char* out, std::size_t cap) {
+  const std::size_t n = from.size() < cap - 1 ? from.size() : cap - 1;
+  std::memcpy(out, from.data(), n);
+  out[n] = '\0';
+  return n;
+}
+
+/// Splits an HTTP response into its status and body.
+int response_status(std::string_view response, std::string_view& body) {
+  body = {};
+  if (response.size() < 12 || response.substr(0, 5) != "HTTP/") return 500;
+  const std::size_t space = response.find(' ');
+  if (space == std::string_view::npos || space + 4 > response.size()) return 500;
+  int status = 0;
+  for (std::size_t i = space + 1; i < space + 4; ++i) {
+    const char c = response[i];
+    if (c < '0' || c > '9') return 500;
+    status = status * 10 + (c - '0');
+  }
+  const std::size_t end = response.find("\r\n\r\n");
+  if (end != std::string_view::npos) body = response.substr(end + 4);
+  return status;
+}
+
+}  // namespace
+
+Bridge::Bridge(web::Api& api, Transport& transport, std::string_view prefix,
+               std::string_view node_id, std::string_view device_name)
+    : api_(&api), transport_(transport) {
+  prefix_len_ = copy_text(prefix, prefix_, sizeof prefix_);
+  copy_text(node_id, node_id_, sizeof node_id_);
+  copy_text(device_name, device_name_, sizeof device_name_);
+  availability_len_ =
+      join_topic(this->prefix(), "availability", availability_, sizeof availability_);
+  command_filter_len_ =
+      join_topic(this->prefix(), "cmd/+", command_filter_, sizeof command_filter_);
+}
+
+Bridge::Fingerprint Bridge::fingerprint() const {
+  const Controller& c = api_->controller();
+  const RotatorStatus s = c.status();
+  Fingerprint f;
+  f.mode = static_cast<int>(s.mode);
+  f.speed_pct = s.speed_pct;
+  f.fault = s.any_fault();
+  f.lock = api_->controller().control_lock().held();
+  f.az_valid = s.az.position_valid;
+  f.az_target = s.az.has_target;
+  f.az_target_tenths = s.az.has_target ? tenths(s.az.target_deg) : 0;
+  f.az_state = static_cast<int>(s.az.state);
+  f.az_fault = static_cast<int>(s.az.fault);
+  if (s.el.present) {
+    f.el_valid = s.el.position_valid;
+    f.el_target = s.el.has_target;
+    f.el_target_tenths = s.el.has_target ? tenths(s.el.target_deg) : 0;
+    f.el_state = static_cast<int>(s.el.state);
+    f.el_fault = static_cast<int>(s.el.fault);
+  }
+  return f;
+}
+
+bool Bridge::position_changed() const {
+  const RotatorStatus s = api_->controller().status();
+  if (std::fabs(s.az.position_deg - last_az_deg_) >= kPositionStepDeg) return true;
+  return s.el.present && std::fabs(s.el.position_deg - last_el_deg_) >= kPositionStepDeg;
+}
+
+void Bridge::poll(Millis now_ms) {
+  const bool connected = transport_.connected();
+  if (!connected) {
+    was_connected_ = false;
+    return;
+  }
+  if (!was_connected_) {
+    // A (re)connection: the broker may have lost everything retained.
+    was_connected_ = true;
+    if (api_->settings().b(Id::kMqttDiscovery)) publish_discovery();
+    publish_info();
+    have_published_ = false;
+  }
+  const Fingerprint f = fingerprint();
+  const bool changed = !have_published_ || !(f == last_) || position_changed();
+  const int hz = api_->settings().i(Id::kMqttStateHz);
+  const Millis period_ms = 1000 / (hz < 1 ? 1 : hz);
+  const Millis since_ms = now_ms - last_publish_ms_;
+  const bool moving = api_->controller().status().moving();
+  bool due = false;
+  if (!have_published_) {
+    due = true;
+  } else if (changed) {
+    due = since_ms >= kMinStateGapMs;
+  } else if (moving) {
+    due = since_ms >= period_ms;
+  }
+  if (!due) return;
+  if (publish_state()) {
+    last_ = f;
+    const RotatorStatus s = api_->controller().status();
+    last_az_deg_ = s.az.position_deg;
+    last_el_deg_ = s.el.present ? s.el.position_deg : 0.0f;
+    have_published_ = true;
+    last_publish_ms_ = now_ms;
+  }
+}
+
+bool Bridge::publish_state() {
+  FixedSink sink(state_, sizeof state_);
+  {
+    web::JsonWriter w(sink);
+    api_->write_status(w);
+  }
+  if (sink.overflowed()) return false;
+  const std::size_t n = join_topic(prefix(), "state", topic_, sizeof topic_);
+  if (n == 0) return false;
+  if (!transport_.publish(std::string_view(topic_, n), sink.view(), true)) return false;
+  ++states_published_;
+  return true;
+}
+
+void Bridge::on_message(std::string_view topic, std::string_view payload, bool oversized) {
+  const std::string_view name = command_name(prefix(), topic);
+  if (name.empty()) {
+    // Another rotord's (or our own) state, availability or info.
+    if (station_ != nullptr && !oversized) station_->on_message(topic, payload);
+    return;
+  }
+  ++commands_handled_;
+  char name_copy[16];
+  const std::string_view command(name_copy,
+                                 copy_text(name.substr(0, 15), name_copy, sizeof name_copy));
+  if (!known_command(name)) {
+    publish_result(command, 404,
+                   R"({"error":"unknown command: use goto, move, stop, park, reset or speed"})");
+    return;
+  }
+  if (oversized || payload.size() > kMaxCommandBytes) {
+    // STOP needs no body: it is obeyed even when the body is refused.
+    if (command == "stop") api_->controller().stop();
+    publish_result(command, 413, R"j({"error":"command body too large (512 bytes at most)"})j");
+    return;
+  }
+  if (command != "stop" && !api_->settings().b(Id::kMqttControl)) {
+    publish_result(command, 403,
+                   R"({"error":"mqtt.control is off: only stop is obeyed from the broker"})");
+    return;
+  }
+  // The REST API's own handler: the same bodies, validation and errors.
+  char path[24];
+  std::snprintf(path, sizeof path, "/api/%.*s", static_cast<int>(command.size()), command.data());
+  web::HttpRequest request;
+  request.method = web::Method::kPost;
+  request.method_text = "POST";
+  request.path = path;
+  request.json_body = true;
+  request.keep_alive = true;
+  request.body = payload;
+  FixedSink sink(response_, sizeof response_);
+  web::ResponseOptions options;
+  api_->handle(request, sink, options);
+  std::string_view body;
+  const int status = sink.overflowed() ? 500 : response_status(sink.view(), body);
+  if (body.empty()) body = R"({"error":"no response"})";
+  // response_ holds the body until publish_result copies it into message_.
+  publish_result(command, status, body);
+}
+
+void Bridge::publish_result(std::string_view command, int status, std::string_view body) {
+  // {"cmd":..,"status":..,"response":<the REST API's JSON body>}
+  char head[64];
+  const int head_len = std::snprintf(head, sizeof head, R"({"cmd":"%.*s","status":%d,"response":)",
+                                     static_cast<int>(command.size()), command.data(), status);
+  if (head_len <= 0 || static_cast<std::size_t>(head_len) + body.size() + 1 > sizeof message_)
+    return;
+  std::memcpy(message_, head, static_cast<std::size_t>(head_len));
+  std::memcpy(message_ + head_len, body.data(), body.size());
+  const std::size_t len = static_cast<std::size_t>(head_len) + body.size();
+  message_[len] = '}';
+  const std::size_t n = join_topic(prefix(), "result", topic_, sizeof topic_);
+  if (n == 0) return;
+  transport_.publish(std::string_view(topic_, n), std::string_view(message_, len + 1), false);
+}
+
+void Bridge::set_web_url(std::string_view url) {
+  copy_text(url, web_url_, sizeof web_url_);
+}
+
+void Bridge::publish_info() {
+  FixedSink sink(message_, sizeof message_);
+  {
+    web::JsonWriter w(sink);
+    w.begin_object()
+        .member("rotord", version_)
+        .member("name", device_name_)
+        .member("web", web_url_)
+        .end_object();
+  }
+  const std::size_t n = join_topic(prefix(), "info", topic_, sizeof topic_);
+  if (n == 0 || sink.overflowed()) return;
+  transport_.publish(std::string_view(topic_, n), sink.view(), true);
+}
+
+void Bridge::publish_discovery() {
+  const settings::Settings& s = api_->settings();
+  const bool has_el = s.b(Id::kElEnabled);
+  char state_topic[kMaxTopicBytes];
+  join_topic(prefix(), "state", state_topic, sizeof state_topic);
+  char goto_topic[kMaxTopicBytes];
+  join_topic(prefix(), "cmd/goto", goto_topic, sizeof goto_topic);
+  char stop_topic[kMaxTopicBytes];
+  join_topic(prefix(), "cmd/stop", stop_topic, sizeof stop_topic);
+  char park_topic[kMaxTopicBytes];
+  join_topic(prefix(), "cmd/park", park_topic, sizeof park_topic);
+
+  enum class Kind : unsigned char { kSensorAz, kSensorEl, kNumberAz, kStop, kPark, kFault };
+  struct Entity {
+    Kind kind;
+    const char* component;
+    const char* object;
+    const char* name;
+  };
+  static constexpr Entity kEntities[] = {
+      {Kind::kSensorAz, "sensor", "azimuth", "Azimuth"},
+      {Kind::kSensorEl, "sensor", "elevation", "Elevation"},
+      {Kind::kNumberAz, "number", "target_azimuth", "Target azimuth"},
+      {Kind::kStop, "button", "stop", "Stop"},
+      {Kind::kPark, "button", "park", "Park"},
+      {Kind::kFault, "binary_sensor", "fault", "Fault"},
+  };
+  for (const Entity& e : kEntities) {
+    // homeassistant/<component>/<node_id>/<object_id>/config
+    char topic[kMaxTopicBytes];
+    const int tn = std::snprintf(topic, sizeof topic, "homeassistant/%s/%s/%s/config", e.component,
+                                 node_id_, e.object);
+    if (tn <= 0 || static_cast<std::size_t>(tn) >= sizeof topic) continue;
+    if (e.kind == Kind::kSensorEl && !has_el) {
+      // An empty retained config removes an entity published before.
+      transport_.publish(std::string_view(topic, static_cast<std::size_t>(tn)), {}, true);
+      continue;
+    }
+    char unique_id[72];
+    std::snprintf(unique_id, sizeof unique_id, "%s_%s", node_id_, e.object);
+    FixedSink sink(message_, sizeof message_);
+    {
+      web::JsonWriter w(sink);
+      w.begin_object()
+          .member("name", e.name)
+          .member("unique_id", unique_id)
+          .member("availability_topic", availability_topic())
+          .member("payload_available", "online")
+          .member("payload_not_available", "offline");
+      w.key("device")
+          .begin_object()
+          .key("identifiers")
+          .begin_array()
+          .string(node_id_)
+          .end_array()
+          .member("name", device_name_)
+          .member("manufacturer", "rotord")
+          .member("model", "rotord antenna rotator controller")
+          .member("sw_version", version_)
+          .end_object();
+      switch (e.kind) {
+        case Kind::kSensorAz:
+        case Kind::kSensorEl:
+          w.member("state_topic", state_topic)
+              .member("value_template", e.kind == Kind::kSensorAz
+                                            ? "{{ value_json.az.position_deg | round(1) }}"
+                                            : "{{ value_json.el.position_deg | round(1) }}")
+              .member("unit_of_measurement", "\xc2\xb0")
+              .member("state_class", "measurement")
+              .member("icon", "mdi:compass");
+          break;
+        case Kind::kNumberAz:
+          w.member("command_topic", goto_topic)
+              .member("command_template", "{\"az\": {{ value }}}")
+              .member("state_topic", state_topic)
+              .member("value_template",
+                      "{{ value_json.az.target_deg if value_json.az.target_deg is not none "
+                      "else value_json.az.position_deg }}")
+              .member("min", s.get(Id::kAzMinDeg))
+              .member("max", s.get(Id::kAzMaxDeg))
+              .member("step", 1)
+              .member("mode", "box")
+              .member("unit_of_measurement", "\xc2\xb0");
+          break;
+        case Kind::kStop:
+        case Kind::kPark:
+          w.member("command_topic", e.kind == Kind::kStop ? stop_topic : park_topic)
+              .member("payload_press", "{}");
+          break;
+        case Kind::kFault:
+          w.member("state_topic", state_topic)
+              .member("value_template", "{{ 'ON' if value_json.fault else 'OFF' }}")
+              .member("device_class", "problem");
+          break;
+      }
+      w.end_object();
+    }
+    if (sink.overflowed()) continue;
+    transport_.publish(std::string_view(topic, static_cast<std::size_t>(tn)), sink.view(), true);
+  }
+}
+
+}  // namespace rotord::mqtt

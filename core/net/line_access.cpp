@@ -1,0 +1,23 @@
+#include "net/line_access.hpp"
+
+#include "settings/network_list.hpp"
+
+namespace rotord::access {
+
+bool may_control(const settings::Settings& settings, const Peer& peer) {
+  switch (peer.kind) {
+    case Peer::Kind::kUnknown:
+      return true;
+    case Peer::Kind::kLine:
+      return settings.b(settings::Id::kAccessLineControl);
+    case Peer::Kind::kIpv4:
+    case Peer::Kind::kOther: {
+      const std::string_view networks = settings.text(settings::Id::kAccessControlNetworks);
+      if (networks.empty()) return true;
+      return peer.kind == Peer::Kind::kIpv4 && settings::in_network_list(networks, peer.ipv4);
+    }
+  }
+  return false;
+}
+
+}  // namespace rotord::access

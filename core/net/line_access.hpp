@@ -1,0 +1,23 @@
+#pragma once
+#include "access/peer.hpp"
+#include "settings/settings.hpp"
+
+// In net/, beside the connection admission, because it reads the settings'
+// network lists: the rest of access/ (credentials, sessions, the control
+// lock) sits below the settings, which check the credentials' text formats.
+// The name stays access::may_control, as the sessions call it.
+namespace rotord::access {
+
+/// Whether a line-protocol client (WRC, rotctld, GS-232, Easycomm, seed) may
+/// change anything: move, park, reset, speed, settings. STOP is never asked:
+/// anyone allowed to connect may stop the rotator. Read from the settings at
+/// each command, so a changed allow-list applies to connected clients at once.
+///
+/// - access.control_networks empty: every client controls (the default, as
+///   before access control);
+/// - otherwise a network client controls when its IPv4 address is in one of
+///   the networks; an IPv6 client never does;
+/// - pty, serial and USB ports control when access.serial_control is on.
+bool may_control(const settings::Settings& settings, const Peer& peer);
+
+}  // namespace rotord::access

@@ -1,0 +1,24 @@
+#pragma once
+#include <string_view>
+
+namespace rotord {
+
+/// Where a session writes its replies. A transport sends each write() as one
+/// unit (one TCP segment where it can): Gpredict reads a reply with a single
+/// recv and breaks when a reply is split.
+///
+/// In util, not protocol/, so that the writers below the protocols (the JSON
+/// codec, the Prometheus writer) can stream into one.
+class ByteSink {
+ public:
+  virtual ~ByteSink() = default;
+  virtual void write(std::string_view bytes) = 0;
+};
+
+namespace protocol {
+/// The name the sessions, transports and writers use (it was declared in
+/// protocol/session.hpp until the layers were split).
+using rotord::ByteSink;
+}  // namespace protocol
+
+}  // namespace rotord

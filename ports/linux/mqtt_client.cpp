@@ -1,0 +1,227 @@
+#include "mqtt_client.hpp"
+
+#include <mosquitto.h>
+
+#include <chrono>
+#include <cstring>
+
+#include "log.hpp"
+#include "mqtt/topics.hpp"
+
+namespace rotord::linux_port {
+namespace {
+
+using settings::Id;
+
+constexpr std::string_view kOnline = "online";
+constexpr std::string_view kOffline = "offline";
+
+std::string text(const settings::Settings& s, Id id) {
+  return std::string(s.text(id));
+}
+
+}  // namespace
+
+std::unique_ptr<MqttClient> MqttClient::create(const settings::Settings& settings,
+                                               const std::string& host_name,
+                                               const std::string& web_url, web::Api& api) {
+  if (!settings.b(Id::kMqttEnabled)) return nullptr;
+  char prefix[mqtt::kMaxPrefixBytes + 1];
+  if (mqtt::make_prefix(settings.text(Id::kMqttPrefix), host_name, prefix, sizeof prefix) == 0) {
+    log::error(
+        "mqtt.prefix '%s' cannot be a topic prefix (no '+', '#' or spaces, no '/' at "
+        "either end): MQTT off",
+        text(settings, Id::kMqttPrefix).c_str());
+    return nullptr;
+  }
+  std::string client_id = text(settings, Id::kMqttClientId);
+  if (client_id.empty()) client_id = "rotord-" + host_name;
+  char node_id[48];
+  mqtt::make_node_id(client_id, node_id, sizeof node_id);
+  std::unique_ptr<MqttClient> client(new MqttClient(
+      api, prefix, node_id, "rotord " + (host_name.empty() ? client_id : host_name)));
+  client->bridge_.set_web_url(web_url);
+  client->bridge_.set_version(ROTORD_VERSION);
+  if (!client->start(settings, client_id)) return nullptr;
+  return client;
+}
+
+MqttClient::MqttClient(web::Api& api, const std::string& prefix, const std::string& node_id,
+                       const std::string& device_name)
+    : api_(api), bridge_(api, *this, prefix, node_id, device_name) {
+  bridge_.set_station(&station_);
+  api_.set_station(&station_);
+}
+
+bool MqttClient::start(const settings::Settings& settings, const std::string& client_id) {
+  static const int lib_init = mosquitto_lib_init();
+  (void)lib_init;
+  mosq_ = mosquitto_new(client_id.c_str(), true, this);
+  if (mosq_ == nullptr) {
+    log::error("mqtt: cannot create a client");
+    return false;
+  }
+  mosquitto_threaded_set(mosq_, true);
+  const std::string availability(bridge_.availability_topic());
+  // The broker says "offline" for us when we vanish (kill -9, power, network).
+  mosquitto_will_set(mosq_, availability.c_str(), static_cast<int>(kOffline.size()),
+                     kOffline.data(), 1, true);
+  const std::string user = text(settings, Id::kMqttUser);
+  const std::string password = text(settings, Id::kMqttPassword);
+  if (!user.empty())
+    mosquitto_username_pw_set(mosq_, user.c_str(), password.empty() ? nullptr : password.c_str());
+  if (settings.b(Id::kMqttTls)) {
+    const int rc = mosquitto_tls_set(mosq_, nullptr, "/etc/ssl/certs", nullptr, nullptr, nullptr);
+    if (rc != MOSQ_ERR_SUCCESS) {
+      log::error("mqtt: TLS setup failed: %s", mosquitto_strerror(rc));
+      return false;
+    }
+  }
+  mosquitto_connect_callback_set(mosq_, &MqttClient::on_connect);
+  mosquitto_disconnect_callback_set(mosq_, &MqttClient::on_disconnect);
+  mosquitto_message_callback_set(mosq_, &MqttClient::on_message);
+  host_ = text(settings, Id::kMqttHost);
+  port_ = settings.i(Id::kMqttPort);
+  log::info("mqtt: broker %s:%d, topics %.*s/..., commands %s", host_.c_str(), port_,
+            static_cast<int>(bridge_.prefix().size()), bridge_.prefix().data(),
+            settings.b(Id::kMqttControl) ? "obeyed" : "stop only");
+  thread_ = std::thread([this] { run(); });
+  return true;
+}
+
+MqttClient::~MqttClient() {
+  api_.set_station(nullptr);
+  if (mosq_ == nullptr) return;
+  if (connected_.load()) {
+    // A clean goodbye sends no will: say offline ourselves.
+    const std::string availability(bridge_.availability_topic());
+    mosquitto_publish(mosq_, nullptr, availability.c_str(), static_cast<int>(kOffline.size()),
+                      kOffline.data(), 1, true);
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  mosquitto_disconnect(mosq_);
+  if (thread_.joinable()) thread_.join();
+  mosquitto_destroy(mosq_);
+}
+
+void MqttClient::run() {
+  int backoff_s = kMinBackoffS;
+  bool first = true;
+  bool was_up = false;
+  while (!stopping_.load()) {
+    // Non-blocking connect: a broker that does not answer cannot hold the
+    // thread (or shutdown) for a TCP timeout. Name lookup happens here, off
+    // the control loop.
+    int rc = first ? mosquitto_connect_async(mosq_, host_.c_str(), port_, kKeepaliveS)
+                   : mosquitto_reconnect_async(mosq_);
+    first = false;
+    if (rc == MOSQ_ERR_SUCCESS) {
+      while (!stopping_.load()) {
+        rc = mosquitto_loop(mosq_, 100, 1);
+        if (rc != MOSQ_ERR_SUCCESS) break;
+        if (connected_.load()) {
+          backoff_s = kMinBackoffS;
+          was_up = true;
+        }
+      }
+    }
+    connected_ = false;
+    if (stopping_.load()) break;
+    if (was_up) {
+      log::warn("mqtt: lost the broker %s:%d (%s); reconnecting", host_.c_str(), port_,
+                mosquitto_strerror(rc));
+      was_up = false;
+    } else {
+      log::debug("mqtt: cannot reach %s:%d (%s); again in %d s", host_.c_str(), port_,
+                 mosquitto_strerror(rc), backoff_s);
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    wake_.wait_for(lock, std::chrono::seconds(backoff_s), [this] { return stopping_.load(); });
+    backoff_s = backoff_s * 2 > kMaxBackoffS ? kMaxBackoffS : backoff_s * 2;
+  }
+}
+
+void MqttClient::on_connect(mosquitto* m, void* self, int rc) {
+  auto* c = static_cast<MqttClient*>(self);
+  if (rc != 0) {
+    log::warn("mqtt: the broker refused the connection: %s", mosquitto_connack_string(rc));
+    return;
+  }
+  const std::string availability(c->bridge_.availability_topic());
+  mosquitto_publish(m, nullptr, availability.c_str(), static_cast<int>(kOnline.size()),
+                    kOnline.data(), 1, true);
+  const std::string filter(c->bridge_.command_filter());
+  mosquitto_subscribe(m, nullptr, filter.c_str(), 1);
+  // The station page: every rotord on a two-level prefix (rotord/<hostname>).
+  static const char* const kStation[] = {"+/+/state", "+/+/availability", "+/+/info"};
+  for (const char* topic : kStation) mosquitto_subscribe(m, nullptr, topic, 0);
+  log::info("mqtt: connected to %s:%d", c->host_.c_str(), c->port_);
+  c->connected_ = true;  // the loop republishes discovery and state
+}
+
+void MqttClient::on_disconnect(mosquitto* /*m*/, void* self, int /*rc*/) {
+  static_cast<MqttClient*>(self)->connected_ = false;
+}
+
+void MqttClient::on_message(mosquitto* /*m*/, void* self, const mosquitto_message* message) {
+  auto* c = static_cast<MqttClient*>(self);
+  if (message->topic == nullptr || std::strlen(message->topic) >= mqtt::kMaxTopicBytes) return;
+  Inbound in;
+  in.topic = message->topic;
+  const std::size_t length =
+      message->payloadlen > 0 ? static_cast<std::size_t>(message->payloadlen) : 0;
+  const bool command = !mqtt::command_name(c->bridge_.prefix(), in.topic).empty();
+  if (!command) {
+    // Another rotord's topics (or ours echoed), for the station page.
+    if (length > mqtt::Bridge::kMaxStateBytes) return;
+    in.payload.assign(static_cast<const char*>(message->payload), length);
+    std::lock_guard<std::mutex> lock(c->mutex_);
+    if (c->station_inbox_.size() >= kMaxStationInbox) c->station_inbox_.pop_front();
+    c->station_inbox_.push_back(std::move(in));
+    return;
+  }
+  if (length > mqtt::Bridge::kMaxCommandBytes) {
+    in.oversized = true;  // answered 413, never read
+  } else if (length > 0) {
+    in.payload.assign(static_cast<const char*>(message->payload), length);
+  }
+  std::lock_guard<std::mutex> lock(c->mutex_);
+  if (c->inbox_.size() >= kMaxInbox) {
+    // A flood must not cost a STOP its place: it pushes out the oldest.
+    ++c->dropped_;
+    if (mqtt::command_name(c->bridge_.prefix(), in.topic) != "stop") return;
+    c->inbox_.pop_front();
+  }
+  c->inbox_.push_back(std::move(in));
+}
+
+bool MqttClient::publish(std::string_view topic, std::string_view payload, bool retain) {
+  if (!connected_.load()) return false;
+  const std::string t(topic);
+  return mosquitto_publish(mosq_, nullptr, t.c_str(), static_cast<int>(payload.size()),
+                           payload.data(), 1, retain) == MOSQ_ERR_SUCCESS;
+}
+
+void MqttClient::poll(Millis wall_ms) {
+  // At most kCommandsPerPass commands per 10 ms pass: the rest wait in the
+  // bounded inbox, so a flood from the broker costs the loop little.
+  std::deque<Inbound> arrived;
+  std::deque<Inbound> station;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (std::size_t n = 0; n < kCommandsPerPass && !inbox_.empty(); ++n) {
+      arrived.push_back(std::move(inbox_.front()));
+      inbox_.pop_front();
+    }
+    station.swap(station_inbox_);
+  }
+  for (const Inbound& in : arrived) bridge_.on_message(in.topic, in.payload, in.oversized);
+  for (const Inbound& in : station) bridge_.on_message(in.topic, in.payload, false);
+  bridge_.poll(wall_ms);
+}
+
+}  // namespace rotord::linux_port

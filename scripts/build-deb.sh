@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Builds rotord's Debian package (debian/) with dpkg-buildpackage from a copy
+# of the source tree in $DEB_BUILD_DIR (default build-deb), since debhelper
+# works inside the tree it builds and writes the .deb next to it:
+# $DEB_BUILD_DIR/rotord_<version>_<arch>.deb. Unsigned (-us -uc), binary
+# only (-b), for the build machine's architecture.
+#   DEB_JOBS=N          parallel jobs (default: nproc)
+#   ROTORD_PREBUILT=F   package the binary F instead of building one (CI)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=$(realpath -m "${DEB_BUILD_DIR:-build-deb}")
+src="$out/rotord"
+rm -rf "$src" "$out"/rotord_* "$out"/rotord-dbgsym_*
+mkdir -p "$src"
+# The tracked files and new ones not ignored, as they are in the work tree
+# (uncommitted changes included); no build directories, no .git.
+git ls-files -z --cached --others --exclude-standard |
+  grep -zv -e '^build' -e '^rotord_.*\.deb$' |
+  xargs -0 -I{} sh -c '[ -e "{}" ] && printf "%s\0" "{}"' |
+  tar --null -T - -cf - | tar -xf - -C "$src"
+cd "$src"
+export DEB_BUILD_OPTIONS="${DEB_BUILD_OPTIONS:+$DEB_BUILD_OPTIONS }parallel=${DEB_JOBS:-$(nproc)}"
+if command -v ccache >/dev/null; then
+  export CMAKE_CXX_COMPILER_LAUNCHER=ccache CMAKE_C_COMPILER_LAUNCHER=ccache
+fi
+dpkg-buildpackage -b -us -uc

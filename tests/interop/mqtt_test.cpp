@@ -1,0 +1,223 @@
+// rotord on a real Mosquitto broker (Debian `mosquitto`, issue 17), checked
+// with the real clients (`mosquitto_sub`, `mosquitto_rr` from
+// mosquitto-clients): the retained state and availability, the last will
+// after kill -9, every command and its errors, the Home Assistant discovery
+// messages against a schema written from HA's documentation, and the
+// reconnection after the broker restarts. Each test has its own broker on a
+// free port. Timeouts (-W) bound liveness only; nothing asserts durations.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "daemon_process.hpp"
+#include "http_client.hpp"
+#include "shell.hpp"
+
+namespace rotord::testing {
+namespace {
+
+/// A Mosquitto broker on 127.0.0.1:port, anonymous, no persistence.
+class Broker {
+ public:
+  explicit Broker(const std::string& dir, int port = 0) : dir_(dir), port_(port) {
+    if (port_ == 0) port_ = free_port();
+    start();
+  }
+  ~Broker() { stop(); }
+  int port() const { return port_; }
+  void start() {
+    const std::string conf = dir_ + "/mosquitto.conf";
+    std::ofstream(conf) << "listener " << port_ << " 127.0.0.1\nallow_anonymous true\n";
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      // Its log goes to a file in the test's directory, not the test output.
+      const int log =
+          ::open((dir_ + "/mosquitto.log").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0600);
+      if (log >= 0) {
+        ::dup2(log, 1);
+        ::dup2(log, 2);
+      }
+      ::execlp("mosquitto", "mosquitto", "-c", conf.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    // Ready when a client can connect (bounded; liveness only).
+    run_command("for i in $(seq 100); do mosquitto_pub -p " + std::to_string(port_) +
+                " -t rotord-test/ping -n 2>/dev/null && break; sleep 0.05; done");
+  }
+  void stop() {
+    if (pid_ <= 0) return;
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+  }
+
+ private:
+  std::string dir_;
+  int port_;
+  pid_t pid_ = -1;
+};
+
+class Mqtt : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = make_temp_dir("rotord-mqtt");
+    broker = std::make_unique<Broker>(dir);
+  }
+  void TearDown() override {
+    daemon.reset();
+    broker.reset();
+    run_command("rm -rf " + dir);
+  }
+  /// Starts rotord with mqtt.* settings over the defaults.
+  void start_daemon(bool control, const std::string& prefix = "rotord/test",
+                    bool wait_connected = true) {
+    const std::string config = dir + "/rotord.json";
+    std::ofstream(config) << R"({"mqtt.enabled": true, "mqtt.host": "127.0.0.1", "mqtt.port": )"
+                          << broker->port() << R"(, "mqtt.prefix": ")" << prefix
+                          << R"(", "mqtt.client_id": "rotord-test", "mqtt.control": )"
+                          << (control ? "true" : "false") << "}\n";
+    daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{"--config", config});
+    ASSERT_TRUE(daemon->ready()) << daemon->output();
+    if (wait_connected) {
+      ASSERT_TRUE(daemon->wait_for_output("mqtt: connected")) << daemon->output();
+    }
+  }
+  std::string p() const { return std::to_string(broker->port()); }
+  /// The first (retained) message on `topic`, waiting up to wait_s.
+  std::string retained(const std::string& topic, int wait_s = 10) {
+    return run_command("mosquitto_sub -p " + p() + " -t '" + topic + "' -C 1 -W " +
+                       std::to_string(wait_s) + " 2>&1")
+        .out;
+  }
+  /// Whether a message on `topic` holding `text` arrives (retained or new)
+  /// within wait_s.
+  bool seen(const std::string& topic, const std::string& text, int wait_s = 10) {
+    if (retained(topic, wait_s).find(text) != std::string::npos) return true;
+    return run_command("mosquitto_sub -p " + p() + " -t '" + topic + "' -W " +
+                       std::to_string(wait_s) + " | grep -m 1 -F -q '" + text + "'")
+               .rc == 0;
+  }
+  /// Publishes `body` on <prefix>/cmd/<name> and returns the result message.
+  std::string command(const std::string& name, const std::string& body) {
+    return run_command("mosquitto_rr -p " + p() + " -t rotord/test/cmd/" + name +
+                       " -e rotord/test/result -W 10 -m '" + body + "' 2>&1")
+        .out;
+  }
+  std::string dir;
+  std::unique_ptr<Broker> broker;
+  std::unique_ptr<DaemonProcess> daemon;
+};
+
+TEST_F(Mqtt, RetainedStateAndAvailabilityWithALastWill) {
+  start_daemon(false);
+  const std::string state = retained("rotord/test/state");
+  EXPECT_NE(state.find(R"("mode":"idle")"), std::string::npos) << state;
+  EXPECT_NE(state.find(R"("az":{"position_deg":)"), std::string::npos) << state;
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+  // Killed without a goodbye: the broker publishes the will.
+  EXPECT_EQ(daemon->stop_with(SIGKILL), 128 + SIGKILL);
+  EXPECT_EQ(retained("rotord/test/availability"), "offline\n");
+}
+
+TEST_F(Mqtt, CleanExitSaysOffline) {
+  start_daemon(false);
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+  EXPECT_EQ(daemon->terminate(), 0);
+  EXPECT_EQ(retained("rotord/test/availability"), "offline\n");
+}
+
+TEST_F(Mqtt, CommandsAndTheirErrorsAreTheRestApis) {
+  start_daemon(true);
+  EXPECT_EQ(command("goto", R"({"az": 200})"),
+            R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})"
+            "\n");
+  // The state follows (mode goto, then the position moving towards 200).
+  EXPECT_TRUE(seen("rotord/test/state", R"("mode":"goto")"));
+  EXPECT_EQ(command("goto", R"({"az": "north"})"),
+            R"({"cmd":"goto","status":400,"response":{"error":"az must be a number"}})"
+            "\n");
+  EXPECT_NE(command("goto", "{nope").find(R"("status":400,"response":{"error":"invalid JSON)"),
+            std::string::npos);
+  EXPECT_NE(command("goto", R"({"az": 9000})").find(R"("status":422)"), std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+  EXPECT_NE(command("move", R"({"dir": "cw"})").find(R"("cmd":"move","status":200)"),
+            std::string::npos);
+  EXPECT_NE(command("move", R"({"dir": "sideways"})").find(R"("status":422)"), std::string::npos);
+  EXPECT_NE(command("speed", R"({"speed_pct": 40})").find(R"("status":200)"), std::string::npos);
+  EXPECT_NE(command("speed", R"({"speed_pct": 400})").find(R"("status":422)"), std::string::npos);
+  EXPECT_NE(command("park", "{}").find(R"("cmd":"park","status":200)"), std::string::npos);
+  EXPECT_NE(command("reset", "{}").find(R"("cmd":"reset","status":200)"), std::string::npos);
+  EXPECT_NE(command("fly", "{}").find(R"("cmd":"fly","status":404)"), std::string::npos);
+  const std::string big(600, ' ');
+  EXPECT_NE(command("goto", big).find(R"("status":413)"), std::string::npos);
+  // Still alive and serving.
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+}
+
+TEST_F(Mqtt, WithoutMqttControlOnlyStopIsObeyed) {
+  start_daemon(false);
+  EXPECT_NE(command("goto", R"({"az": 200})")
+                .find(R"("status":403,"response":{"error":"mqtt.control is off)"),
+            std::string::npos);
+  EXPECT_NE(command("park", "{}").find(R"("status":403)"), std::string::npos);
+  EXPECT_EQ(command("stop", "{}"), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                   "\n");
+  EXPECT_TRUE(seen("rotord/test/state", R"("mode":"idle")"));
+}
+
+TEST_F(Mqtt, HomeAssistantDiscoveryFollowsTheSchema) {
+  start_daemon(false);
+  const std::string file = dir + "/discovery.txt";
+  // Six retained configs (az and el sensors, target, two buttons, fault).
+  const CommandOutput got =
+      run_command("mosquitto_sub -p " + p() + " -t 'homeassistant/#' -v -C 6 -W 10 > " + file);
+  ASSERT_EQ(got.rc, 0) << got.out;
+  const CommandOutput check = run_command("python3 " ROTORD_SOURCE_DIR
+                                          "/tests/interop/ha_discovery_check.py " ROTORD_SOURCE_DIR
+                                          "/tests/data/mqtt/ha_discovery.schema.json " +
+                                          file + " rotord/test");
+  EXPECT_EQ(check.rc, 0) << check.out;
+  EXPECT_NE(check.out.find("6 messages, 6 entities, 0 problems"), std::string::npos) << check.out;
+}
+
+TEST_F(Mqtt, ReconnectsAfterTheBrokerRestarts) {
+  start_daemon(false);
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+  const int port = broker->port();
+  broker.reset();  // killed: everything retained is gone with it
+  broker = std::make_unique<Broker>(dir, port);
+  // rotord connects again (backoff 1, 2, 4 s ...) and publishes it all anew.
+  EXPECT_EQ(retained("rotord/test/availability", 60), "online\n");
+  EXPECT_NE(retained("rotord/test/state", 10).find(R"("mode":"idle")"), std::string::npos);
+  EXPECT_NE(retained("homeassistant/button/rotord-test/stop/config", 10).find("cmd/stop"),
+            std::string::npos);
+  EXPECT_TRUE(daemon->wait_for_output("mqtt: connected", 1000));
+}
+
+TEST_F(Mqtt, ABrokerThatIsDownHoldsNothingUp) {
+  broker->stop();  // nobody listens on its port now
+  start_daemon(true, "rotord/test", false);
+  // The daemon is ready and serves REST and a move without the broker.
+  const HttpResponse status = http(daemon->ports().web, "GET", "/api/status");
+  EXPECT_EQ(status.status, 200);
+  TcpClient wrc(daemon->ports().wrc);
+  EXPECT_EQ(wrc.ask("AZ 300\n"), "OK AZ 300.00");
+  EXPECT_EQ(http(daemon->ports().web, "POST", "/api/stop").status, 200);
+  // The broker comes up: rotord finds it on its own (backoff) and publishes.
+  broker->start();
+  EXPECT_TRUE(daemon->wait_for_output("mqtt: connected", 60000)) << daemon->output();
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+  EXPECT_NE(command("stop", "").find(R"("status":200)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rotord::testing

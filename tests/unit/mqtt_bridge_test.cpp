@@ -1,0 +1,225 @@
+// The portable MQTT bridge on a controller with fake hardware: topics, the
+// state on change and while moving, commands through the REST API's own
+// handlers (same errors), mqtt.control, STOP always, discovery messages.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "fake_rotator.hpp"
+#include "json/json_reader.hpp"
+#include "mqtt/bridge.hpp"
+#include "mqtt/topics.hpp"
+
+namespace rotord::mqtt {
+namespace {
+
+using settings::Id;
+
+/// The transport boundary: records what the bridge publishes.
+class RecordingTransport final : public Transport {
+ public:
+  struct Message {
+    std::string topic, payload;
+    bool retain;
+  };
+  bool up = true;
+  std::vector<Message> sent;
+  bool connected() const override { return up; }
+  bool publish(std::string_view topic, std::string_view payload, bool retain) override {
+    sent.push_back({std::string(topic), std::string(payload), retain});
+    return up;
+  }
+  std::vector<Message> on(const std::string& topic) const {
+    std::vector<Message> out;
+    for (const Message& m : sent)
+      if (m.topic == topic) out.push_back(m);
+    return out;
+  }
+};
+
+TEST(MqttTopics, PrefixDefaultsToTheHostName) {
+  char buf[kMaxPrefixBytes + 1];
+  EXPECT_EQ(std::string(buf, make_prefix("", "shack-pi", buf, sizeof buf)), "rotord/shack-pi");
+  EXPECT_EQ(std::string(buf, make_prefix("station/hf", "x", buf, sizeof buf)), "station/hf");
+  EXPECT_EQ(make_prefix("a/+/b", "x", buf, sizeof buf), 0u);
+  EXPECT_EQ(make_prefix("a/#", "x", buf, sizeof buf), 0u);
+  EXPECT_EQ(make_prefix("/a", "x", buf, sizeof buf), 0u);
+  EXPECT_EQ(make_prefix("a/", "x", buf, sizeof buf), 0u);
+  EXPECT_EQ(make_prefix("a//b", "x", buf, sizeof buf), 0u);
+  EXPECT_EQ(make_prefix("a b", "x", buf, sizeof buf), 0u);
+}
+
+TEST(MqttTopics, CommandNames) {
+  EXPECT_EQ(command_name("rotord/a", "rotord/a/cmd/goto"), "goto");
+  EXPECT_EQ(command_name("rotord/a", "rotord/ab/cmd/goto"), "");
+  EXPECT_EQ(command_name("rotord/a", "rotord/a/cmd/"), "");
+  EXPECT_EQ(command_name("rotord/a", "rotord/a/cmd/x/y"), "");
+  EXPECT_EQ(command_name("rotord/a", "rotord/a/state"), "");
+  char id[16];
+  EXPECT_EQ(std::string(id, make_node_id("rotord-a.b c", id, sizeof id)), "rotord-a_b_c");
+}
+
+class MqttBridge : public ::testing::Test {
+ protected:
+  MqttBridge() { r.run_ms(50); }
+  rotord::testing::FakeRotator r;
+  web::Api api{web::ApiContext{*r.controller, nullptr, nullptr, nullptr, "9.9.9"}};
+  RecordingTransport transport;
+  Bridge bridge{api, transport, "rotord/test", "rotord_test", "rotord test"};
+
+  std::string last_result() const {
+    const auto results = transport.on("rotord/test/result");
+    return results.empty() ? std::string() : results.back().payload;
+  }
+  void command(const std::string& name, const std::string& body) {
+    bridge.on_message("rotord/test/cmd/" + name, body);
+  }
+};
+
+TEST_F(MqttBridge, StateIsRetainedOnConnectAndOnChange) {
+  bridge.poll(0);
+  auto states = transport.on("rotord/test/state");
+  ASSERT_EQ(states.size(), 1u);
+  EXPECT_TRUE(states[0].retain);
+  EXPECT_TRUE(web::JsonObjectReader(states[0].payload).valid()) << states[0].payload;
+  EXPECT_NE(states[0].payload.find(R"("mode":"idle")"), std::string::npos);
+  // Nothing changed: nothing more, however long.
+  bridge.poll(5000);
+  EXPECT_EQ(transport.on("rotord/test/state").size(), 1u);
+  r.controller->set_speed_pct(30);
+  bridge.poll(5100);
+  EXPECT_EQ(transport.on("rotord/test/state").size(), 2u);
+}
+
+TEST_F(MqttBridge, StateAtTheSetRateWhileMoving) {
+  r.settings.set(Id::kMqttStateHz, 2);
+  api.controller().settings().set(Id::kMqttControl, 1);
+  bridge.poll(0);
+  command("goto", R"({"az": 300})");
+  EXPECT_NE(last_result().find(R"("status":200)"), std::string::npos) << last_result();
+  const std::size_t before = transport.on("rotord/test/state").size();
+  r.run_ms(100);
+  ASSERT_TRUE(r.controller->status().moving());
+  // Controller time stands still from here: only the rate publishes.
+  bridge.poll(100);  // the goto changed the mode and target: published
+  const std::size_t changed = transport.on("rotord/test/state").size();
+  EXPECT_EQ(changed, before + 1);
+  bridge.poll(300);  // 200 ms later: not yet (2 Hz)
+  EXPECT_EQ(transport.on("rotord/test/state").size(), changed);
+  bridge.poll(600);
+  EXPECT_EQ(transport.on("rotord/test/state").size(), changed + 1);
+}
+
+TEST_F(MqttBridge, CommandsNeedMqttControlButStopIsAlwaysObeyed) {
+  bridge.poll(0);
+  command("goto", R"({"az": 200})");
+  EXPECT_NE(last_result().find(R"("status":403)"), std::string::npos) << last_result();
+  EXPECT_NE(last_result().find("mqtt.control is off"), std::string::npos);
+  EXPECT_FALSE(r.controller->status().moving());
+
+  api.controller().settings().set(Id::kMqttControl, 1);
+  command("goto", R"({"az": 200})");
+  EXPECT_EQ(
+      last_result(),
+      R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})");
+  r.run_ms(100);
+  EXPECT_TRUE(r.controller->status().moving());
+
+  api.controller().settings().set(Id::kMqttControl, 0);
+  command("stop", "");
+  EXPECT_EQ(last_result(), R"({"cmd":"stop","status":200,"response":{"ok":true}})");
+  EXPECT_EQ(r.controller->status().mode, Mode::kIdle);
+}
+
+TEST_F(MqttBridge, ErrorsAreTheRestApis) {
+  api.controller().settings().set(Id::kMqttControl, 1);
+  command("goto", R"({"az": "north"})");
+  EXPECT_EQ(last_result(),
+            R"({"cmd":"goto","status":400,"response":{"error":"az must be a number"}})");
+  command("goto", "{nope");
+  EXPECT_NE(last_result().find(R"("status":400,"response":{"error":"invalid JSON)"),
+            std::string::npos)
+      << last_result();
+  command("speed", R"({"speed_pct": 500})");
+  EXPECT_NE(last_result().find(R"("status":422)"), std::string::npos) << last_result();
+  command("fly", "{}");
+  EXPECT_NE(last_result().find(R"("cmd":"fly","status":404)"), std::string::npos);
+  bridge.on_message("rotord/test/cmd/stop", "{}", true);
+  EXPECT_NE(last_result().find(R"("status":413)"), std::string::npos);
+  const std::size_t results = transport.on("rotord/test/result").size();
+  bridge.on_message("other/topic", "{}");
+  EXPECT_EQ(transport.on("rotord/test/result").size(), results);
+}
+
+TEST_F(MqttBridge, DiscoveryOnConnectAndAgainAfterAReconnect) {
+  bridge.poll(0);
+  const auto az = transport.on("homeassistant/sensor/rotord_test/azimuth/config");
+  ASSERT_EQ(az.size(), 1u);
+  EXPECT_TRUE(az[0].retain);
+  EXPECT_TRUE(web::JsonObjectReader(az[0].payload).valid()) << az[0].payload;
+  EXPECT_NE(az[0].payload.find(R"("state_topic":"rotord/test/state")"), std::string::npos);
+  EXPECT_EQ(transport.on("homeassistant/button/rotord_test/stop/config").size(), 1u);
+  EXPECT_EQ(transport.on("homeassistant/button/rotord_test/park/config").size(), 1u);
+  EXPECT_EQ(transport.on("homeassistant/number/rotord_test/target_azimuth/config").size(), 1u);
+  EXPECT_EQ(transport.on("homeassistant/binary_sensor/rotord_test/fault/config").size(), 1u);
+  transport.up = false;
+  bridge.poll(1000);
+  transport.up = true;
+  bridge.poll(2000);
+  EXPECT_EQ(transport.on("homeassistant/sensor/rotord_test/azimuth/config").size(), 2u);
+  EXPECT_EQ(transport.on("rotord/test/state").size(), 2u);
+}
+
+}  // namespace
+}  // namespace rotord::mqtt
+
+namespace rotord::mqtt {
+namespace {
+
+TEST_F(MqttBridge, StationListsTheRotordsSeen) {
+  Station station;
+  bridge.set_station(&station);
+  bridge.poll(0);
+  // Our own state, as the broker echoes it back, and another rotord's.
+  const std::string own = transport.on("rotord/test/state").back().payload;
+  bridge.on_message("rotord/test/availability", "online");  // before the state
+  bridge.on_message("rotord/test/state", own);
+  bridge.on_message("rotord/other/info",
+                    R"({"rotord":"0.1.0","name":"rotord other","web":"http://other:8080/"})");
+  bridge.on_message(
+      "rotord/other/state",
+      R"({"version":"0.1.0","mode":"goto","fault":false,"az":{"position_deg":271.5},"el":null})");
+  bridge.on_message("zigbee2mqtt/lamp/state", R"({"state":"ON"})");
+  bridge.on_message("rotord/evil/info",
+                    R"j({"rotord":"1","name":"x","web":"javascript:alert(1)"})j");
+  bridge.on_message("rotord/evil/state",
+                    R"({"version":"0.1.0","mode":"idle","az":{"position_deg":1}})");
+  std::string json;
+  class Sink final : public protocol::ByteSink {
+   public:
+    explicit Sink(std::string& s) : s_(s) {}
+    void write(std::string_view b) override { s_.append(b); }
+    std::string& s_;
+  } sink(json);
+  {
+    web::JsonWriter w(sink);
+    station.write_station(w);
+  }
+  EXPECT_EQ(station.size(), 3u) << json;
+  EXPECT_NE(json.find(R"("prefix":"rotord/evil","name":"x","web":"")"), std::string::npos) << json;
+  EXPECT_EQ(json.find("javascript"), std::string::npos);
+  EXPECT_NE(
+      json.find(
+          R"({"prefix":"rotord/test","name":"","web":"","online":true,"mode":"idle","az_deg":100,"el_deg":20,"fault":false})"),
+      std::string::npos)
+      << json;
+  EXPECT_NE(
+      json.find(
+          R"({"prefix":"rotord/other","name":"rotord other","web":"http://other:8080/","online":false,"mode":"goto","az_deg":271.5,"el_deg":null,"fault":false})"),
+      std::string::npos)
+      << json;
+}
+
+}  // namespace
+}  // namespace rotord::mqtt
