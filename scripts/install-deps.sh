@@ -10,6 +10,7 @@ set -euo pipefail
 deb_packages=(
   build-essential dpkg-dev debhelper cmake ninja-build pkg-config gzip git
   libasio-dev libcli11-dev libgpiod-dev libsystemd-dev libavahi-client-dev libmbedtls-dev
+  libcurl4-openssl-dev
 )
 packages=(
   "${deb_packages[@]}"
