@@ -12,6 +12,7 @@
 #include "results.hpp"
 #include "tick_cost.hpp"
 #include "tracking_error.hpp"
+#include "tracking_mode.hpp"
 
 int main(int argc, char** argv) {
   using namespace rotord::bench;
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
   }
   for (Result& r : run_control_quality()) results.push_back(std::move(r));
   for (Result& r : run_tracking_error()) results.push_back(std::move(r));
+  for (Result& r : run_tracking_mode()) results.push_back(std::move(r));
   results.push_back(run_tick_cost());
   std::FILE* out = out_path ? std::fopen(out_path, "w") : stdout;
   if (out == nullptr) {

@@ -27,8 +27,9 @@ set(ROTORD_LAYER_motion util)
 # which checks the stored credentials with these formats (issue 11's graph had
 # no access layer yet).
 set(ROTORD_LAYER_access util)
-# SGP4/SDP4, observer geometry, Sun and Moon, places, passes.
-set(ROTORD_LAYER_tracking motion)
+# SGP4/SDP4, observer geometry, Sun and Moon, places, passes; the TLE store
+# (saved through a hal::Storage).
+set(ROTORD_LAYER_tracking motion hal)
 # Position decoding and calibration.
 set(ROTORD_LAYER_sensors hal motion)
 # The one settings table. Also on sensors: the pot calibration rows are

@@ -10,16 +10,17 @@ set -euo pipefail
 deb_packages=(
   build-essential dpkg-dev debhelper cmake ninja-build pkg-config gzip git
   libasio-dev libcli11-dev libgpiod-dev libsystemd-dev libavahi-client-dev libmbedtls-dev
+  libcurl4-openssl-dev
 )
 packages=(
   "${deb_packages[@]}"
   clang-format
   libgtest-dev libgmock-dev libbenchmark-dev
   libasio-dev libcli11-dev nlohmann-json3-dev
-  libhamlib-utils socat netcat-openbsd
+  libhamlib-utils socat netcat-openbsd python3
   valgrind
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
-  liblwip-dev libgpiod-dev
+  liblwip-dev libgpiod-dev libcurl4-openssl-dev
   avahi-daemon avahi-utils dbus-daemon util-linux
   lintian systemd man-db
   prometheus

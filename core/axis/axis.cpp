@@ -53,7 +53,7 @@ void Axis::shutdown() {
   publish();
 }
 
-Error Axis::go_to(float target_deg) {
+Error Axis::go_to(float target_deg, bool paced) {
   if (state_ == AxisState::kFault) return Error::kFaulted;
   if (cfg_.continuous) target_deg = unwrap_near(target_deg, pos_deg());
   if (!cfg_.continuous && (target_deg < cfg_.min_deg || target_deg > cfg_.max_deg))
@@ -63,7 +63,7 @@ Error Axis::go_to(float target_deg) {
     move_started_ = now_;
     move_distance_deg_ = std::fabs(target_deg - pos_deg());
   }
-  request_ = {RequestKind::kGoto, target_deg, Direction::kNone, 0};
+  request_ = {RequestKind::kGoto, target_deg, Direction::kNone, 0, paced};
   arrived_ = false;
   publish();
   return Error::kOk;
@@ -289,7 +289,7 @@ void Axis::begin_stop(bool hard, bool reversing, Millis now) {
 void Axis::drive_moving(Millis now) {
   // Near the target every drive slows down; elsewhere relay drives follow the
   // WRC convention (speed 1-50 slow, 51-100 fast) and PWM scales the duty.
-  const bool near_target = request_.kind == RequestKind::kGoto &&
+  const bool near_target = request_.kind == RequestKind::kGoto && !request_.paced &&
                            std::fabs(request_.target_deg - pos_deg()) <= cfg_.slow_zone_deg;
   const bool slow = near_target || speed_pct_ <= 50;
   switch (cfg_.drive) {

@@ -35,7 +35,10 @@ class Axis {
   void shutdown();
 
   /// Go to an unwrapped position in the user frame (offset applied).
-  Error go_to(float target_deg);
+  /// `paced`: the tracker sets the speed (speed_pct) to the target's rate,
+  /// so an H-bridge drive keeps that duty near the target instead of
+  /// dropping to pwm_slow_duty in the slow zone.
+  Error go_to(float target_deg, bool paced = false);
   /// Move in one direction until stop, a limit, or `until` (0 = no dead-man).
   Error jog(Direction dir, Millis until);
   void stop();
@@ -56,6 +59,7 @@ class Axis {
     float target_deg = 0.0f;
     Direction dir = Direction::kNone;
     Millis until = 0;
+    bool paced = false;
   };
   /// Reads the position; latches a sensor fault, voids a go-to whose frame
   /// moved.

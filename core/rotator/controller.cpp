@@ -16,6 +16,8 @@ const char* mode_name(Mode mode) {
       return "manual";
     case Mode::kPark:
       return "park";
+    case Mode::kTrack:
+      return "track";
   }
   return "?";
 }
@@ -78,11 +80,13 @@ void Controller::tick(Millis now) {
   apply_buttons(now);
   az_.tick(now);
   if (has_el_) el_.tick(now);
+  tick_tracker(now);
   const RotatorStatus s = status();
-  if (mode_ != Mode::kIdle && !s.moving() && !s.az.has_target && !s.az.jogging &&
-      !(has_el_ && (s.el.has_target || s.el.jogging)))
+  if (mode_ != Mode::kIdle && mode_ != Mode::kTrack && !s.moving() && !s.az.has_target &&
+      !s.az.jogging && !(has_el_ && (s.el.has_target || s.el.jogging)))
     mode_ = Mode::kIdle;
-  if (mode_ != Mode::kIdle || s.moving()) last_activity_ms_ = now;
+  // An armed track counts as activity: no auto-park while waiting for AOS.
+  if (mode_ != Mode::kIdle || s.moving() || tracker_.armed()) last_activity_ms_ = now;
   park_when_idle_long_enough(now);
   count_faults();
 }
@@ -90,6 +94,72 @@ void Controller::tick(Millis now) {
 void Controller::note_command() {
   last_activity_ms_ = now_;
   auto_parked_ = false;
+  end_track();
+}
+
+void Controller::end_track() {
+  if (!tracker_.armed()) return;
+  tracker_.cancel();
+  // The tracker paced the axes; the user's speed again.
+  az_.set_speed_pct(speed_pct_);
+  el_.set_speed_pct(speed_pct_);
+  if (mode_ == Mode::kTrack) mode_ = Mode::kIdle;
+}
+
+std::optional<std::int64_t> Controller::utc_ms() const {
+  if (utc_clock_ == nullptr) return std::nullopt;
+  return utc_clock_->unix_ms();
+}
+
+tracking::Observer Controller::observer() const {
+  tracking::Geodetic where;
+  where.lat_deg = settings_.get(Id::kStationLatDeg);
+  where.lon_deg = settings_.get(Id::kStationLonDeg);
+  where.alt_m = settings_.get(Id::kStationAltM);
+  return tracking::Observer(where);
+}
+
+TrackError Controller::track(const TrackRequest& request) {
+  note_command();  // ends a track already armed
+  const std::optional<std::int64_t> utc = utc_ms();
+  if (!utc) return TrackError::kNoClock;
+  if (!utc_clock_->synchronized() && !settings_.b(Id::kTimeTrustClock))
+    return TrackError::kClockUnsynced;
+  if (estop_active_) return TrackError::kFaulted;
+  // What the rotator was doing gives way; the plan starts from where it stands.
+  az_.stop();
+  el_.stop();
+  mode_ = Mode::kIdle;
+  const TrackError e =
+      tracker_.start(request, *utc, observer(), settings_, az_, has_el_ ? &el_ : nullptr);
+  if (e == TrackError::kOk) mode_ = Mode::kTrack;
+  return e;
+}
+
+void Controller::tick_tracker(Millis now) {
+  if (!tracker_.armed()) return;
+  const std::optional<std::int64_t> utc = utc_ms();
+  if (!utc) return;  // the clock went away (cannot happen on the ports); wait
+  const Tracker::Action action = tracker_.tick(now, *utc, az_, has_el_ ? &el_ : nullptr);
+  if (tracker_.armed()) return;
+  az_.set_speed_pct(speed_pct_);
+  el_.set_speed_pct(speed_pct_);
+  mode_ = Mode::kIdle;
+  switch (action) {
+    case Tracker::Action::kPark:
+      park();
+      break;
+    case Tracker::Action::kReturn: {
+      std::optional<float> el;
+      if (has_el_) el = tracker_.return_el_deg();
+      if (go_to(tracker_.return_az_deg(), el, AzTarget::kUnwrapped) == Error::kOk)
+        mode_ = Mode::kGoto;
+      break;
+    }
+    case Tracker::Action::kNone:
+    case Tracker::Action::kFailed:
+      break;
+  }
 }
 
 void Controller::park_when_idle_long_enough(Millis now) {
@@ -208,6 +278,7 @@ Error Controller::reset() {
 
 Error Controller::set_speed_pct(int pct) {
   if (pct < 1 || pct > 100) return Error::kOutOfRange;
+  end_track();
   speed_pct_ = pct;
   az_.set_speed_pct(pct);
   el_.set_speed_pct(pct);

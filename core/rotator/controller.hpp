@@ -3,12 +3,14 @@
 
 #include "access/control_lock.hpp"
 #include "axis/axis.hpp"
+#include "hal/wall_clock.hpp"
 #include "input/manual_buttons.hpp"
+#include "rotator/tracker.hpp"
 #include "settings/settings.hpp"
 
 namespace rotord {
 
-enum class Mode : std::uint8_t { kIdle, kGoto, kManual, kPark };
+enum class Mode : std::uint8_t { kIdle, kGoto, kManual, kPark, kTrack };
 
 const char* mode_name(Mode mode);
 
@@ -63,6 +65,13 @@ class Controller {
   void attach_estop(hal::DigitalIn* input) { estop_ = input; }
   /// Whether the emergency stop is active now (as of the last tick).
   bool estop_active() const { return estop_active_; }
+  /// UTC for tracking (Linux: the system clock, or start UTC + controller
+  /// time under the simulator's --speedup / --clock manual; Pico W: SNTP).
+  /// nullptr: no clock, and tracking is refused.
+  void attach_utc_clock(const hal::WallClock* clock) { utc_clock_ = clock; }
+  /// Target evaluations (SGP4 + look angles) one tick may do for the
+  /// tracker's pass search and planning (Pico W: 1, about 3 ms).
+  void set_track_budget(int evaluations_per_tick) { tracker_.set_budget(evaluations_per_tick); }
 
   // Commands. Each validates everything before it changes anything.
   Error go_to(std::optional<float> az_deg, std::optional<float> el_deg,
@@ -76,6 +85,16 @@ class Controller {
   /// and nothing cleared, while the emergency-stop input is active.
   Error reset();
   Error set_speed_pct(int pct);
+  /// Arms the tracking mode (docs/tracking.md): refused without a valid
+  /// clock, with bad elements, a latched fault, or ("now") a target below
+  /// track.min_el_deg. Any other command, STOP included, ends it.
+  TrackError track(const TrackRequest& request);
+  const TrackStatus& track_status() const { return tracker_.status(); }
+  const Tracker& tracker() const { return tracker_; }
+  /// UTC now, when the clock is known and may be trusted for tracking.
+  std::optional<std::int64_t> utc_ms() const;
+  /// The station (station.* settings) as an observer.
+  tracking::Observer observer() const;
 
   RotatorStatus status() const;
   Limits limits() const;
@@ -100,8 +119,11 @@ class Controller {
  private:
   void apply_settings();
   void apply_buttons(Millis now);
-  /// Any command restarts the idle time park.after_idle_min counts.
+  /// Any command restarts the idle time park.after_idle_min counts, and
+  /// ends a track.
   void note_command();
+  void end_track();
+  void tick_tracker(Millis now);
   void park_when_idle_long_enough(Millis now);
   void read_estop();
   /// Counts each fault an axis latched since the last call.
@@ -120,8 +142,10 @@ class Controller {
   Mode mode_ = Mode::kIdle;
   int speed_pct_ = 50;
   Millis now_ = 0;
-  Millis last_activity_ms_ = 0;                      // last command, or last tick with motion
-  bool auto_parked_ = false;                         // parked for being idle; no command since
+  Millis last_activity_ms_ = 0;  // last command, or last tick with motion
+  bool auto_parked_ = false;     // parked for being idle; no command since
+  const hal::WallClock* utc_clock_ = nullptr;
+  Tracker tracker_;
   std::array<AxisFault, kMaxAxes> counted_fault_{};  // each axis's fault, as last counted
   std::array<std::array<std::uint32_t, kAxisFaultKinds>, kMaxAxes> faults_latched_{};
 };

@@ -153,11 +153,17 @@ bool HttpRequestParser::parse_head() {
     return false;
   }
   request_.method_text = method;
-  request_.method = method == "GET"    ? Method::kGet
-                    : method == "HEAD" ? Method::kHead
-                    : method == "POST" ? Method::kPost
-                                       : Method::kOther;
-  request_.path = text::slice(target, 0, target.find('?'));
+  request_.method = method == "GET"      ? Method::kGet
+                    : method == "HEAD"   ? Method::kHead
+                    : method == "POST"   ? Method::kPost
+                    : method == "PUT"    ? Method::kPut
+                    : method == "DELETE" ? Method::kDelete
+                                         : Method::kOther;
+  const std::size_t question = target.find('?');
+  request_.path = text::slice(target, 0, question);
+  request_.query = question == std::string_view::npos
+                       ? std::string_view{}
+                       : text::slice(target, question + 1, std::string_view::npos);
   request_.keep_alive = version == "HTTP/1.1";
 
   while (!headers.empty()) {

@@ -4,14 +4,15 @@
 
 namespace rotord::web {
 
-enum class Method : unsigned char { kGet, kHead, kPost, kOther };
+enum class Method : unsigned char { kGet, kHead, kPost, kPut, kDelete, kOther };
 
 /// One parsed request. Views point into the parser's buffers and stay valid
 /// until the parser is reset for the next request.
 struct HttpRequest {
   Method method = Method::kOther;
   std::string_view method_text;
-  std::string_view path;  ///< without the query string
+  std::string_view path;   ///< without the query string
+  std::string_view query;  ///< after '?', still percent-encoded; empty when none
   bool keep_alive = true;
   bool json_body = false;  ///< Content-Type: application/json
   std::string_view if_none_match;

@@ -174,7 +174,7 @@ void write_metrics(PrometheusWriter& w, const Controller& controller,
   }
   write_axes(w, controller, s);
   w.family("rotord_mode", "gauge", "1 for the controller's mode now, 0 for the others.");
-  for (const Mode m : {Mode::kIdle, Mode::kGoto, Mode::kManual, Mode::kPark})
+  for (const Mode m : {Mode::kIdle, Mode::kGoto, Mode::kManual, Mode::kPark, Mode::kTrack})
     w.integer({{"mode", mode_name(m)}}, s.mode == m ? 1 : 0);
   w.family("rotord_speed_percent", "gauge", "Commanded speed, 1..100 %.");
   w.integer({}, static_cast<std::uint64_t>(s.speed_pct));

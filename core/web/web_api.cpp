@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "json/json_reader.hpp"
+#include "util/slice.hpp"
 #include "util/utc_time.hpp"
 
 namespace rotord::web {
@@ -234,6 +235,7 @@ void Api::poll(Millis transport_now) {
   }
   auth_.sessions().expire(transport_now);
   work();
+  work_passes(ctx_.passes_poll_budget);
   for (std::size_t n = 0; n < dead_man_.size(); ++n) {
     DeadMan& d = dead_man_[n];
     if (!d.armed || transport_now < d.until) continue;
@@ -351,17 +353,45 @@ const Api::Route Api::kRoutes[] = {
        a.unlock(c.caller, c.out, c.options);
        return O::kDone;
      },
-     "release the control lock"},
+     "release the control lock"},    // Tracking (track_api.cpp): the handler tells the methods apart and
+    // checks the bodies (PUT /api/tle takes the TLE text as it is: another
+    // site's form cannot send a PUT).
+    {"/api/tle", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.run_track(c); }, "the stored TLEs"},
+    {"/api/tle", true, N::kControl, true, false,
+     [](Api& a, const Call& c) { return a.run_track(c); },
+     "PUT: store TLEs (a paste, all or nothing); DELETE ?object=: remove one", "PUT DELETE"},
+    {"/api/passes", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.run_track(c); },
+     "the next passes of an object, the Sun or the Moon"},
+    {"/api/track", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.run_track(c); }, "the tracking mode's state and plan"},
+    {"/api/track", true, N::kControl, true, false,
+     [](Api& a, const Call& c) { return a.run_track(c); },
+     "POST: track an object, the Sun, the Moon or az/el; DELETE: end the track", "POST DELETE"},
 };
 
 std::span<const Api::Route> Api::routes() {
   return kRoutes;
 }
 
+bool Api::takes_method(const Route& route, std::string_view method) {
+  if (route.verbs.empty()) return method == "POST";
+  std::string_view rest = route.verbs;
+  while (!rest.empty()) {
+    const std::size_t space = rest.find(' ');
+    if (text::slice(rest, 0, space) == method) return true;
+    rest = space == std::string_view::npos ? std::string_view{} : text::slice(rest, space + 1);
+  }
+  return false;
+}
+
 Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
                          const ResponseOptions& options, const access::Peer& peer) {
   const std::string_view path = request.path;
-  const bool is_post = request.method == Method::kPost;
+  // PUT and DELETE change state as POST does (the tracking routes).
+  const bool is_post = request.method == Method::kPost || request.method == Method::kPut ||
+                       request.method == Method::kDelete;
   const bool is_get = request.method == Method::kGet || request.method == Method::kHead;
   bool allows_get = false;
   bool allows_post = false;
@@ -421,6 +451,19 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
   if (route->locked && held.held() && (!caller.can_hold_lock() || !held.held_by(caller.holder))) {
     count_auth_failure(false);
     send_locked(out, options);
+    return Outcome::kDone;
+  }
+  // A state-changing row takes POST, or the methods it names (verbs).
+  if (route->post && !takes_method(*route, request.method_text)) {
+    char allow[64];
+    std::snprintf(allow, sizeof allow, "Allow: %s%.*s\r\n", allows_get ? "GET, HEAD, " : "",
+                  static_cast<int>(route->verbs.empty() ? 4 : route->verbs.size()),
+                  route->verbs.empty() ? "POST" : route->verbs.data());
+    for (char* c = allow; *c != '\0'; ++c)
+      if (*c == ' ' && c[-1] != ',' && c[-1] != ':') *c = ',';  // "PUT DELETE" -> "PUT,DELETE"
+    ResponseOptions o = options;
+    o.extra_headers = allow;
+    send_error(out, 405, "method not allowed here", o);
     return Outcome::kDone;
   }
   // A POST body must be JSON, declared as such: a cross-site HTML form or

@@ -9,6 +9,8 @@
 #include "json/settings_json.hpp"
 #include "metrics/registry.hpp"
 #include "rotator/controller.hpp"
+#include "tracking/pass_finder.hpp"
+#include "tracking/tle_catalog.hpp"
 #include "web/http_request.hpp"
 #include "web/http_response.hpp"
 #include "web/station_source.hpp"
@@ -53,6 +55,18 @@ struct ApiContext {
   std::uint32_t pbkdf2_slice = 10'000;
   /// Where logins, failed logins, tokens and the control lock are logged.
   protocol::ByteSink* log = nullptr;
+  /// The stored TLEs (GET/PUT /api/tle, POST /api/track) and where they are
+  /// saved; nullptr: no store, /api/tle answers 501 (tracking the Sun, the
+  /// Moon or a direction still works).
+  tracking::TleCatalog* tles = nullptr;
+  hal::Storage* tle_storage = nullptr;
+  /// false (Pico W): PUT/DELETE /api/tle are refused while the rotator
+  /// moves, as a flash write pauses the control loop for ~0.1 s.
+  bool tle_save_while_moving = true;
+  /// Target evaluations GET /api/passes may do within the request, and per
+  /// poll() afterwards (the Pico W keeps both small: ~3 ms each).
+  int passes_request_budget = 200000;
+  int passes_poll_budget = 50;
 };
 
 /// The REST API (docs/web_api.md) on the controller's command API. One per
@@ -101,8 +115,13 @@ class Api {
     bool json_body;
     Outcome (*run)(Api& api, const Call& call);
     std::string_view help;
+    /// A state-changing row's methods when not POST, e.g. "PUT DELETE"
+    /// (the tracking routes); empty: POST.
+    std::string_view verbs = {};
   };
   static std::span<const Route> routes();
+  /// Whether a state-changing row takes `method` ("POST", or its verbs).
+  static bool takes_method(const Route& route, std::string_view method);
   /// Answers one request whose path starts with /api/, from `peer`.
   /// kStartEvents: the response head of an event stream went out and events
   /// follow (poll). kPending: a login or a new password is being hashed;
@@ -206,6 +225,26 @@ class Api {
   void lock(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
             Caller caller);
   void unlock(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
+  // Tracking's endpoints (track_api.cpp).
+  void handle_track(const HttpRequest& request, protocol::ByteSink& out,
+                    const ResponseOptions& options);
+  Outcome run_track(const Call& call) {
+    handle_track(call.request, call.out, call.options);
+    return Outcome::kDone;
+  }
+  void get_tles(protocol::ByteSink& out, const ResponseOptions& options);
+  void put_tles(const HttpRequest& request, protocol::ByteSink& out,
+                const ResponseOptions& options);
+  void delete_tle(const HttpRequest& request, protocol::ByteSink& out,
+                  const ResponseOptions& options);
+  void get_passes(const HttpRequest& request, protocol::ByteSink& out,
+                  const ResponseOptions& options);
+  void post_track(const HttpRequest& request, protocol::ByteSink& out,
+                  const ResponseOptions& options);
+  void write_track(JsonWriter& w) const;
+  /// Continues a pass search GET /api/passes began (poll()).
+  void work_passes(int evaluations);
+
   /// Acts on a computed slow hash: a login's session, a password's storage.
   void complete_job();
   /// 423 with the lock's holder and time left.
@@ -233,7 +272,23 @@ class Api {
   settings::Settings scratch_;
   settings::Settings backup_;
   SettingErrors errors_;
-  char document_[kMaxDocumentBytes];
+  char document_[kMaxDocumentBytes];  ///< also the TLE store's text when saving it
+  /// GET /api/passes: one search at a time, its passes kept until another
+  /// object, window or horizon is asked for (or a minute has passed).
+  struct PassSearch {
+    static constexpr std::size_t kMaxPasses = 16;
+    bool active = false;  ///< searching (step() still to be called)
+    bool valid = false;   ///< the key below describes the search
+    char key[40] = {};    ///< object, as asked
+    int hours = 0;
+    double min_el_deg = 0;
+    std::int64_t from_ms = 0;
+    tracking::SkyTarget target;
+    tracking::PassFinder finder;
+    tracking::Pass passes[kMaxPasses];
+    std::size_t count = 0;
+    tracking::Sgp4Error error = tracking::Sgp4Error::kOk;
+  } passes_;
 };
 
 }  // namespace rotord::web

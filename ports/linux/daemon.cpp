@@ -13,6 +13,7 @@
 #include "safe_stop.hpp"
 #include "services.hpp"
 #include "sysfs_pwm.hpp"
+#include "tracking/julian.hpp"
 
 namespace rotord::linux_port {
 namespace {
@@ -63,8 +64,9 @@ bool Daemon::setup() {
   char name[256] = "";
   if (::gethostname(name, sizeof(name) - 1) == 0) host_name_ = name;
   if (options_.hw == "gpiod") {
-    if (options_.speedup != 1.0 || options_.clock != "wall") {
-      log::error("--speedup and --clock apply to the simulator only, not to --hw gpiod");
+    if (options_.speedup != 1.0 || options_.clock != "wall" || !options_.utc_start.empty()) {
+      log::error(
+          "--speedup, --clock and --utc-start apply to the simulator only, not to --hw gpiod");
       return false;
     }
     defaults_ = settings_;  // no profile layer under real hardware
@@ -93,6 +95,18 @@ bool Daemon::setup() {
   defaults_ = settings_;
   if (!load_settings(profile)) return false;
   sim_ = std::make_unique<sim::SimRotator>(*profile, options_.sim_seed);
+  if (options_.clock == "manual" || options_.speedup != 1.0 || !options_.utc_start.empty()) {
+    // Simulated time: UTC moves with it (tracking follows the simulated sky).
+    std::int64_t start = 0;
+    if (options_.utc_start.empty()) {
+      start = *wall_clock_.unix_ms();
+    } else if (!tracking::parse_utc(options_.utc_start, start)) {
+      log::error("--utc-start '%s' is not a UTC time like 2019-12-09T16:00:00Z",
+                 options_.utc_start.c_str());
+      return false;
+    }
+    sim_utc_ = std::make_unique<SimulatedUtcClock>(start, &now_ms_);
+  }
   if (options_.clock == "manual") {
     log::info("rotord %s, simulated rotator '%s' (%s), manual clock (advance <ms> on stdin)",
               ROTORD_VERSION, profile->name, profile->description);
@@ -177,6 +191,23 @@ bool Daemon::load_settings(const sim::Profile* profile) {
 
 bool Daemon::start_controller() {
   controller_ = std::make_unique<Controller>(settings_, axis_io(AxisId::kAz), axis_io(AxisId::kEl));
+  controller_->attach_utc_clock(sim_utc_ ? static_cast<const hal::WallClock*>(sim_utc_.get())
+                                         : &wall_clock_);
+  // A pass search or plan: 64 evaluations per tick (about 1 ms here).
+  controller_->set_track_budget(64);
+  if (!tles_) {
+    // tles.txt beside the settings file (three-line text, written atomically).
+    const std::string& settings_path = storage_->path();
+    const std::size_t slash = settings_path.rfind('/');
+    tle_storage_ = std::make_unique<FileStorage>(
+        (slash == std::string::npos ? std::string() : settings_path.substr(0, slash + 1)) +
+        "tles.txt");
+    tles_ = std::make_unique<tracking::TleCatalog>();
+    std::vector<char> buf(2 * tracking::TleCatalog::kMaxTextBytes);
+    tles_->load(*tle_storage_, buf.data(), buf.size());
+    if (tles_->size() > 0)
+      log::info("%zu TLEs loaded from %s", tles_->size(), tle_storage_->path().c_str());
+  }
   if (gpio_ && gpio_->estop() != nullptr) controller_->attach_estop(gpio_->estop());
   metrics_.ticks = &ticks_;
   metrics_.saver = saver_.get();
@@ -195,6 +226,8 @@ bool Daemon::start_controller() {
   api_context.pbkdf2_iterations = 100'000;
   api_context.pbkdf2_slice = 500;
   api_context.log = &access_log_;
+  api_context.tles = tles_.get();
+  api_context.tle_storage = tle_storage_.get();
   api_ = std::make_unique<web::Api>(api_context);
   mqtt_ = MqttClient::create(settings_, host_name_,
                              "http://" + host_name_ + ":" + std::to_string(options_.web_port) + "/",
@@ -467,7 +500,35 @@ void Daemon::serve(Millis wall_ms) {
   for (auto& server : servers_) server->poll(wall_ms);
   for (auto& line : serial_lines_) line->poll(wall_ms);
   save_changed_settings(false);
+  refresh_tles();
   if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();
+}
+
+void Daemon::refresh_tles() {
+  if (!tles_) return;
+  const std::string url(settings_.text(settings::Id::kTrackTleUrl));
+  if (url.empty()) {
+    tle_url_fetched_.clear();
+    return;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (url == tle_url_fetched_ && now < next_tle_refresh_) return;
+  if (!tle_fetcher_) tle_fetcher_ = std::make_unique<TleFetcher>(io_);
+  if (tle_fetcher_->busy()) return;
+  tle_url_fetched_ = url;
+  next_tle_refresh_ = now + std::chrono::hours(settings_.i(settings::Id::kTrackTleRefreshH));
+  tle_fetcher_->fetch(url, [this, url](bool ok, const std::string& text) {
+    if (!ok) {
+      log::warn("TLE refresh from %s failed: %s", url.c_str(), text.c_str());
+      return;
+    }
+    if (!tles_) return;
+    const tracking::TleCatalog::Refresh r = tles_->refresh(text);
+    std::vector<char> buf(2 * tracking::TleCatalog::kMaxTextBytes);
+    const bool saved = r.updated == 0 || tles_->save(*tle_storage_, buf.data(), buf.size());
+    log::info("TLEs refreshed from %s: %zu updated, %zu not stored here, %zu bad%s", url.c_str(),
+              r.updated, r.not_stored, r.bad, saved ? "" : " (could not save them)");
+  });
 }
 
 void Daemon::advance_simulation(Millis wall_ms) {

@@ -20,6 +20,8 @@
 #include "storage/settings_saver.hpp"
 #include "system_wall_clock.hpp"
 #include "tcp_server.hpp"
+#include "tle_fetcher.hpp"
+#include "tracking/tle_catalog.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord::linux_port {
@@ -102,8 +104,20 @@ class Daemon final : private web::RebootHook {
   asio::signal_set signals_;
   settings::Settings settings_;
   SystemWallClock wall_clock_;  ///< GET /api/status time_utc
-  std::string host_name_;       ///< gethostname(): a name the web answers to
-  MbedCrypto crypto_;           ///< access control: web password, sessions, tokens
+  /// Tracking's UTC: wall_clock_, or start UTC + controller time under
+  /// --speedup / --clock manual.
+  std::unique_ptr<SimulatedUtcClock> sim_utc_;
+  /// The stored TLEs (tles.txt beside the settings file).
+  std::unique_ptr<tracking::TleCatalog> tles_;
+  std::unique_ptr<FileStorage> tle_storage_;
+  /// track.tle_url: a refresh at start, when the URL changes, and every
+  /// track.tle_refresh_h hours.
+  void refresh_tles();
+  std::unique_ptr<TleFetcher> tle_fetcher_;
+  std::string tle_url_fetched_;
+  std::chrono::steady_clock::time_point next_tle_refresh_{};
+  std::string host_name_;  ///< gethostname(): a name the web answers to
+  MbedCrypto crypto_;      ///< access control: web password, sessions, tokens
   /// Access control's log lines (logins, failed logins, tokens, the lock).
   class StdoutLog final : public protocol::ByteSink {
    public:

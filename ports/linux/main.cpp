@@ -28,6 +28,10 @@ int main(int argc, char** argv) {
                  "clock; simulator only)")
       ->check(CLI::IsMember({"wall", "manual"}))
       ->capture_default_str();
+  app.add_option("--utc-start", o.utc_start,
+                 "Under --clock manual or --speedup: the UTC at controller time 0 "
+                 "(e.g. 2019-12-09T16:00:00Z; default the system clock at start), so "
+                 "tracking runs on simulated time");
   app.add_option("--sim-seed", o.sim_seed, "Seed of the simulator's noise (same seed, same run)")
       ->capture_default_str();
   app.add_option("--bind", o.bind, "Address to listen on")->capture_default_str();

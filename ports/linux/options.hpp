@@ -22,6 +22,9 @@ struct Options {
   std::string sim_profile = "g5500";
   double speedup = 1.0;
   std::string clock = "wall";  ///< wall, or manual: controller time moves only when told (tests)
+  /// --utc-start: UTC at controller time 0 under --clock manual or --speedup
+  /// (tracking tests); empty: the system clock at start.
+  std::string utc_start;
   std::uint32_t sim_seed = 1;
   std::string bind = "0.0.0.0";
   int web_port = 8080;

@@ -36,6 +36,7 @@
 #include "sntp_clock.hpp"
 #include "storage/flash_slots.hpp"
 #include "storage/settings_saver.hpp"
+#include "tracking/tle_catalog.hpp"
 #include "usb_cdc_port.hpp"
 #include "usb_personality.hpp"
 #include "web/http_session.hpp"
@@ -207,6 +208,10 @@ char g_boot_document[web::Api::kMaxDocumentBytes];
 Reboot g_reboot;
 PicoFlash g_flash;
 FlashSlots g_storage(g_flash);
+// The stored TLEs: their own two slots right below the settings.
+PicoFlash g_tle_flash(PicoFlash::kRegionBytes, PicoFlash::kTleRegionBytes);
+FlashSlots g_tle_storage(g_tle_flash);
+tracking::TleCatalog g_tles;
 // Between the web API and the flash, and the one that saves what the
 // protocols change (GS-232 calibration, WRC AZOFFSET, rotctld C). Its
 // document buffer is the start-up one, free once the settings are loaded.
@@ -501,6 +506,22 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
   api_context.pbkdf2_iterations = kPbkdf2Iterations;
   api_context.pbkdf2_slice = kPbkdf2SliceIterations;
   api_context.log = &log_port;
+  // Tracking: UTC from SNTP (refused until it has answered), one target
+  // evaluation (about 3 ms) per tick for the pass search and the plan, and
+  // GET /api/passes a slice per loop. The TLEs in their flash slots; a PUT
+  // while the rotator moves is refused (a flash write pauses this loop).
+  controller.attach_utc_clock(&wall_clock);
+  controller.set_track_budget(1);
+  api_context.passes_request_budget = 10;
+  api_context.passes_poll_budget = 1;
+  api_context.tle_save_while_moving = false;
+  if (g_tle_flash.region_free()) {
+    static char tle_text[tracking::TleCatalog::kMaxTextBytes];
+    g_tles.load(g_tle_storage, tle_text, sizeof tle_text);
+    api_context.tle_storage = &g_tle_storage;
+    std::printf("rotord: %u TLEs in flash\n", static_cast<unsigned>(g_tles.size()));
+  }
+  api_context.tles = &g_tles;
   static web::Api api(api_context);
   auto make_http = [] { return web::HttpSession(api); };
   lwip_port::ServerConfig http_config;

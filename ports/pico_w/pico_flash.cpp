@@ -12,7 +12,6 @@ extern "C" char __flash_binary_end;  // from the SDK's linker script
 namespace rotord::pico_w {
 namespace {
 
-constexpr std::size_t kRegionOffset = PICO_FLASH_SIZE_BYTES - PicoFlash::kRegionBytes;
 // Generous: flash_safe_execute only waits this long to get exclusive access.
 constexpr std::uint32_t kSafeTimeoutMs = 100;
 
@@ -35,14 +34,18 @@ void do_program(void* p) {
   flash_range_program(a->offset, a->data, a->length);
 }
 
-bool in_region(std::size_t offset, std::size_t length) {
-  return offset <= PicoFlash::kRegionBytes && length <= PicoFlash::kRegionBytes - offset;
-}
-
 }  // namespace
 
+std::size_t PicoFlash::region_offset() const {
+  return PICO_FLASH_SIZE_BYTES - end_gap_ - size_;
+}
+
+bool PicoFlash::in_region(std::size_t offset, std::size_t length) const {
+  return offset <= size_ && length <= size_ - offset;
+}
+
 bool PicoFlash::region_free() const {
-  return reinterpret_cast<std::uintptr_t>(&__flash_binary_end) <= XIP_BASE + kRegionOffset;
+  return reinterpret_cast<std::uintptr_t>(&__flash_binary_end) <= XIP_BASE + region_offset();
 }
 
 std::size_t PicoFlash::erase_size() const {
@@ -56,7 +59,7 @@ std::size_t PicoFlash::program_size() const {
 bool PicoFlash::read(std::size_t offset, void* out, std::size_t length) {
   if (!in_region(offset, length)) return false;
   // The flash is memory-mapped (XIP); erase and program flush the cache.
-  std::memcpy(out, reinterpret_cast<const void*>(XIP_BASE + kRegionOffset + offset), length);
+  std::memcpy(out, reinterpret_cast<const void*>(XIP_BASE + region_offset() + offset), length);
   return true;
 }
 
@@ -65,7 +68,7 @@ bool PicoFlash::erase(std::size_t offset, std::size_t length) {
   // One sector at a time, feeding the watchdog in between: a sector erase
   // takes 45 ms typically and up to 400 ms, with interrupts off.
   for (std::size_t done = 0; done < length; done += FLASH_SECTOR_SIZE) {
-    EraseArgs args{static_cast<std::uint32_t>(kRegionOffset + offset + done), FLASH_SECTOR_SIZE};
+    EraseArgs args{static_cast<std::uint32_t>(region_offset() + offset + done), FLASH_SECTOR_SIZE};
     if (flash_safe_execute(&do_erase, &args, kSafeTimeoutMs) != PICO_OK) return false;
     watchdog_update();
   }
@@ -74,7 +77,7 @@ bool PicoFlash::erase(std::size_t offset, std::size_t length) {
 
 bool PicoFlash::program(std::size_t offset, const void* data, std::size_t length) {
   if (!in_region(offset, length) || !region_free()) return false;
-  ProgramArgs args{static_cast<std::uint32_t>(kRegionOffset + offset),
+  ProgramArgs args{static_cast<std::uint32_t>(region_offset() + offset),
                    static_cast<const std::uint8_t*>(data), length};
   return flash_safe_execute(&do_program, &args, kSafeTimeoutMs) == PICO_OK;
 }

@@ -14,17 +14,33 @@ class PicoFlash final : public hal::Flash {
   /// Two 8 KB slots: the settings document is ~4 KB today and grows with the
   /// settings table; 4 KB slots would leave no headroom.
   static constexpr std::size_t kRegionBytes = 16 * 1024;
+  /// The stored TLEs (tracking/tle_catalog.hpp, at most 4.1 KB of text): two
+  /// 8 KB slots right below the settings.
+  static constexpr std::size_t kTleRegionBytes = 16 * 1024;
+
+  /// A region of `size` bytes ending `end_gap` bytes before the end of the
+  /// flash: the settings (default) at the very end, the TLEs below them.
+  explicit PicoFlash(std::size_t end_gap = 0, std::size_t size = kRegionBytes)
+      : size_(size), end_gap_(end_gap) {}
 
   /// True when the region lies after the program image (a larger image
   /// would be overwritten by the first save).
   bool region_free() const;
 
-  std::size_t size() const override { return kRegionBytes; }
+  std::size_t size() const override { return size_; }
   std::size_t erase_size() const override;
   std::size_t program_size() const override;
   bool read(std::size_t offset, void* out, std::size_t length) override;
   bool erase(std::size_t offset, std::size_t length) override;
   bool program(std::size_t offset, const void* data, std::size_t length) override;
+
+ private:
+  /// Where the region starts, as an offset into the flash.
+  std::size_t region_offset() const;
+  bool in_region(std::size_t offset, std::size_t length) const;
+
+  std::size_t size_;
+  std::size_t end_gap_;
 };
 
 }  // namespace rotord::pico_w

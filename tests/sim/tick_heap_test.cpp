@@ -73,6 +73,15 @@ class TickHeap : public ::testing::TestWithParam<const char*> {
   std::unique_ptr<Controller> controller_;
   Millis now_ = 0;
   long ticks_ = 0;
+  /// 2019-12-09T17:00:00Z + controller time.
+  class Clock final : public hal::WallClock {
+   public:
+    explicit Clock(const Millis* now) : now_(now) {}
+    std::optional<std::int64_t> unix_ms() const override { return 1575910800000LL + *now_; }
+
+   private:
+    const Millis* now_;
+  } clock_{&now_};
 };
 
 TEST_P(TickHeap, NoTickAllocatesWhateverTheControllerDoes) {
@@ -115,6 +124,19 @@ TEST_P(TickHeap, NoTickAllocatesWhateverTheControllerDoes) {
   c.reset();
   ASSERT_EQ(c.park(), Error::kOk);
   run_ms(60000);
+  // The tracking mode: pass search, planning and following the Sun (UTC =
+  // a fixed morning + controller time), then a STOP ends it.
+  c.attach_utc_clock(&clock_);
+  settings_.set(settings::Id::kStationLatDeg, 40.0);
+  settings_.set(settings::Id::kStationLonDeg, -105.0);
+  TrackRequest sun;
+  sun.kind = tracking::TargetKind::kSun;
+  sun.when = TrackWhen::kNow;
+  ASSERT_EQ(c.track(sun), TrackError::kOk);
+  run_ms(120000);
+  EXPECT_EQ(c.track_status().phase, TrackPhase::kTracking);
+  c.stop();
+  run_ms(1000);
 
   EXPECT_GT(ticks_, 15000);
   EXPECT_EQ(g_tick_allocations, 0) << "allocations inside Controller::tick";

@@ -68,9 +68,21 @@ TEST_F(HttpParse, LeadingEmptyLinesAreIgnored) {
 }
 
 TEST_F(HttpParse, OtherMethodsParseForA405) {
-  ASSERT_EQ(feed_all("DELETE /api/status HTTP/1.1\r\n\r\n"), Status::kComplete);
+  ASSERT_EQ(feed_all("PATCH /api/status HTTP/1.1\r\n\r\n"), Status::kComplete);
   EXPECT_EQ(p.request().method, Method::kOther);
-  EXPECT_EQ(p.request().method_text, "DELETE");
+  EXPECT_EQ(p.request().method_text, "PATCH");
+}
+
+TEST_F(HttpParse, PutDeleteAndTheQueryString) {
+  ASSERT_EQ(feed_all("DELETE /api/tle?object=ISS%20(ZARYA)&x=1 HTTP/1.1\r\n\r\n"),
+            Status::kComplete);
+  EXPECT_EQ(p.request().method, Method::kDelete);
+  EXPECT_EQ(p.request().path, "/api/tle");
+  EXPECT_EQ(p.request().query, "object=ISS%20(ZARYA)&x=1");
+  p.reset();
+  ASSERT_EQ(feed_all("PUT /api/tle HTTP/1.1\r\nContent-Length: 0\r\n\r\n"), Status::kComplete);
+  EXPECT_EQ(p.request().method, Method::kPut);
+  EXPECT_EQ(p.request().query, "");
 }
 
 std::string many_headers(int count) {

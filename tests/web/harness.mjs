@@ -33,8 +33,9 @@ export function tempDir() {
  * with `clock: 'manual'` controller time that moves only by advance().
  */
 export class Rotord {
-  constructor({ configPath, speedup = 10, profile = 'g5500', clock = 'wall' } = {}) {
+  constructor({ configPath, speedup = 10, profile = 'g5500', clock = 'wall', extraArgs = [] } = {}) {
     this.configPath = configPath;
+    this.extraArgs = extraArgs;  // e.g. ['--utc-start', '2019-12-09T19:15:00Z']
     this.speedup = speedup;
     this.profile = profile;
     this.clock = clock;
@@ -46,7 +47,7 @@ export class Rotord {
     const timing = this.clock === 'manual' ? ['--clock', 'manual'] : ['--speedup', String(this.speedup)];
     const args = ['--sim', this.profile, ...timing, '--bind', '127.0.0.1',
       '--web-port', String(this.port), '--wrc-port', '0', '--rotctld-port', '0',
-      '--gs232-port', '0', '--easycomm-port', '0', '--config', this.configPath];
+      '--gs232-port', '0', '--easycomm-port', '0', '--config', this.configPath, ...this.extraArgs];
     this.proc = spawn(ROTORD, args, { stdio: ['pipe', 'pipe', 'pipe'] });
     this.clockSeen = 0;
     const ready = new Promise((resolve, reject) => {
