@@ -6,6 +6,7 @@
 
 #include "json/json_writer.hpp"
 #include "mqtt/fixed_sink.hpp"
+#include "util/slice.hpp"
 
 namespace rotord::mqtt {
 namespace {
@@ -36,7 +37,7 @@ std::size_t copy_text(std::string_view from, char* out, std::size_t cap) {
 /// Splits an HTTP response into its status and body.
 int response_status(std::string_view response, std::string_view& body) {
   body = {};
-  if (response.size() < 12 || response.substr(0, 5) != "HTTP/") return 500;
+  if (response.size() < 12 || text::slice(response, 0, 5) != "HTTP/") return 500;
   const std::size_t space = response.find(' ');
   if (space == std::string_view::npos || space + 4 > response.size()) return 500;
   int status = 0;
@@ -46,7 +47,7 @@ int response_status(std::string_view response, std::string_view& body) {
     status = status * 10 + (c - '0');
   }
   const std::size_t end = response.find("\r\n\r\n");
-  if (end != std::string_view::npos) body = response.substr(end + 4);
+  if (end != std::string_view::npos) body = text::slice(response, end + 4);
   return status;
 }
 
@@ -155,7 +156,7 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
   ++commands_handled_;
   char name_copy[16];
   const std::string_view command(name_copy,
-                                 copy_text(name.substr(0, 15), name_copy, sizeof name_copy));
+                                 copy_text(text::slice(name, 0, 15), name_copy, sizeof name_copy));
   if (!known_command(name)) {
     publish_result(command, 404,
                    R"({"error":"unknown command: use goto, move, stop, park, reset or speed"})");

@@ -1,4 +1,5 @@
 #include "mqtt/station.hpp"
+#include "util/slice.hpp"
 
 #include <cstdlib>
 #include <cstring>
@@ -41,7 +42,7 @@ bool string_after(std::string_view json, std::string_view key, char* out, std::s
   const std::size_t start = at + key.size();
   const std::size_t end = json.find('"', start);
   if (end == std::string_view::npos) return false;
-  const std::string_view value = json.substr(start, end - start);
+  const std::string_view value = text::slice(json, start, end - start);
   if (value.find('\\') != std::string_view::npos) return false;
   copy(value, out, cap);
   return true;
@@ -70,8 +71,8 @@ bool Station::on_message(std::string_view topic, std::string_view payload) {
   const std::size_t second = topic.find('/', first + 1);
   if (second == std::string_view::npos || topic.find('/', second + 1) != std::string_view::npos)
     return false;
-  const std::string_view prefix = topic.substr(0, second);
-  const std::string_view leaf = topic.substr(second + 1);
+  const std::string_view prefix = text::slice(topic, 0, second);
+  const std::string_view leaf = text::slice(topic, second + 1);
   if (prefix.size() > kMaxPrefixBytes) return false;
   if (leaf == "state") {
     // Only rotord's status document counts (other devices use .../state too).
@@ -106,7 +107,7 @@ bool Station::on_message(std::string_view topic, std::string_view payload) {
     char web[kMaxUrlBytes];
     if (string_after(payload, R"("web":")", web, sizeof web)) {
       const std::string_view url(web);
-      const bool http = url.substr(0, 7) == "http://" || url.substr(0, 8) == "https://";
+      const bool http = text::slice(url, 0, 7) == "http://" || text::slice(url, 0, 8) == "https://";
       copy(http ? url : std::string_view(), e->web, sizeof e->web);
     }
     return true;

@@ -1,4 +1,5 @@
 #include "mqtt/topics.hpp"
+#include "util/slice.hpp"
 
 #include <cstring>
 
@@ -61,9 +62,9 @@ std::size_t join_topic(std::string_view prefix, std::string_view suffix, char* o
 std::string_view command_name(std::string_view prefix, std::string_view topic) {
   static constexpr std::string_view kCmd = "/cmd/";
   if (topic.size() <= prefix.size() + kCmd.size()) return {};
-  if (topic.substr(0, prefix.size()) != prefix) return {};
-  if (topic.substr(prefix.size(), kCmd.size()) != kCmd) return {};
-  const std::string_view name = topic.substr(prefix.size() + kCmd.size());
+  if (text::slice(topic, 0, prefix.size()) != prefix) return {};
+  if (text::slice(topic, prefix.size(), kCmd.size()) != kCmd) return {};
+  const std::string_view name = text::slice(topic, prefix.size() + kCmd.size());
   if (name.find('/') != std::string_view::npos) return {};
   return name;
 }
