@@ -29,7 +29,7 @@ int tenths(float deg) {
 
 std::size_t copy_text(std::string_view from, char* out, std::size_t cap) {
   const std::size_t n = from.size() < cap - 1 ? from.size() : cap - 1;
-  std::memcpy(out, from.data(), n);
+  if (n > 0) std::memcpy(out, from.data(), n);  // an empty view's data() may be null
   out[n] = '\0';
   return n;
 }
@@ -201,7 +201,7 @@ void Bridge::publish_result(std::string_view command, int status, std::string_vi
   if (head_len <= 0 || static_cast<std::size_t>(head_len) + body.size() + 1 > sizeof message_)
     return;
   std::memcpy(message_, head, static_cast<std::size_t>(head_len));
-  std::memcpy(message_ + head_len, body.data(), body.size());
+  if (!body.empty()) std::memcpy(message_ + head_len, body.data(), body.size());
   const std::size_t len = static_cast<std::size_t>(head_len) + body.size();
   message_[len] = '}';
   const std::size_t n = join_topic(prefix(), "result", topic_, sizeof topic_);

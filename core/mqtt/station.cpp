@@ -1,15 +1,16 @@
 #include "mqtt/station.hpp"
-#include "util/slice.hpp"
 
 #include <cstdlib>
 #include <cstring>
+
+#include "util/slice.hpp"
 
 namespace rotord::mqtt {
 namespace {
 
 void copy(std::string_view from, char* out, std::size_t cap) {
   const std::size_t n = from.size() < cap - 1 ? from.size() : cap - 1;
-  std::memcpy(out, from.data(), n);
+  if (n > 0) std::memcpy(out, from.data(), n);  // an empty view's data() may be null
   out[n] = '\0';
 }
 

@@ -22,14 +22,14 @@ std::size_t make_prefix(std::string_view setting, std::string_view host_name, ch
   std::size_t len = 0;
   if (!setting.empty()) {
     if (setting.size() + 1 > cap) return 0;
-    std::memcpy(out, setting.data(), setting.size());
+    if (!setting.empty()) std::memcpy(out, setting.data(), setting.size());
     len = setting.size();
   } else {
     static constexpr std::string_view kRoot = "rotord/";
     const std::string_view host = host_name.empty() ? std::string_view("rotord") : host_name;
     if (kRoot.size() + host.size() + 1 > cap) return 0;
-    std::memcpy(out, kRoot.data(), kRoot.size());
-    std::memcpy(out + kRoot.size(), host.data(), host.size());
+    if (!kRoot.empty()) std::memcpy(out, kRoot.data(), kRoot.size());
+    if (!host.empty()) std::memcpy(out + kRoot.size(), host.data(), host.size());
     len = kRoot.size() + host.size();
   }
   out[len] = '\0';
@@ -52,9 +52,9 @@ std::size_t join_topic(std::string_view prefix, std::string_view suffix, char* o
                        std::size_t cap) {
   const std::size_t len = prefix.size() + 1 + suffix.size();
   if (len + 1 > cap) return 0;
-  std::memcpy(out, prefix.data(), prefix.size());
+  if (!prefix.empty()) std::memcpy(out, prefix.data(), prefix.size());
   out[prefix.size()] = '/';
-  std::memcpy(out + prefix.size() + 1, suffix.data(), suffix.size());
+  if (!suffix.empty()) std::memcpy(out + prefix.size() + 1, suffix.data(), suffix.size());
   out[len] = '\0';
   return len;
 }
