@@ -254,6 +254,25 @@ bool Daemon::start_controller() {
     log::info("%s listening on %s:%u", servers_.back()->name().c_str(), options_.bind.c_str(),
               static_cast<unsigned>(servers_.back()->port()));
   }
+  return start_udp(bind);
+}
+
+bool Daemon::start_udp(const asio::ip::address& bind) {
+  datagram_handlers_ = std::make_unique<protocol::DatagramHandlers>(*controller_);
+  for (const protocol::DatagramInfo& p : protocol::datagram_protocols()) {
+    if (!settings_.b(p.enabled)) continue;
+    const auto port = static_cast<std::uint16_t>(settings_.i(p.port));
+    try {
+      udp_servers_.push_back(std::make_unique<UdpServer>(io_, bind, port, std::string(p.name),
+                                                         datagram_handlers_->get(p.personality)));
+    } catch (const std::system_error& e) {
+      log::error("cannot listen on UDP %s:%u: %s", options_.bind.c_str(),
+                 static_cast<unsigned>(port), e.what());
+      return false;
+    }
+    log::info("%s listening on UDP %s:%u", udp_servers_.back()->name().c_str(),
+              options_.bind.c_str(), static_cast<unsigned>(udp_servers_.back()->port()));
+  }
   return true;
 }
 
@@ -325,6 +344,8 @@ void Daemon::reboot() {
   log::info("restarting the controller");
   stop_motors(controller_.get(), nullptr);
   servers_.clear();
+  udp_servers_.clear();
+  datagram_handlers_.reset();
   mqtt_.reset();
   api_.reset();
   controller_.reset();
@@ -407,6 +428,7 @@ void Daemon::stop() {
   mqtt_.reset();
   servers_.clear();
   serial_lines_.clear();
+  udp_servers_.clear();
   io_.stop();
 }
 

@@ -12,6 +12,7 @@
 #include "metrics/registry.hpp"
 #include "mqtt_client.hpp"
 #include "options.hpp"
+#include "protocol/datagram_registry.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
 #include "service_notify.hpp"
@@ -22,6 +23,7 @@
 #include "tcp_server.hpp"
 #include "tle_fetcher.hpp"
 #include "tracking/tle_catalog.hpp"
+#include "udp_server.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord::linux_port {
@@ -58,6 +60,8 @@ class Daemon final : private web::RebootHook {
   /// Opens every --pty and --serial line the first time; after a controller
   /// restart only gives them sessions on the new controller (paths stay).
   bool attach_serial_lines(const std::vector<ServiceConfig>& services);
+  /// Listens for every enabled UDP rotor protocol (docs/protocols/udp.md).
+  bool start_udp(const asio::ip::address& bind);
   /// Sleeps until the scheduler's next deadline (start + n x kTickMs).
   void schedule_tick();
   void on_tick();
@@ -139,6 +143,10 @@ class Daemon final : private web::RebootHook {
   std::chrono::steady_clock::time_point reboot_at_;
   std::vector<std::unique_ptr<TcpServer>> servers_;
   std::vector<std::unique_ptr<SerialTransport>> serial_lines_;
+  /// The UDP rotor protocols that are enabled (n1mm.*, pst.*), on the
+  /// controller of the moment; the servers go before their handlers.
+  std::unique_ptr<protocol::DatagramHandlers> datagram_handlers_;
+  std::vector<std::unique_ptr<UdpServer>> udp_servers_;
   std::unique_ptr<AvahiPublisher> avahi_;  ///< --avahi on, not bound to loopback
   std::chrono::steady_clock::time_point wall_start_;
   Millis now_ms_ = 0;
