@@ -153,6 +153,30 @@ TEST_F(UdpRotorTest, AReadOnlySenderIsRefusedMovesButStopsAndReads) {
   EXPECT_EQ(send(pst, "<PST><AZIMUTH>200</AZIMUTH></PST>"), DatagramOutcome::kRefused);
 }
 
+TEST_F(UdpRotorTest, EveryPstRowThatChangesStateIsRefusedToAReadOnlySender) {
+  r.controller->settings().set_text(Id::kAccessControlNetworks, "10.0.0.0/8");
+  for (const PstRotor::Command& c : PstRotor::commands()) {
+    std::string body;
+    switch (c.arg) {
+      case PstRotor::Arg::kNumber:
+        body = "<" + std::string(c.name) + ">100</" + std::string(c.name) + ">";
+        break;
+      case PstRotor::Arg::kSwitch:
+        body = "<" + std::string(c.name) + ">1</" + std::string(c.name) + ">";
+        break;
+      case PstRotor::Arg::kLocator:
+        body = "<" + std::string(c.name) + ">KO02</" + std::string(c.name) + ">";
+        break;
+      case PstRotor::Arg::kQuery:
+        body = std::string(c.name);
+        break;
+    }
+    const DatagramOutcome outcome = send(pst, "<PST>" + body + "</PST>");
+    EXPECT_EQ(outcome == DatagramOutcome::kRefused, c.changes_state) << c.name;
+    EXPECT_FALSE(has_target()) << c.name;
+  }
+}
+
 TEST_F(UdpRotorTest, PstGoesToStopsParksAndAnswersQueriesToPortPlusOne) {
   EXPECT_EQ(send(pst, "<PST><AZIMUTH>85</AZIMUTH></PST>"), DatagramOutcome::kDone);
   EXPECT_NEAR(az_target(), 85.0f, 0.01f);
