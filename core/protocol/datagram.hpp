@@ -62,6 +62,10 @@ class DatagramProtocol {
   /// One datagram from `from`; the replies it gets go into `out`.
   virtual DatagramOutcome receive(std::string_view datagram, const access::Peer& from,
                                   DatagramReplies& out) = 0;
+  /// Called by the port after every control tick: a datagram the protocol
+  /// sends by itself (N1MM+'s heading while the rotator turns) goes into
+  /// `out`, to the IPv4 address in `to`; false when there is none.
+  virtual bool poll(DatagramReplies& /*out*/, access::Peer& /*to*/) { return false; }
 };
 
 /// Whether `from` may move the rotator: the rule of the line protocols

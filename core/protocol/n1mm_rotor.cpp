@@ -140,18 +140,40 @@ DatagramOutcome N1mmRotor::receive(std::string_view datagram, const access::Peer
     if (controller_.go_to(bearing_deg, std::nullopt, AzTarget::kCompass) != Error::kOk)
       outcome = DatagramOutcome::kFailed;
   }
-  const long report_port = controller_.settings().i(settings::Id::kN1mmReportPort);
-  if (report_port > 0) {
-    // The rotator's heading as N1MM's rotor program reports it: tenths of a
-    // degree, 0..3599, under the name N1MM+ knows the rotor by.
-    const std::string_view label = wanted.empty() ? std::string_view(name, name_size) : wanted;
-    const float bearing = wrap_360(controller_.status().az.position_deg);
-    long tenths = std::lround(static_cast<double>(bearing) * 10.0);
-    if (tenths >= 3600) tenths = 0;
-    out.add(static_cast<std::uint16_t>(report_port), "%.*s @ %ld", static_cast<int>(label.size()),
-            label.data(), tenths);
+  const std::string_view label = wanted.empty() ? std::string_view(name, name_size) : wanted;
+  report(label, out);
+  // Then every second while it turns, to this sender (IPv4: the address the
+  // ports can send to without keeping the message).
+  if (from.kind == access::Peer::Kind::kIpv4 && label.size() < sizeof(report_name_)) {
+    report_to_ = from;
+    reporting_ = true;
+    next_report_ms_ = controller_.now() + kReportPeriodMs;
+    report_name_size_ = label.size();
+    for (std::size_t i = 0; i < label.size(); ++i) report_name_[i] = label[i];
   }
   return outcome;
+}
+
+bool N1mmRotor::poll(DatagramReplies& out, access::Peer& to) {
+  if (!reporting_ || controller_.now() < next_report_ms_) return false;
+  next_report_ms_ = controller_.now() + kReportPeriodMs;
+  // The report after the rotator stopped is the last.
+  if (!controller_.status().moving()) reporting_ = false;
+  report(std::string_view(report_name_, report_name_size_), out);
+  to = report_to_;
+  return out.count() > 0;
+}
+
+void N1mmRotor::report(std::string_view name, DatagramReplies& out) const {
+  const int report_port = controller_.settings().i(settings::Id::kN1mmReportPort);
+  if (report_port <= 0) return;
+  // The rotator's heading as N1MM's rotor program reports it: tenths of a
+  // degree, 0..3599, under the name N1MM+ knows the rotor by.
+  const float bearing = wrap_360(controller_.status().az.position_deg);
+  long tenths = std::lround(static_cast<double>(bearing) * 10.0);
+  if (tenths >= 3600) tenths = 0;
+  out.add(static_cast<std::uint16_t>(report_port), "%.*s @ %ld", static_cast<int>(name.size()),
+          name.data(), tenths);
 }
 
 }  // namespace rotord::protocol

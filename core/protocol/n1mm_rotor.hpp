@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "protocol/datagram.hpp"
+#include "util/time.hpp"
 
 namespace rotord::protocol {
 
@@ -14,7 +15,9 @@ namespace rotord::protocol {
 ///   <N1MMRotor><stop>Yagi 20</stop></N1MMRotor>
 /// A message for another rotor (n1mm.rotor_name) is left alone. N1MM+ has
 /// no error reply: bad input is ignored, and after each message for this
-/// rotor the heading goes back as `<name> @ <tenths>` (n1mm.report_port).
+/// rotor the heading goes back as `<name> @ <tenths>` (n1mm.report_port),
+/// then every second while the rotator turns and once when it stops, to the
+/// last sender, so N1MM+'s rotor window follows the antenna.
 class N1mmRotor final : public DatagramProtocol {
  public:
   /// What an element's value must be.
@@ -41,9 +44,22 @@ class N1mmRotor final : public DatagramProtocol {
 
   DatagramOutcome receive(std::string_view datagram, const access::Peer& from,
                           DatagramReplies& out) override;
+  bool poll(DatagramReplies& out, access::Peer& to) override;
+
+  /// Controller time between two heading reports while the rotator turns.
+  static constexpr Millis kReportPeriodMs = 1000;
 
  private:
+  /// The heading report, under `name` when n1mm.rotor_name is empty.
+  void report(std::string_view name, DatagramReplies& out) const;
+
   Controller& controller_;
+  // Where the reports go while the rotator turns after a message.
+  access::Peer report_to_{};
+  bool reporting_ = false;
+  Millis next_report_ms_ = 0;
+  char report_name_[33] = {};
+  std::size_t report_name_size_ = 0;
 };
 
 }  // namespace rotord::protocol

@@ -521,6 +521,7 @@ void Daemon::serve(Millis wall_ms) {
   if (mqtt_) mqtt_->poll(wall_ms);
   for (auto& server : servers_) server->poll(wall_ms);
   for (auto& line : serial_lines_) line->poll(wall_ms);
+  for (auto& udp : udp_servers_) udp->poll();
   save_changed_settings(false);
   refresh_tles();
   if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();

@@ -37,11 +37,22 @@ void UdpServer::handle(std::size_t size) {
   if (outcome != protocol::DatagramOutcome::kDone)
     log::debug("%s: datagram from %s %s", name_.c_str(), address.to_string().c_str(),
                protocol::outcome_name(outcome));
+  send(replies, address);
+}
+
+void UdpServer::poll() {
+  protocol::DatagramReplies replies;
+  access::Peer to;
+  if (!protocol_.poll(replies, to) || to.kind != access::Peer::Kind::kIpv4) return;
+  send(replies, asio::ip::address_v4(to.ipv4));
+}
+
+void UdpServer::send(const protocol::DatagramReplies& replies, const asio::ip::address& to) {
   for (std::size_t i = 0; i < replies.count(); ++i) {
     const protocol::DatagramReplies::Reply& reply = replies[i];
     std::error_code ignored;  // a reply that cannot go out is lost, as UDP may lose it
     socket_.send_to(asio::buffer(reply.bytes.data(), reply.size),
-                    asio::ip::udp::endpoint(address, reply.port), 0, ignored);
+                    asio::ip::udp::endpoint(to, reply.port), 0, ignored);
   }
 }
 

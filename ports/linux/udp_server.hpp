@@ -24,10 +24,14 @@ class UdpServer {
 
   std::uint16_t port() const { return port_; }
   const std::string& name() const { return name_; }
+  /// After every control tick: what the protocol sends by itself (N1MM+'s
+  /// heading while the rotator turns).
+  void poll();
 
  private:
   void receive();
   void handle(std::size_t size);
+  void send(const protocol::DatagramReplies& replies, const asio::ip::address& to);
 
   asio::ip::udp::socket socket_;
   std::string name_;

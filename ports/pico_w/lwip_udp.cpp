@@ -55,6 +55,22 @@ void UdpService::handle(std::size_t size, const void* from_addr) {
   protocol::DatagramReplies replies;
   last_outcome_ = protocol_.receive(std::string_view(in_.data(), size), peer, replies);
   ++datagrams_;
+  send(replies, addr);
+}
+
+void UdpService::poll() {
+  protocol::DatagramReplies replies;
+  access::Peer to;
+  if (pcb_ == nullptr || !protocol_.poll(replies, to) || to.kind != access::Peer::Kind::kIpv4)
+    return;
+  ip_addr_t addr{};
+  IP_SET_TYPE_VAL(addr, IPADDR_TYPE_V4);
+  ip4_addr_set_u32(ip_2_ip4(&addr), lwip_htonl(to.ipv4));
+  send(replies, &addr);
+}
+
+void UdpService::send(const protocol::DatagramReplies& replies, const void* to_addr) {
+  const auto* addr = static_cast<const ip_addr_t*>(to_addr);
   for (std::size_t i = 0; i < replies.count(); ++i) {
     const protocol::DatagramReplies::Reply& reply = replies[i];
     pbuf* q = pbuf_alloc(PBUF_TRANSPORT, static_cast<u16_t>(reply.size), PBUF_RAM);

@@ -34,6 +34,9 @@ class UdpService {
   bool running() const { return pcb_ != nullptr; }
   std::uint16_t port() const { return port_; }
   const char* name() const { return name_; }
+  /// After every control tick: what the protocol sends by itself (N1MM+'s
+  /// heading while the rotator turns).
+  void poll();
   /// Datagrams handled, and what became of the last (tests, logs).
   std::uint32_t datagrams() const { return datagrams_; }
   protocol::DatagramOutcome last_outcome() const { return last_outcome_; }
@@ -41,6 +44,7 @@ class UdpService {
  private:
   struct Glue;
   void handle(std::size_t size, const void* from_addr);
+  void send(const protocol::DatagramReplies& replies, const void* to_addr);
 
   const char* name_;
   protocol::DatagramProtocol& protocol_;

@@ -117,6 +117,7 @@ struct Running {
   Wifi* wifi = nullptr;
   web::Api* api = nullptr;
   std::span<lwip_port::TcpServer* const> servers;
+  std::span<lwip_port::UdpService* const> udp_services;
 };
 Running g_running;
 
@@ -239,7 +240,8 @@ void network_start(const NetworkDeps& d, Millis now) {
   static lwip_port::UdpService pst(udp_name(DatagramPersonality::kPst),
                                    datagram_handlers.get(DatagramPersonality::kPst));
   static_assert(protocol::kDatagramPersonalityCount == 2, "serve every UDP protocol");
-  lwip_port::UdpService* const udp_services[] = {&n1mm, &pst};
+  static lwip_port::UdpService* const udp_services[] = {&n1mm, &pst};
+  g_running.udp_services = udp_services;
   if (g_running.network) {
     wifi.begin(now);
     // lwIP listens on every address, so the servers work on the station and
@@ -271,6 +273,7 @@ void network_tick(Millis now) {
   g_running.api->poll(now);  // hold-to-move's dead-man, with or without a connection
   if (!g_running.network) return;
   for (lwip_port::TcpServer* server : g_running.servers) server->poll(now);
+  for (lwip_port::UdpService* service : g_running.udp_services) service->poll();
   g_running.wifi->step(now);
 }
 

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "daemon_process.hpp"
 #include "http_client.hpp"
@@ -105,10 +106,19 @@ class UdpRotor : public ::testing::Test {
     client.send_to(pst_port, "<PST>EL?</PST>");
     return pst_replies->receive();
   }
-  /// Sends an N1MM+ message and returns the heading report it gets.
+  /// Sends an N1MM+ message and returns the heading report it gets (the
+  /// reports sent meanwhile while the rotator turned are read first).
   std::string n1mm(const std::string& datagram) {
+    drain_reports();
     client.send_to(n1mm_port, datagram);
     return n1mm_reports->receive();
+  }
+  /// The reports that arrived so far.
+  std::vector<std::string> drain_reports() {
+    std::vector<std::string> reports;
+    for (std::string r = n1mm_reports->receive(0); !r.empty(); r = n1mm_reports->receive(0))
+      reports.push_back(r);
+    return reports;
   }
   std::string status() { return http(daemon->ports().web, "GET", "/api/status").body; }
   double az_target() {
@@ -172,11 +182,18 @@ TEST_F(UdpRotor, N1mmGoesToTheHeadingWithOffsetAndBidirectionalAndStops) {
   EXPECT_NEAR(az_target(), 240.0, 0.1);
   daemon->advance_ms(90000);
   EXPECT_EQ(pst_then_az(""), "AZ:240\r");
+  // Every second while it turned, then once stopped, as N1MM+'s window shows it.
+  const std::vector<std::string> reports = drain_reports();
+  ASSERT_GE(reports.size(), 2u);
+  ASSERT_EQ(reports.back().rfind("Yagi 20 @ ", 0), 0u);
+  EXPECT_NEAR(std::stoi(reports.back().substr(10)), 2400, 10);  // within the axis tolerance
   // A bidirectional beam for 80 deg: 260 is 20 deg away, 80 is 160.
   n1mm(n1mm_goazi("Yagi 20", "80", "0", "1"));
   EXPECT_NEAR(az_target(), 260.0, 0.1);
   daemon->advance_ms(30000);
-  EXPECT_EQ(n1mm("<N1MMRotor><stop>Yagi 20</stop></N1MMRotor>"), "Yagi 20 @ 2600");
+  const std::string stopped = n1mm("<N1MMRotor><stop>Yagi 20</stop></N1MMRotor>");
+  ASSERT_EQ(stopped.rfind("Yagi 20 @ ", 0), 0u);
+  EXPECT_NEAR(std::stoi(stopped.substr(10)), 2600, 10);
   // Another rotor's messages are left alone (the log says when it was read).
   client.send_to(n1mm_port, n1mm_goazi("Tribander", "10", "0", "0"));
   ASSERT_TRUE(daemon->wait_for_output("for another rotor")) << daemon->output();

@@ -34,6 +34,10 @@ using protocol::DatagramOutcome;
 using settings::Id;
 using testing::CoreLock;
 
+constexpr Millis N1mmRotorPeriod() {
+  return protocol::N1mmRotor::kReportPeriodMs;
+}
+
 /// A raw-API UDP pcb on the netif's address and what it received.
 struct Listener {
   udp_pcb* pcb = nullptr;
@@ -185,6 +189,13 @@ TEST_F(LwipUdpTest, N1mmGoToWithItsHeadingReport) {
                     "<bidirectional>0</bidirectional><freqband>14</freqband></N1MMRotor>"),
             DatagramOutcome::kDone);
   EXPECT_NEAR(az_target(), 330.0f, 0.01f);
+  EXPECT_EQ(next(reports), "Yagi 20 @ 1000");
+  // A second later, still turning: the port's poll sends the heading again.
+  {
+    CoreLock lock;
+    rotator.run_ms(N1mmRotorPeriod());
+    n1mm.poll();
+  }
   EXPECT_EQ(next(reports), "Yagi 20 @ 1000");
   EXPECT_EQ(handled(n1mm, "<N1MMRotor><stop>Tribander</stop></N1MMRotor>"),
             DatagramOutcome::kNotForUs);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "fake_rotator.hpp"
 #include "protocol/datagram_registry.hpp"
@@ -77,6 +78,36 @@ TEST_F(UdpRotorTest, N1mmGoesToTheHeadingAndReportsItBack) {
   EXPECT_EQ(send(n1mm, "<N1MMRotor><stop>Yagi 20</stop></N1MMRotor>"), DatagramOutcome::kDone);
   EXPECT_FALSE(has_target());
   EXPECT_EQ(replies[0].text(), "Yagi 20 @ 1000");
+}
+
+TEST_F(UdpRotorTest, N1mmReportsTheHeadingEverySecondWhileTurningThenOnceStopped) {
+  DatagramReplies out;
+  access::Peer to;
+  EXPECT_FALSE(n1mm.poll(out, to));  // nothing asked yet
+  EXPECT_EQ(send(n1mm, goazi("Yagi 20", "130")), DatagramOutcome::kDone);
+  // The antenna turns 2 deg per 100 ms (the test is the plant), polled
+  // after every tick as the ports do.
+  std::vector<std::string> reports;
+  float az = 100.0f;
+  for (int step = 0; step < 60; ++step) {
+    if (az < 130.0f) az += 2.0f;
+    r.az.set_deg(az);
+    for (int tick = 0; tick < 10; ++tick) {
+      r.run_ms(10);
+      out = {};
+      if (n1mm.poll(out, to)) {
+        EXPECT_EQ(to.ipv4, lan.ipv4);
+        EXPECT_EQ(out[0].port, 13010);
+        reports.emplace_back(out[0].text());
+      }
+    }
+  }
+  ASSERT_FALSE(status().moving());
+  // About one a second while turning (about 1.5 s), then the last at rest.
+  ASSERT_GE(reports.size(), 2u);
+  EXPECT_LE(reports.size(), 4u);
+  EXPECT_EQ(reports[0].rfind("Yagi 20 @ 1", 0), 0u);
+  EXPECT_EQ(reports.back().substr(0, 12), "Yagi 20 @ 13");
 }
 
 TEST_F(UdpRotorTest, N1mmAppliesTheOffsetAndPicksTheNearerEndOfABidirectionalBeam) {
