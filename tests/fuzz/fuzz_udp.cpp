@@ -28,7 +28,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   rotator.run_ms(20);
   protocol::DatagramReplies replies;
   const DatagramOutcome outcome = p.receive(datagram, from, replies);
-  rotator.run_ms(50);
+  rotator.run_ms(1100);
+  // What the protocol sends by itself afterwards goes to the sender only.
+  protocol::DatagramReplies later;
+  access::Peer to;
+  if (p.poll(later, to) && (to.ipv4 != from.ipv4 || later.count() == 0)) std::abort();
   const RotatorStatus s = rotator.controller->status();
   // Bad input, an oversize datagram or a read-only sender never moves it.
   const bool may_move = outcome == DatagramOutcome::kDone;
