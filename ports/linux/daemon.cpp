@@ -254,6 +254,25 @@ bool Daemon::start_controller() {
     log::info("%s listening on %s:%u", servers_.back()->name().c_str(), options_.bind.c_str(),
               static_cast<unsigned>(servers_.back()->port()));
   }
+  return start_udp(bind);
+}
+
+bool Daemon::start_udp(const asio::ip::address& bind) {
+  datagram_handlers_ = std::make_unique<protocol::DatagramHandlers>(*controller_);
+  for (const protocol::DatagramInfo& p : protocol::datagram_protocols()) {
+    if (!settings_.b(p.enabled)) continue;
+    const auto port = static_cast<std::uint16_t>(settings_.i(p.port));
+    try {
+      udp_servers_.push_back(std::make_unique<UdpServer>(io_, bind, port, std::string(p.name),
+                                                         datagram_handlers_->get(p.personality)));
+    } catch (const std::system_error& e) {
+      log::error("cannot listen on UDP %s:%u: %s", options_.bind.c_str(),
+                 static_cast<unsigned>(port), e.what());
+      return false;
+    }
+    log::info("%s listening on UDP %s:%u", udp_servers_.back()->name().c_str(),
+              options_.bind.c_str(), static_cast<unsigned>(udp_servers_.back()->port()));
+  }
   return true;
 }
 
@@ -335,6 +354,8 @@ void Daemon::reboot() {
   log::info("restarting the controller");
   stop_motors(controller_.get(), nullptr);
   servers_.clear();
+  udp_servers_.clear();
+  datagram_handlers_.reset();
   mqtt_.reset();
   api_.reset();
   controller_.reset();
@@ -417,6 +438,7 @@ void Daemon::stop() {
   mqtt_.reset();
   servers_.clear();
   serial_lines_.clear();
+  udp_servers_.clear();
   io_.stop();
 }
 
@@ -509,6 +531,7 @@ void Daemon::serve(Millis wall_ms) {
   if (mqtt_) mqtt_->poll(wall_ms);
   for (auto& server : servers_) server->poll(wall_ms);
   for (auto& line : serial_lines_) line->poll(wall_ms);
+  for (auto& udp : udp_servers_) udp->poll();
   save_changed_settings(false);
   refresh_tles();
   if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();

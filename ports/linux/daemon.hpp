@@ -13,6 +13,7 @@
 #include "mqtt_client.hpp"
 #include "options.hpp"
 #include "protocol/console_session.hpp"
+#include "protocol/datagram_registry.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
 #include "service_notify.hpp"
@@ -23,6 +24,7 @@
 #include "tcp_server.hpp"
 #include "tle_fetcher.hpp"
 #include "tracking/tle_catalog.hpp"
+#include "udp_server.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord::linux_port {
@@ -59,6 +61,8 @@ class Daemon final : private web::RebootHook {
   /// Opens every --pty and --serial line the first time; after a controller
   /// restart only gives them sessions on the new controller (paths stay).
   bool attach_serial_lines(const std::vector<ServiceConfig>& services);
+  /// Listens for every enabled UDP rotor protocol (docs/protocols/udp.md).
+  bool start_udp(const asio::ip::address& bind);
   /// Sleeps until the scheduler's next deadline (start + n x kTickMs).
   void schedule_tick();
   void on_tick();
@@ -153,6 +157,10 @@ class Daemon final : private web::RebootHook {
   protocol::ConsolePort console_port_{&defaults_, &console_scratch_, &console_system_, "Linux"};
   std::vector<std::unique_ptr<TcpServer>> servers_;
   std::vector<std::unique_ptr<SerialTransport>> serial_lines_;
+  /// The UDP rotor protocols that are enabled (n1mm.*, pst.*), on the
+  /// controller of the moment; the servers go before their handlers.
+  std::unique_ptr<protocol::DatagramHandlers> datagram_handlers_;
+  std::vector<std::unique_ptr<UdpServer>> udp_servers_;
   std::unique_ptr<AvahiPublisher> avahi_;  ///< --avahi on, not bound to loopback
   std::chrono::steady_clock::time_point wall_start_;
   Millis now_ms_ = 0;

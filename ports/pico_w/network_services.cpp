@@ -6,9 +6,11 @@
 #include <cstdio>
 
 #include "lwip_transport.hpp"
+#include "lwip_udp.hpp"
 #include "pico/cyw43_arch.h"
 #include "pico_crypto.hpp"
 #include "pico_flash.hpp"
+#include "protocol/datagram_registry.hpp"
 #include "sntp_clock.hpp"
 #include "storage/flash_slots.hpp"
 #include "tracking/tle_catalog.hpp"
@@ -117,6 +119,7 @@ struct Running {
   Wifi* wifi = nullptr;
   web::Api* api = nullptr;
   std::span<lwip_port::TcpServer* const> servers;
+  std::span<lwip_port::UdpService* const> udp_services;
 };
 Running g_running;
 
@@ -227,6 +230,20 @@ void network_start(const NetworkDeps& d, Millis now) {
   g_running.wifi = &wifi;
   g_running.api = &api;
   g_running.servers = servers;
+  // The UDP rotor messages (docs/protocols/udp.md), each when enabled:
+  // one lwIP UDP pcb apiece (config/lwipopts.h counts them).
+  static protocol::DatagramHandlers datagram_handlers(controller);
+  const auto udp_name = [](protocol::DatagramPersonality p) {
+    return protocol::datagram_protocols()[static_cast<std::size_t>(p)].name.data();  // literals
+  };
+  using protocol::DatagramPersonality;
+  static lwip_port::UdpService n1mm(udp_name(DatagramPersonality::kN1mm),
+                                    datagram_handlers.get(DatagramPersonality::kN1mm));
+  static lwip_port::UdpService pst(udp_name(DatagramPersonality::kPst),
+                                   datagram_handlers.get(DatagramPersonality::kPst));
+  static_assert(protocol::kDatagramPersonalityCount == 2, "serve every UDP protocol");
+  static lwip_port::UdpService* const udp_services[] = {&n1mm, &pst};
+  g_running.udp_services = udp_services;
   if (g_running.network) {
     wifi.begin(now);
     // lwIP listens on every address, so the servers work on the station and
@@ -236,6 +253,16 @@ void network_start(const NetworkDeps& d, Millis now) {
         std::printf("rotord: %s on port %u\n", server->name(), server->port());
       else
         std::printf("rotord: %s: cannot listen\n", server->name());
+    }
+    for (const protocol::DatagramInfo& info : protocol::datagram_protocols()) {
+      if (!settings.b(info.enabled)) continue;
+      lwip_port::UdpService& service = *udp_services[static_cast<std::size_t>(info.personality)];
+      const auto port = static_cast<std::uint16_t>(settings.i(info.port));
+      if (service.start(port))
+        std::printf("rotord: %s on UDP port %u\n", service.name(), service.port());
+      else
+        std::printf("rotord: %s: cannot listen on UDP port %u\n", service.name(),
+                    static_cast<unsigned>(port));
     }
   }
 }
@@ -248,6 +275,7 @@ void network_tick(Millis now) {
   g_running.api->poll(now);  // hold-to-move's dead-man, with or without a connection
   if (!g_running.network) return;
   for (lwip_port::TcpServer* server : g_running.servers) server->poll(now);
+  for (lwip_port::UdpService* service : g_running.udp_services) service->poll();
   g_running.wifi->step(now);
 }
 

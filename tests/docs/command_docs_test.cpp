@@ -15,6 +15,8 @@
 #include "protocol/console_session.hpp"
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
+#include "protocol/n1mm_rotor.hpp"
+#include "protocol/pst_rotor.hpp"
 #include "protocol/rotctld_commands.hpp"
 #include "protocol/seed_session.hpp"
 #include "protocol/wrc_session.hpp"
@@ -130,6 +132,17 @@ TEST(CommandDocs, Gs232PageListsExactlyTheGs232Commands) {
   for (const std::string& cell : column(read_doc("docs/protocols/gs232.md"), "## Commands", 0))
     for (const std::string& code : codes(cell)) documented.insert(code);
   EXPECT_EQ(documented, names_of(protocol::Gs232Session::commands()));
+}
+
+TEST(CommandDocs, UdpPageListsExactlyTheN1mmElementsAndPstCommands) {
+  const std::string doc = read_doc("docs/protocols/udp.md");
+  Names elements, commands;
+  for (const std::string& cell : column(doc, "## N1MM+ elements", 0))
+    for (const std::string& code : codes(cell)) elements.insert(code);
+  for (const std::string& cell : column(doc, "## PstRotator commands", 0))
+    for (const std::string& code : codes(cell)) commands.insert(code);
+  EXPECT_EQ(elements, names_of(protocol::N1mmRotor::elements()));
+  EXPECT_EQ(commands, names_of(protocol::PstRotor::commands()));
 }
 
 TEST(CommandDocs, EasycommPageListsExactlyTheEasycommCommands) {

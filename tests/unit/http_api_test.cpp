@@ -280,8 +280,9 @@ TEST_F(HttpApi, SchemaComesFromTheTable) {
   EXPECT_EQ(res.status, 200);
   EXPECT_TRUE(JsonObjectReader(res.body).valid());
   EXPECT_TRUE(
-      has(res, R"("groups":["Rotator","Azimuth","Elevation","Magnetometer","Pins",)"
-               R"("Raspberry Pi","GS-232","USB","Network","Access","Station","MQTT","Tracking"])"))
+      has(res,
+          R"("groups":["Rotator","Azimuth","Elevation","Magnetometer","Pins",)"
+          R"("Raspberry Pi","GS-232","UDP","USB","Network","Access","Station","MQTT","Tracking"])"))
       << res.body;
   EXPECT_TRUE(has(res, R"({"key":"az.drive","type":"enum","unit":"","min":0,"max":3,)"
                        R"("default":"relay","group":"Azimuth")"));

@@ -26,7 +26,9 @@
 // Easycomm, seed: 6).
 #define MEMP_NUM_TCP_PCB 22
 #define MEMP_NUM_TCP_PCB_LISTEN 6
-#define MEMP_NUM_UDP_PCB 6
+// UDP: DHCP client and server, DNS, SNTP, mDNS, and the two rotor
+// message ports (N1MM+, PstRotator; docs/protocols/udp.md).
+#define MEMP_NUM_UDP_PCB 8
 
 #define LWIP_ARP 1
 #define LWIP_ETHERNET 1
