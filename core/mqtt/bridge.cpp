@@ -6,6 +6,7 @@
 
 #include "json/json_writer.hpp"
 #include "mqtt/fixed_sink.hpp"
+#include "net/line_access.hpp"
 #include "util/slice.hpp"
 
 namespace rotord::mqtt {
@@ -173,7 +174,17 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
                    R"({"error":"mqtt.control is off: only stop is obeyed from the broker"})");
     return;
   }
-  // The REST API's own handler: the same bodies, validation and errors.
+  if (command != "stop" && !access::may_control(api_->settings(), broker_peer_)) {
+    // The line protocols' allow-list, applied to the broker's address (the
+    // REST API's answer to a read-only caller is a 403 too).
+    publish_result(
+        command, 403,
+        R"({"error":"read-only: the broker's address is not in access.control_networks"})");
+    return;
+  }
+  // The REST API's own handler, as the broker (no web login: mqtt.control,
+  // the broker's ACLs and the allow-list above vouch for the command; the
+  // control lock still refuses it): the same bodies, validation and errors.
   char path[24];
   std::snprintf(path, sizeof path, "/api/%.*s", static_cast<int>(command.size()), command.data());
   web::HttpRequest request;
@@ -185,7 +196,7 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
   request.body = payload;
   FixedSink sink(response_, sizeof response_);
   web::ResponseOptions options;
-  api_->handle(request, sink, options);
+  api_->handle(request, sink, options, broker_peer_, web::Api::Via::kBroker);
   std::string_view body;
   const int status = sink.overflowed() ? 500 : response_status(sink.view(), body);
   if (body.empty()) body = R"({"error":"no response"})";

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "access/peer.hpp"
 #include "mqtt/station.hpp"
 #include "mqtt/topics.hpp"
 #include "util/time.hpp"
@@ -54,6 +55,12 @@ class Bridge {
   /// port's ROTORD_VERSION); not copied: a string literal.
   void set_version(const char* version) { version_ = version; }
 
+  /// The broker's address as the port's client connected to it: commands
+  /// are refused (403) unless access.control_networks lets it control, as
+  /// for a line-protocol client at that address. Until told: an address the
+  /// allow-list cannot name (read-only whenever the list is set).
+  void set_broker_peer(const access::Peer& peer) { broker_peer_ = peer; }
+
   /// A new controller (POST /api/reboot) comes with a new API.
   void set_api(web::Api& api) { api_ = &api; }
 
@@ -103,6 +110,7 @@ class Bridge {
   char device_name_[72] = {};
   char web_url_[Station::kMaxUrlBytes] = {};
   Station* station_ = nullptr;
+  access::Peer broker_peer_{access::Peer::Kind::kOther, 0};
   const char* version_ = "";
   char availability_[kMaxTopicBytes] = {};
   std::size_t availability_len_ = 0;

@@ -1,6 +1,9 @@
 #include "mqtt_client.hpp"
 
+#include <arpa/inet.h>
 #include <mosquitto.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 
 #include <chrono>
 #include <cstring>
@@ -18,6 +21,28 @@ constexpr std::string_view kOffline = "offline";
 
 std::string text(const settings::Settings& s, Id id) {
   return std::string(s.text(id));
+}
+
+/// The address at the other end of the client's socket (the broker), for
+/// access.control_networks; an IPv4 peer of an IPv6 socket is IPv4.
+access::Peer peer_of_socket(int fd) {
+  sockaddr_storage address{};
+  socklen_t length = sizeof address;
+  if (fd < 0 || ::getpeername(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0)
+    return {access::Peer::Kind::kOther, 0};
+  if (address.ss_family == AF_INET) {
+    const auto* v4 = reinterpret_cast<const sockaddr_in*>(&address);
+    return access::Peer::from_ipv4(ntohl(v4->sin_addr.s_addr));
+  }
+  if (address.ss_family == AF_INET6) {
+    const auto* v6 = reinterpret_cast<const sockaddr_in6*>(&address);
+    if (IN6_IS_ADDR_V4MAPPED(&v6->sin6_addr)) {
+      const std::uint8_t* b = v6->sin6_addr.s6_addr + 12;
+      return access::Peer::from_ipv4((std::uint32_t{b[0]} << 24) | (std::uint32_t{b[1]} << 16) |
+                                     (std::uint32_t{b[2]} << 8) | b[3]);
+    }
+  }
+  return {access::Peer::Kind::kOther, 0};
 }
 
 }  // namespace
@@ -159,6 +184,10 @@ void MqttClient::on_connect(mosquitto* m, void* self, int rc) {
   // The station page: every rotord on a two-level prefix (rotord/<hostname>).
   static const char* const kStation[] = {"+/+/state", "+/+/availability", "+/+/info"};
   for (const char* topic : kStation) mosquitto_subscribe(m, nullptr, topic, 0);
+  {
+    std::lock_guard<std::mutex> lock(c->mutex_);
+    c->broker_peer_ = peer_of_socket(mosquitto_socket(m));
+  }
   log::info("mqtt: connected to %s:%d", c->host_.c_str(), c->port_);
   c->connected_ = true;  // the loop republishes discovery and state
 }
@@ -218,6 +247,7 @@ void MqttClient::poll(Millis wall_ms) {
       inbox_.pop_front();
     }
     station.swap(station_inbox_);
+    bridge_.set_broker_peer(broker_peer_);
   }
   for (const Inbound& in : arrived) bridge_.on_message(in.topic, in.payload, in.oversized);
   for (const Inbound& in : station) bridge_.on_message(in.topic, in.payload, false);

@@ -78,6 +78,9 @@ class MqttClient final : private mqtt::Transport {
   std::deque<Inbound> inbox_;
   std::deque<Inbound> station_inbox_;
   std::uint64_t dropped_ = 0;
+  /// The broker's address of the current connection (on_connect), for
+  /// access.control_networks; guarded by mutex_.
+  access::Peer broker_peer_{access::Peer::Kind::kOther, 0};
 };
 
 }  // namespace rotord::linux_port

@@ -25,9 +25,14 @@ namespace rotord::testing {
 namespace {
 
 /// A Mosquitto broker on 127.0.0.1:port, anonymous, no persistence.
+/// `conf`: lines that replace `allow_anonymous true` (logins, ACLs);
+/// `client`: the options mosquitto_pub needs to connect then (-u, -P).
 class Broker {
  public:
-  explicit Broker(const std::string& dir, int port = 0) : dir_(dir), port_(port) {
+  explicit Broker(const std::string& dir, int port = 0,
+                  const std::string& conf = "allow_anonymous true\n",
+                  const std::string& client = "")
+      : dir_(dir), port_(port), conf_(conf), client_(client) {
     if (port_ == 0) port_ = free_port();
     start();
   }
@@ -35,7 +40,7 @@ class Broker {
   int port() const { return port_; }
   void start() {
     const std::string conf = dir_ + "/mosquitto.conf";
-    std::ofstream(conf) << "listener " << port_ << " 127.0.0.1\nallow_anonymous true\n";
+    std::ofstream(conf) << "listener " << port_ << " 127.0.0.1\n" << conf_;
     pid_ = ::fork();
     if (pid_ == 0) {
       // Its log goes to a file in the test's directory, not the test output.
@@ -49,8 +54,8 @@ class Broker {
       ::_exit(127);
     }
     // Ready when a client can connect (bounded; liveness only).
-    run_command("for i in $(seq 100); do mosquitto_pub -p " + std::to_string(port_) +
-                " -t rotord-test/ping -n 2>/dev/null && break; sleep 0.05; done");
+    run_command("for i in $(seq 100); do mosquitto_pub -p " + std::to_string(port_) + " " +
+                client_ + " -t rotord-test/ping -n 2>/dev/null && break; sleep 0.05; done");
   }
   void stop() {
     if (pid_ <= 0) return;
@@ -62,6 +67,8 @@ class Broker {
  private:
   std::string dir_;
   int port_;
+  std::string conf_;
+  std::string client_;
   pid_t pid_ = -1;
 };
 
@@ -77,20 +84,22 @@ class Mqtt : public ::testing::Test {
     run_command("rm -rf " + dir);
   }
   /// Starts rotord with mqtt.* settings over the defaults.
+  /// `extra`: more settings, each `, "key": value`.
   void start_daemon(bool control, const std::string& prefix = "rotord/test",
-                    bool wait_connected = true) {
+                    bool wait_connected = true, const std::string& extra = "") {
     const std::string config = dir + "/rotord.json";
     std::ofstream(config) << R"({"mqtt.enabled": true, "mqtt.host": "127.0.0.1", "mqtt.port": )"
                           << broker->port() << R"(, "mqtt.prefix": ")" << prefix
                           << R"(", "mqtt.client_id": "rotord-test", "mqtt.control": )"
-                          << (control ? "true" : "false") << "}\n";
+                          << (control ? "true" : "false") << extra << "}\n";
     daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{"--config", config});
     ASSERT_TRUE(daemon->ready()) << daemon->output();
     if (wait_connected) {
       ASSERT_TRUE(daemon->wait_for_output("mqtt: connected")) << daemon->output();
     }
   }
-  std::string p() const { return std::to_string(broker->port()); }
+  /// The port, and the login of the test's own clients (`as`).
+  std::string p() const { return std::to_string(broker->port()) + as; }
   /// The first (retained) message on `topic`, waiting up to wait_s.
   std::string retained(const std::string& topic, int wait_s = 10) {
     return run_command("mosquitto_sub -p " + p() + " -t '" + topic + "' -C 1 -W " +
@@ -112,6 +121,7 @@ class Mqtt : public ::testing::Test {
         .out;
   }
   std::string dir;
+  std::string as;  ///< e.g. " -u homeassistant -P ha-pw" (a broker with logins)
   std::unique_ptr<Broker> broker;
   std::unique_ptr<DaemonProcess> daemon;
 };
@@ -172,6 +182,111 @@ TEST_F(Mqtt, WithoutMqttControlOnlyStopIsObeyed) {
   EXPECT_EQ(command("stop", "{}"), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
                                    "\n");
   EXPECT_TRUE(seen("rotord/test/state", R"("mode":"idle")"));
+}
+
+/// A stored web password (access control on): a hash of some password.
+const std::string kWebPassword =
+    R"(, "web.password": "pbkdf2-sha256$1000$000102030405060708090a0b0c0d0e0f$)"
+    R"(f0f1f2f3f4f5f6f7f8f9fafbfcfdfeff")";
+
+TEST_F(Mqtt, AWebPasswordDoesNotStopTheBrokersCommands) {
+  start_daemon(true, "rotord/test", true, kWebPassword);
+  // The REST API asks for a login now ...
+  EXPECT_EQ(http(daemon->ports().web, "POST", "/api/goto", R"({"az": 100})").status, 401);
+  // ... a broker message carries none: mqtt.control and the broker's ACLs decide.
+  EXPECT_EQ(command("goto", R"({"az": 200})"),
+            R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})"
+            "\n");
+  EXPECT_TRUE(seen("rotord/test/state", R"("mode":"goto")"));
+  EXPECT_NE(command("speed", R"({"speed_pct": 400})").find(R"("status":422)"), std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+}
+
+TEST_F(Mqtt, TheAllowListAppliesToTheBrokersAddress) {
+  // The broker (127.0.0.1) is not on the list: its commands are read-only.
+  start_daemon(true, "rotord/test", true,
+               kWebPassword + R"(, "access.control_networks": "192.0.2.0/24")");
+  EXPECT_EQ(command("goto", R"({"az": 200})"),
+            R"({"cmd":"goto","status":403,"response":{"error":"read-only: the broker's address )"
+            R"(is not in access.control_networks"}})"
+            "\n");
+  EXPECT_NE(command("park", "{}").find(R"("status":403)"), std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+  EXPECT_TRUE(seen("rotord/test/state", R"("mode":"idle")"));
+}
+
+TEST_F(Mqtt, ABrokerOnTheAllowListControls) {
+  start_daemon(true, "rotord/test", true, R"(, "access.control_networks": "127.0.0.0/8")");
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("status":200)"), std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+}
+
+/// The ACL file of docs/mqtt.md ("An ACL example"), as it is there.
+std::string documented_acl() {
+  std::ifstream in(ROTORD_SOURCE_DIR "/docs/mqtt.md");
+  std::string line, acl;
+  bool after = false, inside = false;
+  while (std::getline(in, line)) {
+    if (!after) {
+      after = line.rfind("`/etc/mosquitto/acl`", 0) == 0;
+    } else if (line.rfind("```", 0) == 0) {
+      if (inside) break;
+      inside = true;
+    } else if (inside) {
+      acl += line + "\n";
+    }
+  }
+  return acl;
+}
+
+TEST_F(Mqtt, TheAclExampleFromTheDocs) {
+  std::string acl = documented_acl();
+  ASSERT_NE(acl.find("user operator"), std::string::npos) << acl;
+  for (std::size_t at = acl.find("shack"); at != std::string::npos; at = acl.find("shack"))
+    acl.replace(at, 5, "test");
+  std::ofstream(dir + "/acl") << acl;
+  const CommandOutput users =
+      run_command("cd " + dir + " && mosquitto_passwd -c -b passwd rotord-test rotord-pw && " +
+                  "mosquitto_passwd -b passwd homeassistant ha-pw && " +
+                  "mosquitto_passwd -b passwd operator op-pw && " +
+                  // Run as root, mosquitto reads its files as the user `mosquitto`.
+                  "chmod 0755 . && chmod 0644 passwd acl 2>&1");
+  ASSERT_EQ(users.rc, 0) << users.out;
+  const int port = broker->port();
+  broker.reset();
+  broker = std::make_unique<Broker>(
+      dir, port,
+      "allow_anonymous false\npassword_file " + dir + "/passwd\nacl_file " + dir + "/acl\n",
+      "-u homeassistant -P ha-pw");
+  start_daemon(true, "rotord/test", true,
+               R"(, "mqtt.user": "rotord-test", "mqtt.password": "rotord-pw")");
+  // Home Assistant may command.
+  as = " -u homeassistant -P ha-pw";
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("status":200)"), std::string::npos);
+  EXPECT_NE(command("stop", "").find(R"("status":200)"), std::string::npos);
+  // The operator may watch and stop, not steer: the broker drops its goto
+  // (QoS 1: acknowledged, not delivered) ...
+  as = " -u operator -P op-pw";
+  EXPECT_EQ(run_command("timeout 10 mosquitto_pub -q 1 -p " + p() +
+                        R"( -t rotord/test/cmd/goto -m '{"az": 300}')")
+                .rc,
+            0);
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+  // ... so when a later command of Home Assistant's is answered, the goto
+  // (which would have come first on rotord's one connection) never came.
+  as = " -u homeassistant -P ha-pw";
+  EXPECT_NE(command("speed", R"({"speed_pct": 50})").find(R"("status":200)"), std::string::npos);
+  const HttpResponse status = http(daemon->ports().web, "GET", "/api/status");
+  EXPECT_NE(status.body.find(R"("mode":"idle")"), std::string::npos) << status.body;
+  as = " -u operator -P op-pw";
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+  // Nobody else may even connect.
+  as = "";
+  EXPECT_NE(run_command("mosquitto_pub -p " + p() + " -t rotord/test/cmd/stop -n 2>&1").rc, 0);
 }
 
 TEST_F(Mqtt, HomeAssistantDiscoveryFollowsTheSchema) {

@@ -152,6 +152,59 @@ TEST_F(MqttBridge, ErrorsAreTheRestApis) {
   EXPECT_EQ(transport.on("rotord/test/result").size(), results);
 }
 
+TEST_F(MqttBridge, AWebPasswordDoesNotStopTheBrokersCommands) {
+  // A broker message carries no login: mqtt.control and the broker's ACLs
+  // are its authority, whether or not the web asks for a password.
+  const std::string salt(32, '0'), key(32, '1');
+  ASSERT_EQ(api.controller()
+                .settings()
+                .set_text(Id::kWebPassword, "pbkdf2-sha256$1000$" + salt + "$" + key)
+                .error,
+            Error::kOk);
+  api.controller().settings().set(Id::kMqttControl, 1);
+  command("goto", R"({"az": 200})");
+  EXPECT_EQ(
+      last_result(),
+      R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})");
+  command("speed", R"({"speed_pct": 500})");
+  EXPECT_NE(last_result().find(R"("status":422)"), std::string::npos) << last_result();
+  command("stop", "");
+  EXPECT_EQ(last_result(), R"({"cmd":"stop","status":200,"response":{"ok":true}})");
+}
+
+TEST_F(MqttBridge, TheAllowListAppliesToTheBrokersAddress) {
+  api.controller().settings().set(Id::kMqttControl, 1);
+  ASSERT_EQ(
+      api.controller().settings().set_text(Id::kAccessControlNetworks, "192.168.1.0/24").error,
+      Error::kOk);
+  // Not told where the broker is: read-only while the list is set.
+  command("goto", R"({"az": 200})");
+  EXPECT_EQ(last_result(),
+            R"({"cmd":"goto","status":403,"response":{"error":"read-only: the broker's address )"
+            R"(is not in access.control_networks"}})");
+  bridge.set_broker_peer(access::Peer::from_ipv4(0x0A000001));  // 10.0.0.1
+  command("park", "{}");
+  EXPECT_NE(last_result().find(R"("status":403)"), std::string::npos) << last_result();
+  r.run_ms(100);
+  EXPECT_FALSE(r.controller->status().moving());
+  command("stop", "");  // STOP always
+  EXPECT_EQ(last_result(), R"({"cmd":"stop","status":200,"response":{"ok":true}})");
+  bridge.set_broker_peer(access::Peer::from_ipv4(0xC0A80105));  // 192.168.1.5
+  command("goto", R"({"az": 200})");
+  EXPECT_NE(last_result().find(R"("status":200)"), std::string::npos) << last_result();
+}
+
+TEST_F(MqttBridge, TheControlLockRefusesTheBroker) {
+  api.controller().settings().set(Id::kMqttControl, 1);
+  access::LockHolder holder;
+  holder.key[0] = 1;
+  api.controller().control_lock().take(holder, 1'000'000);
+  command("goto", R"({"az": 200})");
+  EXPECT_NE(last_result().find(R"("cmd":"goto","status":423)"), std::string::npos) << last_result();
+  command("stop", "");
+  EXPECT_EQ(last_result(), R"({"cmd":"stop","status":200,"response":{"ok":true}})");
+}
+
 TEST_F(MqttBridge, DiscoveryOnConnectAndAgainAfterAReconnect) {
   bridge.poll(0);
   const auto az = transport.on("homeassistant/sensor/rotord_test/azimuth/config");
