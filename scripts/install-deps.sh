@@ -24,7 +24,7 @@ packages=(
   avahi-daemon avahi-utils dbus-daemon util-linux
   lintian systemd man-db
   prometheus
-  libmosquitto-dev mosquitto mosquitto-clients python3-jsonschema
+  libmosquitto-dev mosquitto mosquitto-clients python3-jsonschema openssl
   clang libclang-rt-14-dev
   chromium
 )

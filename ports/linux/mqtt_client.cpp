@@ -5,6 +5,7 @@
 #include <netinet/in.h>
 #include <sys/socket.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 
@@ -96,12 +97,21 @@ bool MqttClient::start(const settings::Settings& settings, const std::string& cl
   if (!user.empty())
     mosquitto_username_pw_set(mosq_, user.c_str(), password.empty() ? nullptr : password.c_str());
   if (settings.b(Id::kMqttTls)) {
-    const int rc = mosquitto_tls_set(mosq_, nullptr, "/etc/ssl/certs", nullptr, nullptr, nullptr);
+    // The broker's certificate and its name (mqtt.host) are checked: against
+    // mqtt.tls_ca when set, else the system's CAs.
+    const std::string ca = text(settings, Id::kMqttTlsCa);
+    const int rc =
+        ca.empty() ? mosquitto_tls_set(mosq_, nullptr, "/etc/ssl/certs", nullptr, nullptr, nullptr)
+                   : mosquitto_tls_set(mosq_, ca.c_str(), nullptr, nullptr, nullptr, nullptr);
     if (rc != MOSQ_ERR_SUCCESS) {
-      log::error("mqtt: TLS setup failed: %s", mosquitto_strerror(rc));
+      log::error("mqtt: TLS setup failed (mqtt.tls_ca '%s'): %s: MQTT off",
+                 ca.empty() ? "/etc/ssl/certs" : ca.c_str(),
+                 rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc));
       return false;
     }
+    tls_ = true;
   }
+  mosquitto_log_callback_set(mosq_, &MqttClient::on_log);
   mosquitto_connect_callback_set(mosq_, &MqttClient::on_connect);
   mosquitto_disconnect_callback_set(mosq_, &MqttClient::on_disconnect);
   mosquitto_message_callback_set(mosq_, &MqttClient::on_message);
@@ -156,13 +166,29 @@ void MqttClient::run() {
     }
     connected_ = false;
     if (stopping_.load()) break;
+    // Why, in libmosquitto's words, and OpenSSL's (a certificate that does
+    // not verify) when it said more.
+    std::string why = rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!library_error_.empty()) why += " (" + library_error_ + ")";
+      library_error_.clear();
+    }
+    if (tls_ && why.find("certificate verify failed") != std::string::npos)
+      why += ": is mqtt.tls_ca the CA that signed the broker's certificate, for this mqtt.host?";
     if (was_up) {
       log::warn("mqtt: lost the broker %s:%d (%s); reconnecting", host_.c_str(), port_,
-                mosquitto_strerror(rc));
+                why.c_str());
       was_up = false;
+      last_failure_.clear();
+    } else if (why != last_failure_) {
+      // Said once, clearly; the same failure again only in the debug log.
+      log::warn("mqtt: cannot connect to %s:%d%s: %s; retrying every %d..%d s", host_.c_str(),
+                port_, tls_ ? " (TLS)" : "", why.c_str(), kMinBackoffS, kMaxBackoffS);
+      last_failure_ = why;
     } else {
-      log::debug("mqtt: cannot reach %s:%d (%s); again in %d s", host_.c_str(), port_,
-                 mosquitto_strerror(rc), backoff_s);
+      log::debug("mqtt: cannot connect to %s:%d (%s); again in %d s", host_.c_str(), port_,
+                 why.c_str(), backoff_s);
     }
     std::unique_lock<std::mutex> lock(mutex_);
     wake_.wait_for(lock, std::chrono::seconds(backoff_s), [this] { return stopping_.load(); });
@@ -187,9 +213,21 @@ void MqttClient::on_connect(mosquitto* m, void* self, int rc) {
   {
     std::lock_guard<std::mutex> lock(c->mutex_);
     c->broker_peer_ = peer_of_socket(mosquitto_socket(m));
+    c->library_error_.clear();
   }
-  log::info("mqtt: connected to %s:%d", c->host_.c_str(), c->port_);
+  c->last_failure_.clear();
+  log::info("mqtt: connected to %s:%d%s", c->host_.c_str(), c->port_, c->tls_ ? " (TLS)" : "");
   c->connected_ = true;  // the loop republishes discovery and state
+}
+
+void MqttClient::on_log(mosquitto* /*m*/, void* self, int level, const char* message) {
+  // Errors only: the first of a failed attempt (OpenSSL's reason comes
+  // first) is kept for run()'s line. Mostly the network thread's, but a
+  // publish from the loop may log too: under the mutex.
+  if ((level & (MOSQ_LOG_ERR | MOSQ_LOG_WARNING)) == 0 || message == nullptr) return;
+  auto* c = static_cast<MqttClient*>(self);
+  std::lock_guard<std::mutex> lock(c->mutex_);
+  if (c->library_error_.empty()) c->library_error_ = message;
 }
 
 void MqttClient::on_disconnect(mosquitto* /*m*/, void* self, int /*rc*/) {

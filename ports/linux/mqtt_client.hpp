@@ -62,6 +62,7 @@ class MqttClient final : private mqtt::Transport {
 
   static void on_connect(mosquitto* m, void* self, int rc);
   static void on_disconnect(mosquitto* m, void* self, int rc);
+  static void on_log(mosquitto* m, void* self, int level, const char* message);
   static void on_message(mosquitto* m, void* self, const mosquitto_message* message);
 
   web::Api& api_;
@@ -70,6 +71,12 @@ class MqttClient final : private mqtt::Transport {
   mosquitto* mosq_ = nullptr;
   std::string host_;
   int port_ = 1883;
+  bool tls_ = false;
+  /// libmosquitto's first error of this attempt (on_log; guarded by
+  /// mutex_), and the network thread's last failure logged (said once, not
+  /// at every retry).
+  std::string library_error_;
+  std::string last_failure_;
   std::thread thread_;
   std::atomic<bool> connected_{false};
   std::atomic<bool> stopping_{false};

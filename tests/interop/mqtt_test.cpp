@@ -89,7 +89,8 @@ class Mqtt : public ::testing::Test {
                     bool wait_connected = true, const std::string& extra = "") {
     const std::string config = dir + "/rotord.json";
     std::ofstream(config) << R"({"mqtt.enabled": true, "mqtt.host": "127.0.0.1", "mqtt.port": )"
-                          << broker->port() << R"(, "mqtt.prefix": ")" << prefix
+                          << (daemon_port != 0 ? daemon_port : broker->port())
+                          << R"(, "mqtt.prefix": ")" << prefix
                           << R"(", "mqtt.client_id": "rotord-test", "mqtt.control": )"
                           << (control ? "true" : "false") << extra << "}\n";
     daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{"--config", config});
@@ -121,7 +122,8 @@ class Mqtt : public ::testing::Test {
         .out;
   }
   std::string dir;
-  std::string as;  ///< e.g. " -u homeassistant -P ha-pw" (a broker with logins)
+  std::string as;       ///< e.g. " -u homeassistant -P ha-pw" (a broker with logins)
+  int daemon_port = 0;  ///< the broker port rotord uses (0: broker->port())
   std::unique_ptr<Broker> broker;
   std::unique_ptr<DaemonProcess> daemon;
 };
@@ -287,6 +289,100 @@ TEST_F(Mqtt, TheAclExampleFromTheDocs) {
   // Nobody else may even connect.
   as = "";
   EXPECT_NE(run_command("mosquitto_pub -p " + p() + " -t rotord/test/cmd/stop -n 2>&1").rc, 0);
+}
+
+/// A test CA, a server certificate it signed for 127.0.0.1 and localhost,
+/// and a second CA that signed nothing here: made with Debian's openssl for
+/// each test, in `dir`, readable by the broker (run as root, mosquitto reads
+/// them as the user `mosquitto`). Empty on success, else openssl's words.
+std::string make_test_pki(const std::string& dir) {
+  const std::string ec = " -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes";
+  const CommandOutput made = run_command(
+      "cd " + dir + " && (openssl req -x509" + ec +
+      " -days 2 -subj '/CN=rotord test CA' -keyout ca.key -out ca.pem && openssl req -x509" + ec +
+      " -days 2 -subj '/CN=another CA' -keyout other.key -out other-ca.pem && openssl req" + ec +
+      " -subj '/CN=127.0.0.1' -keyout server.key -out server.csr && printf '" +
+      R"(subjectAltName=IP:127.0.0.1,DNS:localhost\nbasicConstraints=CA:FALSE\n)" +
+      R"(extendedKeyUsage=serverAuth\n)" +
+      "' > server.ext && openssl x509 -req -in server.csr -CA ca.pem -CAkey ca.key "
+      "-CAcreateserial -days 2 -sha256 -extfile server.ext -out server.pem && "
+      "chmod 0755 . && chmod 0644 *) 2>&1");
+  return made.rc == 0 ? std::string() : made.out;
+}
+
+/// A broker with a plain listener (the test's own clients) and a TLS one
+/// (rotord) on another free port.
+class MqttTls : public Mqtt {
+ protected:
+  void SetUp() override {
+    dir = make_temp_dir("rotord-mqtt");
+    const std::string pki = make_test_pki(dir);
+    ASSERT_EQ(pki, "");
+    tls_port = free_port();
+    broker = std::make_unique<Broker>(dir, 0,
+                                      "allow_anonymous true\nlistener " + std::to_string(tls_port) +
+                                          " 127.0.0.1\ncafile " + dir + "/ca.pem\ncertfile " + dir +
+                                          "/server.pem\nkeyfile " + dir + "/server.key\n");
+    daemon_port = tls_port;
+  }
+  /// `, "mqtt.tls": true, "mqtt.tls_ca": "<dir>/<ca>"`
+  std::string tls(const std::string& ca) const {
+    return R"(, "mqtt.tls": true, "mqtt.tls_ca": ")" + dir + "/" + ca + "\"";
+  }
+  int tls_port = 0;
+};
+
+TEST_F(MqttTls, ConnectsWithTheBrokersCa) {
+  start_daemon(true, "rotord/test", true, tls("ca.pem"));
+  EXPECT_NE(
+      daemon->output().find("mqtt: connected to 127.0.0.1:" + std::to_string(tls_port) + " (TLS)"),
+      std::string::npos)
+      << daemon->output();
+  // The state and availability arrive (read on the plain listener) and
+  // commands work over TLS.
+  EXPECT_NE(retained("rotord/test/state").find(R"("mode":"idle")"), std::string::npos);
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("status":200)"), std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+  // And the TLS listener is TLS indeed: a plain client gets nowhere on it.
+  EXPECT_NE(run_command("timeout 10 mosquitto_pub -p " + std::to_string(tls_port) +
+                        " -t rotord/test/cmd/stop -n 2>&1")
+                .rc,
+            0);
+}
+
+TEST_F(MqttTls, AWrongCaIsRefusedClearlyAndRetriedWhileControlGoesOn) {
+  start_daemon(true, "rotord/test", false, tls("other-ca.pem"));
+  // Said once, clearly: the broker's certificate does not verify.
+  ASSERT_TRUE(daemon->wait_for_output("certificate verify failed", 20000)) << daemon->output();
+  EXPECT_NE(daemon->output().find("mqtt: cannot connect to 127.0.0.1:" + std::to_string(tls_port) +
+                                  " (TLS): A TLS error occurred."),
+            std::string::npos)
+      << daemon->output();
+  // It keeps trying (the broker sees a second handshake fail; backoff 1 s).
+  EXPECT_EQ(run_command("for i in $(seq 200); do [ $(grep -c 'OpenSSL Error' " + dir +
+                        "/mosquitto.log) -ge 2 ] && exit 0; sleep 0.05; done; exit 1")
+                .rc,
+            0)
+      << run_command("cat " + dir + "/mosquitto.log").out;
+  // The rotator is controlled as ever: REST, WRC.
+  EXPECT_EQ(http(daemon->ports().web, "GET", "/api/status").status, 200);
+  TcpClient wrc(daemon->ports().wrc);
+  EXPECT_EQ(wrc.ask("AZ 300\n"), "OK AZ 300.00");
+  EXPECT_EQ(http(daemon->ports().web, "POST", "/api/stop").status, 200);
+  // Never connected, never said online; the failure was logged once.
+  const std::string out = daemon->output();
+  EXPECT_EQ(out.find("mqtt: connected"), std::string::npos) << out;
+  EXPECT_EQ(out.find("certificate verify failed"), out.rfind("certificate verify failed")) << out;
+}
+
+TEST_F(MqttTls, AMissingCaFileKeepsMqttOffAndSaysWhy) {
+  start_daemon(true, "rotord/test", false, tls("no-such-ca.pem"));
+  EXPECT_TRUE(
+      daemon->wait_for_output("mqtt: TLS setup failed (mqtt.tls_ca '" + dir + "/no-such-ca.pem')"))
+      << daemon->output();
+  EXPECT_EQ(http(daemon->ports().web, "GET", "/api/status").status, 200);
 }
 
 TEST_F(Mqtt, HomeAssistantDiscoveryFollowsTheSchema) {
