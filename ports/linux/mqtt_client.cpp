@@ -115,6 +115,7 @@ bool MqttClient::start(const settings::Settings& settings, const std::string& cl
   mosquitto_connect_callback_set(mosq_, &MqttClient::on_connect);
   mosquitto_disconnect_callback_set(mosq_, &MqttClient::on_disconnect);
   mosquitto_message_callback_set(mosq_, &MqttClient::on_message);
+  mosquitto_publish_callback_set(mosq_, &MqttClient::on_publish);
   host_ = text(settings, Id::kMqttHost);
   port_ = settings.i(Id::kMqttPort);
   log::info("mqtt: broker %s:%d, topics %.*s/..., commands %s", host_.c_str(), port_,
@@ -268,9 +269,25 @@ void MqttClient::on_message(mosquitto* /*m*/, void* self, const mosquitto_messag
 
 bool MqttClient::publish(std::string_view topic, std::string_view payload, bool retain) {
   if (!connected_.load()) return false;
+  if (unacked_.load() >= kMaxUnacked) {
+    ++refused_publishes_;
+    return false;
+  }
   const std::string t(topic);
-  return mosquitto_publish(mosq_, nullptr, t.c_str(), static_cast<int>(payload.size()),
-                           payload.data(), 1, retain) == MOSQ_ERR_SUCCESS;
+  if (mosquitto_publish(mosq_, nullptr, t.c_str(), static_cast<int>(payload.size()), payload.data(),
+                        1, retain) != MOSQ_ERR_SUCCESS)
+    return false;
+  ++unacked_;
+  return true;
+}
+
+void MqttClient::on_publish(mosquitto* /*m*/, void* self, int /*mid*/) {
+  // The broker acknowledged one (or a QoS 0 one went out): never below 0,
+  // whatever was queued outside publish().
+  auto* c = static_cast<MqttClient*>(self);
+  int n = c->unacked_.load();
+  while (n > 0 && !c->unacked_.compare_exchange_weak(n, n - 1)) {
+  }
 }
 
 void MqttClient::poll(Millis wall_ms) {
@@ -278,6 +295,7 @@ void MqttClient::poll(Millis wall_ms) {
   // bounded inbox, so a flood from the broker costs the loop little.
   std::deque<Inbound> arrived;
   std::deque<Inbound> station;
+  std::uint64_t dropped = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (std::size_t n = 0; n < kCommandsPerPass && !inbox_.empty(); ++n) {
@@ -286,6 +304,16 @@ void MqttClient::poll(Millis wall_ms) {
     }
     station.swap(station_inbox_);
     bridge_.set_broker_peer(broker_peer_);
+    dropped = dropped_;
+  }
+  if (dropped != dropped_logged_ &&
+      (dropped_logged_ == 0 || wall_ms - dropped_logged_ms_ >= kDropLogGapMs)) {
+    // A flood: said at most every kDropLogGapMs, never per message.
+    log::warn("mqtt: %llu command(s) dropped: more than %zu waiting (a flood on %.*s/cmd/)",
+              static_cast<unsigned long long>(dropped - dropped_logged_), kMaxInbox,
+              static_cast<int>(bridge_.prefix().size()), bridge_.prefix().data());
+    dropped_logged_ = dropped;
+    dropped_logged_ms_ = wall_ms;
   }
   for (const Inbound& in : arrived) bridge_.on_message(in.topic, in.payload, in.oversized);
   for (const Inbound& in : station) bridge_.on_message(in.topic, in.payload, false);

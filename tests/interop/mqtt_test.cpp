@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -93,7 +94,9 @@ class Mqtt : public ::testing::Test {
                           << R"(, "mqtt.prefix": ")" << prefix
                           << R"(", "mqtt.client_id": "rotord-test", "mqtt.control": )"
                           << (control ? "true" : "false") << extra << "}\n";
-    daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{"--config", config});
+    std::vector<std::string> args{"--config", config};
+    args.insert(args.end(), daemon_args.begin(), daemon_args.end());
+    daemon = std::make_unique<DaemonProcess>(args);
     ASSERT_TRUE(daemon->ready()) << daemon->output();
     if (wait_connected) {
       ASSERT_TRUE(daemon->wait_for_output("mqtt: connected")) << daemon->output();
@@ -124,6 +127,7 @@ class Mqtt : public ::testing::Test {
   std::string dir;
   std::string as;       ///< e.g. " -u homeassistant -P ha-pw" (a broker with logins)
   int daemon_port = 0;  ///< the broker port rotord uses (0: broker->port())
+  std::vector<std::string> daemon_args;  ///< more options, e.g. --clock manual
   std::unique_ptr<Broker> broker;
   std::unique_ptr<DaemonProcess> daemon;
 };
@@ -383,6 +387,112 @@ TEST_F(MqttTls, AMissingCaFileKeepsMqttOffAndSaysWhy) {
       daemon->wait_for_output("mqtt: TLS setup failed (mqtt.tls_ca '" + dir + "/no-such-ca.pem')"))
       << daemon->output();
   EXPECT_EQ(http(daemon->ports().web, "GET", "/api/status").status, 200);
+}
+
+/// The resident memory of a process, in KB (/proc/<pid>/status VmRSS).
+long rss_kb(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+TEST_F(Mqtt, AFloodOfCommandsAndOversizedMessagesCostsLittle) {
+  daemon_args = {"--clock", "manual"};
+  start_daemon(true);
+  const std::string results = dir + "/results.txt";
+  // A subscriber that records every result (ready once it saw a probe).
+  const CommandOutput sub =
+      run_command("(mosquitto_sub -p " + p() + " -t rotord/test/result -W 120 > " + results +
+                  " 2>&1 & echo $!)");
+  const pid_t sub_pid = static_cast<pid_t>(std::stol(sub.out));
+  ASSERT_EQ(run_command("for i in $(seq 100); do mosquitto_pub -p " + p() +
+                        " -t rotord/test/result -m probe; grep -q probe " + results +
+                        " && exit 0; sleep 0.05; done; exit 1")
+                .rc,
+            0);
+  // The flood: per round 5000 gotos, 300 bodies over 512 bytes, 3 of 1 MB,
+  // 2000 states of a made-up rotord and one each of 40 more (the station
+  // table), as fast as the clients can send them; then one stop, the last
+  // command of the round.
+  const std::string flood =
+      "cd " + dir + " && head -c 1000000 /dev/zero | tr '\\0' x > big.txt && " +
+      "seq 5000 | sed 's/.*/{\"az\": &}/' > gotos.txt && " +
+      "for i in $(seq 300); do printf '%0600d\\n' $i; done > oversized.txt && " +
+      "mosquitto_pub -p " + p() + " -t rotord/test/cmd/goto -l < gotos.txt & " +
+      "mosquitto_pub -p " + p() + " -t rotord/test/cmd/park -l < " + dir + "/oversized.txt & " +
+      "for i in 1 2 3; do mosquitto_pub -p " + p() + " -t rotord/test/cmd/goto -f " + dir +
+      "/big.txt; done & " +
+      "seq 2000 | sed 's/.*/{\"version\":\"x\",\"az\":{\"position_deg\":&}}/' | "
+      "mosquitto_pub -p " +
+      p() + " -t fake/rotord/state -l & " + "for i in $(seq 40); do mosquitto_pub -p " + p() +
+      " -t fake$i/rotord/state -m " + R"('{"version":"x","az":{"position_deg":1}}'; done & wait)";
+  const long rss_before_kb = rss_kb(daemon->pid());
+  long rss_after_first_kb = 0;
+  long long controller_ms = daemon->advance_ms(0);
+  for (int round = 1; round <= 2; ++round) {
+    const CommandOutput flooded = run_command("(" + flood + ") 2>&1");
+    ASSERT_EQ(flooded.rc, 0) << flooded.out;
+    // Meanwhile and after, everything else answers, and the control tick
+    // keeps controller time exactly.
+    TcpClient wrc(daemon->ports().wrc);
+    EXPECT_EQ(wrc.ask("AZ 300\n"), "OK AZ 300.00");
+    EXPECT_EQ(http(daemon->ports().web, "GET", "/api/status").status, 200);
+    TcpClient rotctld(daemon->ports().rotctld);
+    EXPECT_FALSE(rotctld.ask("p\n").empty());
+    controller_ms += 1000;
+    EXPECT_EQ(daemon->advance_ms(1000), controller_ms);
+    // The stop comes last and is obeyed (the inbox is FIFO; a full one
+    // makes room for a stop).
+    ASSERT_EQ(run_command("mosquitto_pub -p " + p() + " -t rotord/test/cmd/stop -n").rc, 0);
+    ASSERT_EQ(
+        run_command("for i in $(seq 400); do [ $(grep -c '\"cmd\":\"stop\"' " + results + ") -ge " +
+                    std::to_string(round) + " ] && exit 0; sleep 0.05; done; exit 1")
+            .rc,
+        0);
+    const HttpResponse status = http(daemon->ports().web, "GET", "/api/status");
+    EXPECT_NE(status.body.find(R"("mode":"idle")"), std::string::npos) << status.body;
+    if (round == 1) rss_after_first_kb = rss_kb(daemon->pid());
+  }
+  ::kill(sub_pid, SIGTERM);
+  // Results: one per command handled at most, none beyond its 1 KB buffer,
+  // each the REST API's answer; the 1 MB bodies answered 413, unread.
+  std::ifstream in(results);
+  std::string line;
+  int count = 0, too_large = 0, ok = 0;
+  std::size_t longest = 0;
+  while (std::getline(in, line)) {
+    if (line == "probe") continue;
+    ++count;
+    longest = std::max(longest, line.size());
+    EXPECT_EQ(line.rfind(R"({"cmd":")", 0), 0u) << line;
+    if (line.find(R"("status":413)") != std::string::npos) ++too_large;
+    if (line.find(R"("status":200)") != std::string::npos) ++ok;
+  }
+  EXPECT_LE(count, 2 * (5000 + 300 + 3 + 1));
+  EXPECT_GT(ok, 0);
+  EXPECT_LE(longest, 1024u);
+  // The flood was more than the 16-message inbox holds: dropped, and said.
+  EXPECT_TRUE(daemon->wait_for_output("command(s) dropped: more than 16 waiting"))
+      << daemon->output();
+  // The station table holds 16 rotords at most, whatever was seen.
+  const HttpResponse station = http(daemon->ports().web, "GET", "/api/station");
+  EXPECT_EQ(station.status, 200);
+  std::size_t listed = 0;
+  for (std::size_t at = station.body.find(R"("prefix":)"); at != std::string::npos;
+       at = station.body.find(R"("prefix":)", at + 1))
+    ++listed;
+  EXPECT_EQ(listed, 16u) << station.body;
+  // Memory: a second flood like the first costs next to nothing more.
+  const long rss_after_kb = rss_kb(daemon->pid());
+  EXPECT_GT(rss_before_kb, 0);
+  EXPECT_LT(rss_after_first_kb - rss_before_kb, 32 * 1024) << rss_before_kb;
+  EXPECT_LT(rss_after_kb - rss_after_first_kb, 4 * 1024) << rss_after_first_kb;
+  // Still on the broker, still answering.
+  EXPECT_EQ(command("goto", R"({"az": 200})"),
+            R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})"
+            "\n");
 }
 
 TEST_F(Mqtt, HomeAssistantDiscoveryFollowsTheSchema) {
