@@ -34,12 +34,15 @@ embedded: deps
 # The Pico W firmware (ports/pico_w): a separate pico-sdk project, built only
 # when PICO_SDK_PATH points at a pico-sdk 2.x checkout (see ports/pico_w/README.md).
 # picotool_DIR (optional) points at an installed picotool's CMake package.
-PICO_BUILD_DIR ?= build-pico
+# PICO_BOARD=pico: the plain Pico's USB-only image (rotord_pico.uf2), in a
+# build directory of its own (build-pico-pico).
+PICO_BOARD ?= pico_w
+PICO_BUILD_DIR ?= $(if $(filter pico_w,$(PICO_BOARD)),build-pico,build-pico-$(PICO_BOARD))
 pico:
 ifeq ($(strip $(PICO_SDK_PATH)),)
 	@echo "pico-sdk not found (PICO_SDK_PATH): skipping the Pico W firmware"
 else
-	@cmake -S ports/pico_w -B $(PICO_BUILD_DIR) -G Ninja $(if $(picotool_DIR),-Dpicotool_DIR=$(picotool_DIR)) >/dev/null
+	@cmake -S ports/pico_w -B $(PICO_BUILD_DIR) -G Ninja -DPICO_BOARD=$(PICO_BOARD) $(if $(picotool_DIR),-Dpicotool_DIR=$(picotool_DIR)) >/dev/null
 	@cmake --build $(PICO_BUILD_DIR) -j $(JOBS)
 endif
 
