@@ -70,7 +70,9 @@ class Bridge {
 
   /// Called on every pass of the loop with the transport's clock: publishes
   /// the state when it changed, at mqtt.state_hz while moving, and
-  /// everything again (discovery, state) after a (re)connection.
+  /// everything again (discovery, info, state) after a (re)connection. A
+  /// publish the transport refuses (its queue full) is tried again on a
+  /// later pass: the announcements in order, then the state.
   void poll(Millis now_ms);
 
   /// A message arrived on a subscribed topic. `oversized`: the port dropped
@@ -98,8 +100,13 @@ class Bridge {
   /// Whether a position moved by kPositionStepDeg since the last publish.
   bool position_changed() const;
   bool publish_state();
-  void publish_discovery();
-  void publish_info();
+  /// Discovery's entities, then <prefix>/info.
+  static constexpr int kAnnouncements = 7;
+  /// Publishes announcement `step` (0..kAnnouncements-1); false: the
+  /// transport refused it (tried again later).
+  bool announce(int step);
+  bool publish_discovery(int entity);
+  bool publish_info();
   void publish_result(std::string_view command, int status, std::string_view body);
 
   web::Api* api_;
@@ -117,6 +124,7 @@ class Bridge {
   char command_filter_[kMaxTopicBytes] = {};
   std::size_t command_filter_len_ = 0;
   bool was_connected_ = false;
+  int announce_step_ = kAnnouncements;  ///< the next announcement to publish
   bool have_published_ = false;
   Fingerprint last_;
   float last_az_deg_ = 0.0f;
@@ -124,9 +132,10 @@ class Bridge {
   Millis last_publish_ms_ = 0;
   std::uint32_t states_published_ = 0;
   std::uint32_t commands_handled_ = 0;
+  /// The state's JSON; also a command's HTTP response from the API (the
+  /// state is rendered anew for each publish, so they never overlap).
   char state_[kMaxStateBytes];
-  /// The API's HTTP response to a command, then the result message.
-  char response_[kMaxStateBytes];
+  /// A result, discovery or info message.
   char message_[kMaxDiscoveryBytes];
   char topic_[kMaxTopicBytes];
 };
