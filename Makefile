@@ -9,7 +9,7 @@ ROTORD_ARGS ?= --sim g5500
 all: build
 
 deps:
-	@./scripts/install-deps.sh --with-web
+	@BUILD_DIR=$(BUILD_DIR) ./scripts/install-deps.sh --with-web
 
 build: deps
 	@cmake --preset $(PRESET) >/dev/null

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 
 #include "json/json_writer.hpp"
 #include "mqtt/fixed_sink.hpp"
+#include "net/line_access.hpp"
 #include "util/slice.hpp"
 
 namespace rotord::mqtt {
@@ -103,9 +105,14 @@ void Bridge::poll(Millis now_ms) {
   if (!was_connected_) {
     // A (re)connection: the broker may have lost everything retained.
     was_connected_ = true;
-    if (api_->settings().b(Id::kMqttDiscovery)) publish_discovery();
-    publish_info();
+    announce_step_ = 0;
     have_published_ = false;
+  }
+  // In order, each once; a refused one waits for a later pass (the Pico's
+  // lwIP client has room for a few messages at a time).
+  while (announce_step_ < kAnnouncements) {
+    if (!announce(announce_step_)) return;
+    ++announce_step_;
   }
   const Fingerprint f = fingerprint();
   const bool changed = !have_published_ || !(f == last_) || position_changed();
@@ -173,7 +180,17 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
                    R"({"error":"mqtt.control is off: only stop is obeyed from the broker"})");
     return;
   }
-  // The REST API's own handler: the same bodies, validation and errors.
+  if (command != "stop" && !access::may_control(api_->settings(), broker_peer_)) {
+    // The line protocols' allow-list, applied to the broker's address (the
+    // REST API's answer to a read-only caller is a 403 too).
+    publish_result(
+        command, 403,
+        R"({"error":"read-only: the broker's address is not in access.control_networks"})");
+    return;
+  }
+  // The REST API's own handler, as the broker (no web login: mqtt.control,
+  // the broker's ACLs and the allow-list above vouch for the command; the
+  // control lock still refuses it): the same bodies, validation and errors.
   char path[24];
   std::snprintf(path, sizeof path, "/api/%.*s", static_cast<int>(command.size()), command.data());
   web::HttpRequest request;
@@ -183,13 +200,13 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
   request.json_body = true;
   request.keep_alive = true;
   request.body = payload;
-  FixedSink sink(response_, sizeof response_);
+  FixedSink sink(state_, sizeof state_);  // free between state publishes
   web::ResponseOptions options;
-  api_->handle(request, sink, options);
+  api_->handle(request, sink, options, broker_peer_, web::Api::Via::kBroker);
   std::string_view body;
   const int status = sink.overflowed() ? 500 : response_status(sink.view(), body);
   if (body.empty()) body = R"({"error":"no response"})";
-  // response_ holds the body until publish_result copies it into message_.
+  // state_ holds the body until publish_result copies it into message_.
   publish_result(command, status, body);
 }
 
@@ -213,7 +230,13 @@ void Bridge::set_web_url(std::string_view url) {
   copy_text(url, web_url_, sizeof web_url_);
 }
 
-void Bridge::publish_info() {
+bool Bridge::announce(int step) {
+  if (step < kAnnouncements - 1)
+    return !api_->settings().b(Id::kMqttDiscovery) || publish_discovery(step);
+  return publish_info();
+}
+
+bool Bridge::publish_info() {
   FixedSink sink(message_, sizeof message_);
   {
     web::JsonWriter w(sink);
@@ -224,11 +247,11 @@ void Bridge::publish_info() {
         .end_object();
   }
   const std::size_t n = join_topic(prefix(), "info", topic_, sizeof topic_);
-  if (n == 0 || sink.overflowed()) return;
-  transport_.publish(std::string_view(topic_, n), sink.view(), true);
+  if (n == 0 || sink.overflowed()) return true;  // cannot ever fit: not retried
+  return transport_.publish(std::string_view(topic_, n), sink.view(), true);
 }
 
-void Bridge::publish_discovery() {
+bool Bridge::publish_discovery(int entity) {
   const settings::Settings& s = api_->settings();
   const bool has_el = s.b(Id::kElEnabled);
   char state_topic[kMaxTopicBytes];
@@ -255,16 +278,18 @@ void Bridge::publish_discovery() {
       {Kind::kPark, "button", "park", "Park"},
       {Kind::kFault, "binary_sensor", "fault", "Fault"},
   };
-  for (const Entity& e : kEntities) {
+  static_assert(std::size(kEntities) == kAnnouncements - 1, "one announcement per entity");
+  if (entity < 0 || static_cast<std::size_t>(entity) >= std::size(kEntities)) return true;
+  const Entity& e = kEntities[entity];
+  {
     // homeassistant/<component>/<node_id>/<object_id>/config
     char topic[kMaxTopicBytes];
     const int tn = std::snprintf(topic, sizeof topic, "homeassistant/%s/%s/%s/config", e.component,
                                  node_id_, e.object);
-    if (tn <= 0 || static_cast<std::size_t>(tn) >= sizeof topic) continue;
+    if (tn <= 0 || static_cast<std::size_t>(tn) >= sizeof topic) return true;
     if (e.kind == Kind::kSensorEl && !has_el) {
       // An empty retained config removes an entity published before.
-      transport_.publish(std::string_view(topic, static_cast<std::size_t>(tn)), {}, true);
-      continue;
+      return transport_.publish(std::string_view(topic, static_cast<std::size_t>(tn)), {}, true);
     }
     char unique_id[72];
     std::snprintf(unique_id, sizeof unique_id, "%s_%s", node_id_, e.object);
@@ -325,8 +350,9 @@ void Bridge::publish_discovery() {
       }
       w.end_object();
     }
-    if (sink.overflowed()) continue;
-    transport_.publish(std::string_view(topic, static_cast<std::size_t>(tn)), sink.view(), true);
+    if (sink.overflowed()) return true;  // cannot ever fit: not retried
+    return transport_.publish(std::string_view(topic, static_cast<std::size_t>(tn)), sink.view(),
+                              true);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "access/peer.hpp"
 #include "mqtt/station.hpp"
 #include "mqtt/topics.hpp"
 #include "util/time.hpp"
@@ -54,6 +55,12 @@ class Bridge {
   /// port's ROTORD_VERSION); not copied: a string literal.
   void set_version(const char* version) { version_ = version; }
 
+  /// The broker's address as the port's client connected to it: commands
+  /// are refused (403) unless access.control_networks lets it control, as
+  /// for a line-protocol client at that address. Until told: an address the
+  /// allow-list cannot name (read-only whenever the list is set).
+  void set_broker_peer(const access::Peer& peer) { broker_peer_ = peer; }
+
   /// A new controller (POST /api/reboot) comes with a new API.
   void set_api(web::Api& api) { api_ = &api; }
 
@@ -63,7 +70,9 @@ class Bridge {
 
   /// Called on every pass of the loop with the transport's clock: publishes
   /// the state when it changed, at mqtt.state_hz while moving, and
-  /// everything again (discovery, state) after a (re)connection.
+  /// everything again (discovery, info, state) after a (re)connection. A
+  /// publish the transport refuses (its queue full) is tried again on a
+  /// later pass: the announcements in order, then the state.
   void poll(Millis now_ms);
 
   /// A message arrived on a subscribed topic. `oversized`: the port dropped
@@ -91,8 +100,13 @@ class Bridge {
   /// Whether a position moved by kPositionStepDeg since the last publish.
   bool position_changed() const;
   bool publish_state();
-  void publish_discovery();
-  void publish_info();
+  /// Discovery's entities, then <prefix>/info.
+  static constexpr int kAnnouncements = 7;
+  /// Publishes announcement `step` (0..kAnnouncements-1); false: the
+  /// transport refused it (tried again later).
+  bool announce(int step);
+  bool publish_discovery(int entity);
+  bool publish_info();
   void publish_result(std::string_view command, int status, std::string_view body);
 
   web::Api* api_;
@@ -103,12 +117,14 @@ class Bridge {
   char device_name_[72] = {};
   char web_url_[Station::kMaxUrlBytes] = {};
   Station* station_ = nullptr;
+  access::Peer broker_peer_{access::Peer::Kind::kOther, 0};
   const char* version_ = "";
   char availability_[kMaxTopicBytes] = {};
   std::size_t availability_len_ = 0;
   char command_filter_[kMaxTopicBytes] = {};
   std::size_t command_filter_len_ = 0;
   bool was_connected_ = false;
+  int announce_step_ = kAnnouncements;  ///< the next announcement to publish
   bool have_published_ = false;
   Fingerprint last_;
   float last_az_deg_ = 0.0f;
@@ -116,9 +132,10 @@ class Bridge {
   Millis last_publish_ms_ = 0;
   std::uint32_t states_published_ = 0;
   std::uint32_t commands_handled_ = 0;
+  /// The state's JSON; also a command's HTTP response from the API (the
+  /// state is rendered anew for each publish, so they never overlap).
   char state_[kMaxStateBytes];
-  /// The API's HTTP response to a command, then the result message.
-  char response_[kMaxStateBytes];
+  /// A result, discovery or info message.
   char message_[kMaxDiscoveryBytes];
   char topic_[kMaxTopicBytes];
 };

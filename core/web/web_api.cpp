@@ -387,7 +387,7 @@ bool Api::takes_method(const Route& route, std::string_view method) {
 }
 
 Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
-                         const ResponseOptions& options, const access::Peer& peer) {
+                         const ResponseOptions& options, const access::Peer& peer, Via via) {
   const std::string_view path = request.path;
   // PUT and DELETE change state as POST does (the tracking routes).
   const bool is_post = request.method == Method::kPost || request.method == Method::kPut ||
@@ -417,7 +417,12 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
   // Access control (docs/security.md).
   const Caller caller = auth_.identify(request, settings(), transport_now_);
   last_caller_ = caller;
-  if (WebAuth::enabled(settings()) && route->need != Need::kPublic) {
+  if (via == Via::kBroker && route->need != Need::kPublic && route->need != Need::kControl) {
+    // The broker's authority covers commands, never access or reading state.
+    send_error(out, 403, "not from the broker: this needs the web login", options);
+    return Outcome::kDone;
+  }
+  if (via == Via::kHttp && WebAuth::enabled(settings()) && route->need != Need::kPublic) {
     ResponseOptions o = options;
     o.extra_headers = "WWW-Authenticate: Bearer realm=\"rotord\"\r\n";
     if (ctx_.crypto == nullptr) {

@@ -122,12 +122,20 @@ class Api {
   static std::span<const Route> routes();
   /// Whether a state-changing row takes `method` ("POST", or its verbs).
   static bool takes_method(const Route& route, std::string_view method);
+  /// Who vouches for a request. kHttp: the web's own access control (a
+  /// login or a token once web.password is set). kBroker: a command from the
+  /// MQTT broker, which carries no login: mqtt.control, the broker's ACLs and
+  /// access.control_networks (checked by the MQTT bridge) are its authority,
+  /// so the web login is not asked for; the control lock still is (the
+  /// broker never holds it), and the web-login-only routes are refused.
+  enum class Via : unsigned char { kHttp, kBroker };
   /// Answers one request whose path starts with /api/, from `peer`.
   /// kStartEvents: the response head of an event stream went out and events
   /// follow (poll). kPending: a login or a new password is being hashed;
   /// the session asks finish_pending() on each poll until it answers.
   Outcome handle(const HttpRequest& request, protocol::ByteSink& out,
-                 const ResponseOptions& options, const access::Peer& peer = {});
+                 const ResponseOptions& options, const access::Peer& peer = {},
+                 Via via = Via::kHttp);
 
   /// The ticket of the request that just went kPending.
   std::uint32_t pending_ticket() const { return auth_.job().ticket; }

@@ -1,7 +1,11 @@
 #include "mqtt_client.hpp"
 
+#include <arpa/inet.h>
 #include <mosquitto.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 
@@ -18,6 +22,28 @@ constexpr std::string_view kOffline = "offline";
 
 std::string text(const settings::Settings& s, Id id) {
   return std::string(s.text(id));
+}
+
+/// The address at the other end of the client's socket (the broker), for
+/// access.control_networks; an IPv4 peer of an IPv6 socket is IPv4.
+access::Peer peer_of_socket(int fd) {
+  sockaddr_storage address{};
+  socklen_t length = sizeof address;
+  if (fd < 0 || ::getpeername(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0)
+    return {access::Peer::Kind::kOther, 0};
+  if (address.ss_family == AF_INET) {
+    const auto* v4 = reinterpret_cast<const sockaddr_in*>(&address);
+    return access::Peer::from_ipv4(ntohl(v4->sin_addr.s_addr));
+  }
+  if (address.ss_family == AF_INET6) {
+    const auto* v6 = reinterpret_cast<const sockaddr_in6*>(&address);
+    if (IN6_IS_ADDR_V4MAPPED(&v6->sin6_addr)) {
+      const std::uint8_t* b = v6->sin6_addr.s6_addr + 12;
+      return access::Peer::from_ipv4((std::uint32_t{b[0]} << 24) | (std::uint32_t{b[1]} << 16) |
+                                     (std::uint32_t{b[2]} << 8) | b[3]);
+    }
+  }
+  return {access::Peer::Kind::kOther, 0};
 }
 
 }  // namespace
@@ -71,15 +97,25 @@ bool MqttClient::start(const settings::Settings& settings, const std::string& cl
   if (!user.empty())
     mosquitto_username_pw_set(mosq_, user.c_str(), password.empty() ? nullptr : password.c_str());
   if (settings.b(Id::kMqttTls)) {
-    const int rc = mosquitto_tls_set(mosq_, nullptr, "/etc/ssl/certs", nullptr, nullptr, nullptr);
+    // The broker's certificate and its name (mqtt.host) are checked: against
+    // mqtt.tls_ca when set, else the system's CAs.
+    const std::string ca = text(settings, Id::kMqttTlsCa);
+    const int rc =
+        ca.empty() ? mosquitto_tls_set(mosq_, nullptr, "/etc/ssl/certs", nullptr, nullptr, nullptr)
+                   : mosquitto_tls_set(mosq_, ca.c_str(), nullptr, nullptr, nullptr, nullptr);
     if (rc != MOSQ_ERR_SUCCESS) {
-      log::error("mqtt: TLS setup failed: %s", mosquitto_strerror(rc));
+      log::error("mqtt: TLS setup failed (mqtt.tls_ca '%s'): %s: MQTT off",
+                 ca.empty() ? "/etc/ssl/certs" : ca.c_str(),
+                 rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc));
       return false;
     }
+    tls_ = true;
   }
+  mosquitto_log_callback_set(mosq_, &MqttClient::on_log);
   mosquitto_connect_callback_set(mosq_, &MqttClient::on_connect);
   mosquitto_disconnect_callback_set(mosq_, &MqttClient::on_disconnect);
   mosquitto_message_callback_set(mosq_, &MqttClient::on_message);
+  mosquitto_publish_callback_set(mosq_, &MqttClient::on_publish);
   host_ = text(settings, Id::kMqttHost);
   port_ = settings.i(Id::kMqttPort);
   log::info("mqtt: broker %s:%d, topics %.*s/..., commands %s", host_.c_str(), port_,
@@ -131,13 +167,29 @@ void MqttClient::run() {
     }
     connected_ = false;
     if (stopping_.load()) break;
+    // Why, in libmosquitto's words, and OpenSSL's (a certificate that does
+    // not verify) when it said more.
+    std::string why = rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!library_error_.empty()) why += " (" + library_error_ + ")";
+      library_error_.clear();
+    }
+    if (tls_ && why.find("certificate verify failed") != std::string::npos)
+      why += ": is mqtt.tls_ca the CA that signed the broker's certificate, for this mqtt.host?";
     if (was_up) {
       log::warn("mqtt: lost the broker %s:%d (%s); reconnecting", host_.c_str(), port_,
-                mosquitto_strerror(rc));
+                why.c_str());
       was_up = false;
+      last_failure_.clear();
+    } else if (why != last_failure_) {
+      // Said once, clearly; the same failure again only in the debug log.
+      log::warn("mqtt: cannot connect to %s:%d%s: %s; retrying every %d..%d s", host_.c_str(),
+                port_, tls_ ? " (TLS)" : "", why.c_str(), kMinBackoffS, kMaxBackoffS);
+      last_failure_ = why;
     } else {
-      log::debug("mqtt: cannot reach %s:%d (%s); again in %d s", host_.c_str(), port_,
-                 mosquitto_strerror(rc), backoff_s);
+      log::debug("mqtt: cannot connect to %s:%d (%s); again in %d s", host_.c_str(), port_,
+                 why.c_str(), backoff_s);
     }
     std::unique_lock<std::mutex> lock(mutex_);
     wake_.wait_for(lock, std::chrono::seconds(backoff_s), [this] { return stopping_.load(); });
@@ -159,8 +211,24 @@ void MqttClient::on_connect(mosquitto* m, void* self, int rc) {
   // The station page: every rotord on a two-level prefix (rotord/<hostname>).
   static const char* const kStation[] = {"+/+/state", "+/+/availability", "+/+/info"};
   for (const char* topic : kStation) mosquitto_subscribe(m, nullptr, topic, 0);
-  log::info("mqtt: connected to %s:%d", c->host_.c_str(), c->port_);
+  {
+    std::lock_guard<std::mutex> lock(c->mutex_);
+    c->broker_peer_ = peer_of_socket(mosquitto_socket(m));
+    c->library_error_.clear();
+  }
+  c->last_failure_.clear();
+  log::info("mqtt: connected to %s:%d%s", c->host_.c_str(), c->port_, c->tls_ ? " (TLS)" : "");
   c->connected_ = true;  // the loop republishes discovery and state
+}
+
+void MqttClient::on_log(mosquitto* /*m*/, void* self, int level, const char* message) {
+  // Errors only: the first of a failed attempt (OpenSSL's reason comes
+  // first) is kept for run()'s line. Mostly the network thread's, but a
+  // publish from the loop may log too: under the mutex.
+  if ((level & (MOSQ_LOG_ERR | MOSQ_LOG_WARNING)) == 0 || message == nullptr) return;
+  auto* c = static_cast<MqttClient*>(self);
+  std::lock_guard<std::mutex> lock(c->mutex_);
+  if (c->library_error_.empty()) c->library_error_ = message;
 }
 
 void MqttClient::on_disconnect(mosquitto* /*m*/, void* self, int /*rc*/) {
@@ -201,9 +269,25 @@ void MqttClient::on_message(mosquitto* /*m*/, void* self, const mosquitto_messag
 
 bool MqttClient::publish(std::string_view topic, std::string_view payload, bool retain) {
   if (!connected_.load()) return false;
+  if (unacked_.load() >= kMaxUnacked) {
+    ++refused_publishes_;
+    return false;
+  }
   const std::string t(topic);
-  return mosquitto_publish(mosq_, nullptr, t.c_str(), static_cast<int>(payload.size()),
-                           payload.data(), 1, retain) == MOSQ_ERR_SUCCESS;
+  if (mosquitto_publish(mosq_, nullptr, t.c_str(), static_cast<int>(payload.size()), payload.data(),
+                        1, retain) != MOSQ_ERR_SUCCESS)
+    return false;
+  ++unacked_;
+  return true;
+}
+
+void MqttClient::on_publish(mosquitto* /*m*/, void* self, int /*mid*/) {
+  // The broker acknowledged one (or a QoS 0 one went out): never below 0,
+  // whatever was queued outside publish().
+  auto* c = static_cast<MqttClient*>(self);
+  int n = c->unacked_.load();
+  while (n > 0 && !c->unacked_.compare_exchange_weak(n, n - 1)) {
+  }
 }
 
 void MqttClient::poll(Millis wall_ms) {
@@ -211,6 +295,7 @@ void MqttClient::poll(Millis wall_ms) {
   // bounded inbox, so a flood from the broker costs the loop little.
   std::deque<Inbound> arrived;
   std::deque<Inbound> station;
+  std::uint64_t dropped = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (std::size_t n = 0; n < kCommandsPerPass && !inbox_.empty(); ++n) {
@@ -218,6 +303,17 @@ void MqttClient::poll(Millis wall_ms) {
       inbox_.pop_front();
     }
     station.swap(station_inbox_);
+    bridge_.set_broker_peer(broker_peer_);
+    dropped = dropped_;
+  }
+  if (dropped != dropped_logged_ &&
+      (dropped_logged_ == 0 || wall_ms - dropped_logged_ms_ >= kDropLogGapMs)) {
+    // A flood: said at most every kDropLogGapMs, never per message.
+    log::warn("mqtt: %llu command(s) dropped: more than %zu waiting (a flood on %.*s/cmd/)",
+              static_cast<unsigned long long>(dropped - dropped_logged_), kMaxInbox,
+              static_cast<int>(bridge_.prefix().size()), bridge_.prefix().data());
+    dropped_logged_ = dropped;
+    dropped_logged_ms_ = wall_ms;
   }
   for (const Inbound& in : arrived) bridge_.on_message(in.topic, in.payload, in.oversized);
   for (const Inbound& in : station) bridge_.on_message(in.topic, in.payload, false);

@@ -34,6 +34,13 @@ class MqttClient final : private mqtt::Transport {
 
   /// Other rotords' state messages waiting; more are dropped.
   static constexpr std::size_t kMaxStationInbox = 32;
+  /// Messages handed to libmosquitto and not yet acknowledged by the broker
+  /// (QoS 1); beyond this a publish is refused (a result dropped, the state
+  /// sent on a later pass), so a broker that reads slowly cannot make the
+  /// outgoing queue grow without bound.
+  static constexpr int kMaxUnacked = 64;
+  /// A flood's dropped commands are logged at most this often.
+  static constexpr Millis kDropLogGapMs = 10000;
 
   /// nullptr when mqtt.enabled is off or the settings cannot work (logged).
   /// `web_url`: where this rotord's web UI is, for the station pages.
@@ -62,6 +69,8 @@ class MqttClient final : private mqtt::Transport {
 
   static void on_connect(mosquitto* m, void* self, int rc);
   static void on_disconnect(mosquitto* m, void* self, int rc);
+  static void on_log(mosquitto* m, void* self, int level, const char* message);
+  static void on_publish(mosquitto* m, void* self, int mid);
   static void on_message(mosquitto* m, void* self, const mosquitto_message* message);
 
   web::Api& api_;
@@ -70,6 +79,12 @@ class MqttClient final : private mqtt::Transport {
   mosquitto* mosq_ = nullptr;
   std::string host_;
   int port_ = 1883;
+  bool tls_ = false;
+  /// libmosquitto's first error of this attempt (on_log; guarded by
+  /// mutex_), and the network thread's last failure logged (said once, not
+  /// at every retry).
+  std::string library_error_;
+  std::string last_failure_;
   std::thread thread_;
   std::atomic<bool> connected_{false};
   std::atomic<bool> stopping_{false};
@@ -77,7 +92,14 @@ class MqttClient final : private mqtt::Transport {
   std::condition_variable wake_;
   std::deque<Inbound> inbox_;
   std::deque<Inbound> station_inbox_;
-  std::uint64_t dropped_ = 0;
+  std::uint64_t dropped_ = 0;         ///< commands the full inbox had no room for (mutex_)
+  std::uint64_t dropped_logged_ = 0;  ///< the loop's: dropped_ when last logged
+  Millis dropped_logged_ms_ = 0;
+  std::atomic<int> unacked_{0};
+  std::uint64_t refused_publishes_ = 0;  ///< the loop's: kMaxUnacked reached
+  /// The broker's address of the current connection (on_connect), for
+  /// access.control_networks; guarded by mutex_.
+  access::Peer broker_peer_{access::Peer::Kind::kOther, 0};
 };
 
 }  // namespace rotord::linux_port

@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -25,9 +26,14 @@ namespace rotord::testing {
 namespace {
 
 /// A Mosquitto broker on 127.0.0.1:port, anonymous, no persistence.
+/// `conf`: lines that replace `allow_anonymous true` (logins, ACLs);
+/// `client`: the options mosquitto_pub needs to connect then (-u, -P).
 class Broker {
  public:
-  explicit Broker(const std::string& dir, int port = 0) : dir_(dir), port_(port) {
+  explicit Broker(const std::string& dir, int port = 0,
+                  const std::string& conf = "allow_anonymous true\n",
+                  const std::string& client = "")
+      : dir_(dir), port_(port), conf_(conf), client_(client) {
     if (port_ == 0) port_ = free_port();
     start();
   }
@@ -35,7 +41,7 @@ class Broker {
   int port() const { return port_; }
   void start() {
     const std::string conf = dir_ + "/mosquitto.conf";
-    std::ofstream(conf) << "listener " << port_ << " 127.0.0.1\nallow_anonymous true\n";
+    std::ofstream(conf) << "listener " << port_ << " 127.0.0.1\n" << conf_;
     pid_ = ::fork();
     if (pid_ == 0) {
       // Its log goes to a file in the test's directory, not the test output.
@@ -49,8 +55,8 @@ class Broker {
       ::_exit(127);
     }
     // Ready when a client can connect (bounded; liveness only).
-    run_command("for i in $(seq 100); do mosquitto_pub -p " + std::to_string(port_) +
-                " -t rotord-test/ping -n 2>/dev/null && break; sleep 0.05; done");
+    run_command("for i in $(seq 100); do mosquitto_pub -p " + std::to_string(port_) + " " +
+                client_ + " -t rotord-test/ping -n 2>/dev/null && break; sleep 0.05; done");
   }
   void stop() {
     if (pid_ <= 0) return;
@@ -62,6 +68,8 @@ class Broker {
  private:
   std::string dir_;
   int port_;
+  std::string conf_;
+  std::string client_;
   pid_t pid_ = -1;
 };
 
@@ -77,20 +85,25 @@ class Mqtt : public ::testing::Test {
     run_command("rm -rf " + dir);
   }
   /// Starts rotord with mqtt.* settings over the defaults.
+  /// `extra`: more settings, each `, "key": value`.
   void start_daemon(bool control, const std::string& prefix = "rotord/test",
-                    bool wait_connected = true) {
+                    bool wait_connected = true, const std::string& extra = "") {
     const std::string config = dir + "/rotord.json";
     std::ofstream(config) << R"({"mqtt.enabled": true, "mqtt.host": "127.0.0.1", "mqtt.port": )"
-                          << broker->port() << R"(, "mqtt.prefix": ")" << prefix
+                          << (daemon_port != 0 ? daemon_port : broker->port())
+                          << R"(, "mqtt.prefix": ")" << prefix
                           << R"(", "mqtt.client_id": "rotord-test", "mqtt.control": )"
-                          << (control ? "true" : "false") << "}\n";
-    daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{"--config", config});
+                          << (control ? "true" : "false") << extra << "}\n";
+    std::vector<std::string> args{"--config", config};
+    args.insert(args.end(), daemon_args.begin(), daemon_args.end());
+    daemon = std::make_unique<DaemonProcess>(args);
     ASSERT_TRUE(daemon->ready()) << daemon->output();
     if (wait_connected) {
       ASSERT_TRUE(daemon->wait_for_output("mqtt: connected")) << daemon->output();
     }
   }
-  std::string p() const { return std::to_string(broker->port()); }
+  /// The port, and the login of the test's own clients (`as`).
+  std::string p() const { return std::to_string(broker->port()) + as; }
   /// The first (retained) message on `topic`, waiting up to wait_s.
   std::string retained(const std::string& topic, int wait_s = 10) {
     return run_command("mosquitto_sub -p " + p() + " -t '" + topic + "' -C 1 -W " +
@@ -112,6 +125,9 @@ class Mqtt : public ::testing::Test {
         .out;
   }
   std::string dir;
+  std::string as;       ///< e.g. " -u homeassistant -P ha-pw" (a broker with logins)
+  int daemon_port = 0;  ///< the broker port rotord uses (0: broker->port())
+  std::vector<std::string> daemon_args;  ///< more options, e.g. --clock manual
   std::unique_ptr<Broker> broker;
   std::unique_ptr<DaemonProcess> daemon;
 };
@@ -172,6 +188,311 @@ TEST_F(Mqtt, WithoutMqttControlOnlyStopIsObeyed) {
   EXPECT_EQ(command("stop", "{}"), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
                                    "\n");
   EXPECT_TRUE(seen("rotord/test/state", R"("mode":"idle")"));
+}
+
+/// A stored web password (access control on): a hash of some password.
+const std::string kWebPassword =
+    R"(, "web.password": "pbkdf2-sha256$1000$000102030405060708090a0b0c0d0e0f$)"
+    R"(f0f1f2f3f4f5f6f7f8f9fafbfcfdfeff")";
+
+TEST_F(Mqtt, AWebPasswordDoesNotStopTheBrokersCommands) {
+  start_daemon(true, "rotord/test", true, kWebPassword);
+  // The REST API asks for a login now ...
+  EXPECT_EQ(http(daemon->ports().web, "POST", "/api/goto", R"({"az": 100})").status, 401);
+  // ... a broker message carries none: mqtt.control and the broker's ACLs decide.
+  EXPECT_EQ(command("goto", R"({"az": 200})"),
+            R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})"
+            "\n");
+  EXPECT_TRUE(seen("rotord/test/state", R"("mode":"goto")"));
+  EXPECT_NE(command("speed", R"({"speed_pct": 400})").find(R"("status":422)"), std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+}
+
+TEST_F(Mqtt, TheAllowListAppliesToTheBrokersAddress) {
+  // The broker (127.0.0.1) is not on the list: its commands are read-only.
+  start_daemon(true, "rotord/test", true,
+               kWebPassword + R"(, "access.control_networks": "192.0.2.0/24")");
+  EXPECT_EQ(command("goto", R"({"az": 200})"),
+            R"({"cmd":"goto","status":403,"response":{"error":"read-only: the broker's address )"
+            R"(is not in access.control_networks"}})"
+            "\n");
+  EXPECT_NE(command("park", "{}").find(R"("status":403)"), std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+  EXPECT_TRUE(seen("rotord/test/state", R"("mode":"idle")"));
+}
+
+TEST_F(Mqtt, ABrokerOnTheAllowListControls) {
+  start_daemon(true, "rotord/test", true, R"(, "access.control_networks": "127.0.0.0/8")");
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("status":200)"), std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+}
+
+/// The ACL file of docs/mqtt.md ("An ACL example"), as it is there.
+std::string documented_acl() {
+  std::ifstream in(ROTORD_SOURCE_DIR "/docs/mqtt.md");
+  std::string line, acl;
+  bool after = false, inside = false;
+  while (std::getline(in, line)) {
+    if (!after) {
+      after = line.rfind("`/etc/mosquitto/acl`", 0) == 0;
+    } else if (line.rfind("```", 0) == 0) {
+      if (inside) break;
+      inside = true;
+    } else if (inside) {
+      acl += line + "\n";
+    }
+  }
+  return acl;
+}
+
+TEST_F(Mqtt, TheAclExampleFromTheDocs) {
+  std::string acl = documented_acl();
+  ASSERT_NE(acl.find("user operator"), std::string::npos) << acl;
+  for (std::size_t at = acl.find("shack"); at != std::string::npos; at = acl.find("shack"))
+    acl.replace(at, 5, "test");
+  std::ofstream(dir + "/acl") << acl;
+  const CommandOutput users =
+      run_command("cd " + dir + " && mosquitto_passwd -c -b passwd rotord-test rotord-pw && " +
+                  "mosquitto_passwd -b passwd homeassistant ha-pw && " +
+                  "mosquitto_passwd -b passwd operator op-pw && " +
+                  // Run as root, mosquitto reads its files as the user `mosquitto`.
+                  "chmod 0755 . && chmod 0644 passwd acl 2>&1");
+  ASSERT_EQ(users.rc, 0) << users.out;
+  const int port = broker->port();
+  broker.reset();
+  broker = std::make_unique<Broker>(
+      dir, port,
+      "allow_anonymous false\npassword_file " + dir + "/passwd\nacl_file " + dir + "/acl\n",
+      "-u homeassistant -P ha-pw");
+  start_daemon(true, "rotord/test", true,
+               R"(, "mqtt.user": "rotord-test", "mqtt.password": "rotord-pw")");
+  // Home Assistant may command.
+  as = " -u homeassistant -P ha-pw";
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("status":200)"), std::string::npos);
+  EXPECT_NE(command("stop", "").find(R"("status":200)"), std::string::npos);
+  // The operator may watch and stop, not steer: the broker drops its goto
+  // (QoS 1: acknowledged, not delivered) ...
+  as = " -u operator -P op-pw";
+  EXPECT_EQ(run_command("timeout 10 mosquitto_pub -q 1 -p " + p() +
+                        R"( -t rotord/test/cmd/goto -m '{"az": 300}')")
+                .rc,
+            0);
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+  // ... so when a later command of Home Assistant's is answered, the goto
+  // (which would have come first on rotord's one connection) never came.
+  as = " -u homeassistant -P ha-pw";
+  EXPECT_NE(command("speed", R"({"speed_pct": 50})").find(R"("status":200)"), std::string::npos);
+  const HttpResponse status = http(daemon->ports().web, "GET", "/api/status");
+  EXPECT_NE(status.body.find(R"("mode":"idle")"), std::string::npos) << status.body;
+  as = " -u operator -P op-pw";
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+  // Nobody else may even connect.
+  as = "";
+  EXPECT_NE(run_command("mosquitto_pub -p " + p() + " -t rotord/test/cmd/stop -n 2>&1").rc, 0);
+}
+
+/// A test CA, a server certificate it signed for 127.0.0.1 and localhost,
+/// and a second CA that signed nothing here: made with Debian's openssl for
+/// each test, in `dir`, readable by the broker (run as root, mosquitto reads
+/// them as the user `mosquitto`). Empty on success, else openssl's words.
+std::string make_test_pki(const std::string& dir) {
+  const std::string ec = " -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes";
+  const CommandOutput made = run_command(
+      "cd " + dir + " && (openssl req -x509" + ec +
+      " -days 2 -subj '/CN=rotord test CA' -keyout ca.key -out ca.pem && openssl req -x509" + ec +
+      " -days 2 -subj '/CN=another CA' -keyout other.key -out other-ca.pem && openssl req" + ec +
+      " -subj '/CN=127.0.0.1' -keyout server.key -out server.csr && printf '" +
+      R"(subjectAltName=IP:127.0.0.1,DNS:localhost\nbasicConstraints=CA:FALSE\n)" +
+      R"(extendedKeyUsage=serverAuth\n)" +
+      "' > server.ext && openssl x509 -req -in server.csr -CA ca.pem -CAkey ca.key "
+      "-CAcreateserial -days 2 -sha256 -extfile server.ext -out server.pem && "
+      "chmod 0755 . && chmod 0644 *) 2>&1");
+  return made.rc == 0 ? std::string() : made.out;
+}
+
+/// A broker with a plain listener (the test's own clients) and a TLS one
+/// (rotord) on another free port.
+class MqttTls : public Mqtt {
+ protected:
+  void SetUp() override {
+    dir = make_temp_dir("rotord-mqtt");
+    const std::string pki = make_test_pki(dir);
+    ASSERT_EQ(pki, "");
+    tls_port = free_port();
+    broker = std::make_unique<Broker>(dir, 0,
+                                      "allow_anonymous true\nlistener " + std::to_string(tls_port) +
+                                          " 127.0.0.1\ncafile " + dir + "/ca.pem\ncertfile " + dir +
+                                          "/server.pem\nkeyfile " + dir + "/server.key\n");
+    daemon_port = tls_port;
+  }
+  /// `, "mqtt.tls": true, "mqtt.tls_ca": "<dir>/<ca>"`
+  std::string tls(const std::string& ca) const {
+    return R"(, "mqtt.tls": true, "mqtt.tls_ca": ")" + dir + "/" + ca + "\"";
+  }
+  int tls_port = 0;
+};
+
+TEST_F(MqttTls, ConnectsWithTheBrokersCa) {
+  start_daemon(true, "rotord/test", true, tls("ca.pem"));
+  EXPECT_NE(
+      daemon->output().find("mqtt: connected to 127.0.0.1:" + std::to_string(tls_port) + " (TLS)"),
+      std::string::npos)
+      << daemon->output();
+  // The state and availability arrive (read on the plain listener) and
+  // commands work over TLS.
+  EXPECT_NE(retained("rotord/test/state").find(R"("mode":"idle")"), std::string::npos);
+  EXPECT_EQ(retained("rotord/test/availability"), "online\n");
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("status":200)"), std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+  // And the TLS listener is TLS indeed: a plain client gets nowhere on it.
+  EXPECT_NE(run_command("timeout 10 mosquitto_pub -p " + std::to_string(tls_port) +
+                        " -t rotord/test/cmd/stop -n 2>&1")
+                .rc,
+            0);
+}
+
+TEST_F(MqttTls, AWrongCaIsRefusedClearlyAndRetriedWhileControlGoesOn) {
+  start_daemon(true, "rotord/test", false, tls("other-ca.pem"));
+  // Said once, clearly: the broker's certificate does not verify.
+  ASSERT_TRUE(daemon->wait_for_output("certificate verify failed", 20000)) << daemon->output();
+  EXPECT_NE(daemon->output().find("mqtt: cannot connect to 127.0.0.1:" + std::to_string(tls_port) +
+                                  " (TLS): A TLS error occurred."),
+            std::string::npos)
+      << daemon->output();
+  // It keeps trying (the broker sees a second handshake fail; backoff 1 s).
+  EXPECT_EQ(run_command("for i in $(seq 200); do [ $(grep -c 'OpenSSL Error' " + dir +
+                        "/mosquitto.log) -ge 2 ] && exit 0; sleep 0.05; done; exit 1")
+                .rc,
+            0)
+      << run_command("cat " + dir + "/mosquitto.log").out;
+  // The rotator is controlled as ever: REST, WRC.
+  EXPECT_EQ(http(daemon->ports().web, "GET", "/api/status").status, 200);
+  TcpClient wrc(daemon->ports().wrc);
+  EXPECT_EQ(wrc.ask("AZ 300\n"), "OK AZ 300.00");
+  EXPECT_EQ(http(daemon->ports().web, "POST", "/api/stop").status, 200);
+  // Never connected, never said online; the failure was logged once.
+  const std::string out = daemon->output();
+  EXPECT_EQ(out.find("mqtt: connected"), std::string::npos) << out;
+  EXPECT_EQ(out.find("certificate verify failed"), out.rfind("certificate verify failed")) << out;
+}
+
+TEST_F(MqttTls, AMissingCaFileKeepsMqttOffAndSaysWhy) {
+  start_daemon(true, "rotord/test", false, tls("no-such-ca.pem"));
+  EXPECT_TRUE(
+      daemon->wait_for_output("mqtt: TLS setup failed (mqtt.tls_ca '" + dir + "/no-such-ca.pem')"))
+      << daemon->output();
+  EXPECT_EQ(http(daemon->ports().web, "GET", "/api/status").status, 200);
+}
+
+/// The resident memory of a process, in KB (/proc/<pid>/status VmRSS).
+long rss_kb(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+TEST_F(Mqtt, AFloodOfCommandsAndOversizedMessagesCostsLittle) {
+  daemon_args = {"--clock", "manual"};
+  start_daemon(true);
+  const std::string results = dir + "/results.txt";
+  // A subscriber that records every result (ready once it saw a probe).
+  const CommandOutput sub =
+      run_command("(mosquitto_sub -p " + p() + " -t rotord/test/result -W 120 > " + results +
+                  " 2>&1 & echo $!)");
+  const pid_t sub_pid = static_cast<pid_t>(std::stol(sub.out));
+  ASSERT_EQ(run_command("for i in $(seq 100); do mosquitto_pub -p " + p() +
+                        " -t rotord/test/result -m probe; grep -q probe " + results +
+                        " && exit 0; sleep 0.05; done; exit 1")
+                .rc,
+            0);
+  // The flood: per round 5000 gotos, 300 bodies over 512 bytes, 3 of 1 MB,
+  // 2000 states of a made-up rotord and one each of 40 more (the station
+  // table), as fast as the clients can send them; then one stop, the last
+  // command of the round.
+  const std::string flood =
+      "cd " + dir + " && head -c 1000000 /dev/zero | tr '\\0' x > big.txt && " +
+      "seq 5000 | sed 's/.*/{\"az\": &}/' > gotos.txt && " +
+      "for i in $(seq 300); do printf '%0600d\\n' $i; done > oversized.txt && " +
+      "mosquitto_pub -p " + p() + " -t rotord/test/cmd/goto -l < gotos.txt & " +
+      "mosquitto_pub -p " + p() + " -t rotord/test/cmd/park -l < " + dir + "/oversized.txt & " +
+      "for i in 1 2 3; do mosquitto_pub -p " + p() + " -t rotord/test/cmd/goto -f " + dir +
+      "/big.txt; done & " +
+      "seq 2000 | sed 's/.*/{\"version\":\"x\",\"az\":{\"position_deg\":&}}/' | "
+      "mosquitto_pub -p " +
+      p() + " -t fake/rotord/state -l & " + "for i in $(seq 40); do mosquitto_pub -p " + p() +
+      " -t fake$i/rotord/state -m " + R"('{"version":"x","az":{"position_deg":1}}'; done & wait)";
+  const long rss_before_kb = rss_kb(daemon->pid());
+  long rss_after_first_kb = 0;
+  long long controller_ms = daemon->advance_ms(0);
+  for (int round = 1; round <= 2; ++round) {
+    const CommandOutput flooded = run_command("(" + flood + ") 2>&1");
+    ASSERT_EQ(flooded.rc, 0) << flooded.out;
+    // Meanwhile and after, everything else answers, and the control tick
+    // keeps controller time exactly.
+    TcpClient wrc(daemon->ports().wrc);
+    EXPECT_EQ(wrc.ask("AZ 300\n"), "OK AZ 300.00");
+    EXPECT_EQ(http(daemon->ports().web, "GET", "/api/status").status, 200);
+    TcpClient rotctld(daemon->ports().rotctld);
+    EXPECT_FALSE(rotctld.ask("p\n").empty());
+    controller_ms += 1000;
+    EXPECT_EQ(daemon->advance_ms(1000), controller_ms);
+    // The stop comes last and is obeyed (the inbox is FIFO; a full one
+    // makes room for a stop).
+    ASSERT_EQ(run_command("mosquitto_pub -p " + p() + " -t rotord/test/cmd/stop -n").rc, 0);
+    ASSERT_EQ(
+        run_command("for i in $(seq 400); do [ $(grep -c '\"cmd\":\"stop\"' " + results + ") -ge " +
+                    std::to_string(round) + " ] && exit 0; sleep 0.05; done; exit 1")
+            .rc,
+        0);
+    const HttpResponse status = http(daemon->ports().web, "GET", "/api/status");
+    EXPECT_NE(status.body.find(R"("mode":"idle")"), std::string::npos) << status.body;
+    if (round == 1) rss_after_first_kb = rss_kb(daemon->pid());
+  }
+  ::kill(sub_pid, SIGTERM);
+  // Results: one per command handled at most, none beyond its 1 KB buffer,
+  // each the REST API's answer; the 1 MB bodies answered 413, unread.
+  std::ifstream in(results);
+  std::string line;
+  int count = 0, too_large = 0, ok = 0;
+  std::size_t longest = 0;
+  while (std::getline(in, line)) {
+    if (line == "probe") continue;
+    ++count;
+    longest = std::max(longest, line.size());
+    EXPECT_EQ(line.rfind(R"({"cmd":")", 0), 0u) << line;
+    if (line.find(R"("status":413)") != std::string::npos) ++too_large;
+    if (line.find(R"("status":200)") != std::string::npos) ++ok;
+  }
+  EXPECT_LE(count, 2 * (5000 + 300 + 3 + 1));
+  EXPECT_GT(ok, 0);
+  EXPECT_LE(longest, 1024u);
+  // The flood was more than the 16-message inbox holds: dropped, and said.
+  EXPECT_TRUE(daemon->wait_for_output("command(s) dropped: more than 16 waiting"))
+      << daemon->output();
+  // The station table holds 16 rotords at most, whatever was seen.
+  const HttpResponse station = http(daemon->ports().web, "GET", "/api/station");
+  EXPECT_EQ(station.status, 200);
+  std::size_t listed = 0;
+  for (std::size_t at = station.body.find(R"("prefix":)"); at != std::string::npos;
+       at = station.body.find(R"("prefix":)", at + 1))
+    ++listed;
+  EXPECT_EQ(listed, 16u) << station.body;
+  // Memory: a second flood like the first costs next to nothing more.
+  const long rss_after_kb = rss_kb(daemon->pid());
+  EXPECT_GT(rss_before_kb, 0);
+  EXPECT_LT(rss_after_first_kb - rss_before_kb, 32 * 1024) << rss_before_kb;
+  EXPECT_LT(rss_after_kb - rss_after_first_kb, 4 * 1024) << rss_after_first_kb;
+  // Still on the broker, still answering.
+  EXPECT_EQ(command("goto", R"({"az": 200})"),
+            R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})"
+            "\n");
 }
 
 TEST_F(Mqtt, HomeAssistantDiscoveryFollowsTheSchema) {

@@ -3,6 +3,7 @@
 // handlers (same errors), mqtt.control, STOP always, discovery messages.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -24,11 +25,14 @@ class RecordingTransport final : public Transport {
     bool retain;
   };
   bool up = true;
+  int room = -1;  ///< publishes still taken before the queue is "full"; -1: no limit
   std::vector<Message> sent;
   bool connected() const override { return up; }
   bool publish(std::string_view topic, std::string_view payload, bool retain) override {
+    if (!up || room == 0) return false;
+    if (room > 0) --room;
     sent.push_back({std::string(topic), std::string(payload), retain});
-    return up;
+    return true;
   }
   std::vector<Message> on(const std::string& topic) const {
     std::vector<Message> out;
@@ -150,6 +154,95 @@ TEST_F(MqttBridge, ErrorsAreTheRestApis) {
   const std::size_t results = transport.on("rotord/test/result").size();
   bridge.on_message("other/topic", "{}");
   EXPECT_EQ(transport.on("rotord/test/result").size(), results);
+}
+
+TEST_F(MqttBridge, AFullQueueDelaysTheAnnouncementsNeverLosesThem) {
+  // A client with room for two messages per pass (the Pico's lwIP ring
+  // buffer): discovery, info and the state all go out, in order, each once.
+  for (Millis t = 0; t < 1000; t += 10) {
+    transport.room = 2;
+    bridge.poll(t);
+  }
+  std::vector<std::string> topics;
+  for (const auto& m : transport.sent) topics.push_back(m.topic);
+  const std::vector<std::string> expected = {
+      "homeassistant/sensor/rotord_test/azimuth/config",
+      "homeassistant/sensor/rotord_test/elevation/config",
+      "homeassistant/number/rotord_test/target_azimuth/config",
+      "homeassistant/button/rotord_test/stop/config",
+      "homeassistant/button/rotord_test/park/config",
+      "homeassistant/binary_sensor/rotord_test/fault/config",
+      "rotord/test/info",
+      "rotord/test/state"};
+  EXPECT_EQ(topics, expected);
+}
+
+TEST_F(MqttBridge, TheStateFitsItsBuffer) {
+  // The Pico's MQTT output buffer is sized from this (lwip_mqtt_opts.h).
+  bridge.poll(0);
+  const auto state = transport.on("rotord/test/state");
+  ASSERT_EQ(state.size(), 1u);
+  EXPECT_LT(state[0].payload.size(), Bridge::kMaxStateBytes);
+  std::size_t longest_discovery = 0;
+  for (const auto& m : transport.sent)
+    if (m.topic.rfind("homeassistant/", 0) == 0)
+      longest_discovery = std::max(longest_discovery, m.payload.size());
+  EXPECT_LT(longest_discovery, Bridge::kMaxDiscoveryBytes);
+  RecordProperty("state_bytes", static_cast<int>(state[0].payload.size()));
+  RecordProperty("longest_discovery_bytes", static_cast<int>(longest_discovery));
+}
+
+TEST_F(MqttBridge, AWebPasswordDoesNotStopTheBrokersCommands) {
+  // A broker message carries no login: mqtt.control and the broker's ACLs
+  // are its authority, whether or not the web asks for a password.
+  const std::string salt(32, '0'), key(32, '1');
+  ASSERT_EQ(api.controller()
+                .settings()
+                .set_text(Id::kWebPassword, "pbkdf2-sha256$1000$" + salt + "$" + key)
+                .error,
+            Error::kOk);
+  api.controller().settings().set(Id::kMqttControl, 1);
+  command("goto", R"({"az": 200})");
+  EXPECT_EQ(
+      last_result(),
+      R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})");
+  command("speed", R"({"speed_pct": 500})");
+  EXPECT_NE(last_result().find(R"("status":422)"), std::string::npos) << last_result();
+  command("stop", "");
+  EXPECT_EQ(last_result(), R"({"cmd":"stop","status":200,"response":{"ok":true}})");
+}
+
+TEST_F(MqttBridge, TheAllowListAppliesToTheBrokersAddress) {
+  api.controller().settings().set(Id::kMqttControl, 1);
+  ASSERT_EQ(
+      api.controller().settings().set_text(Id::kAccessControlNetworks, "192.168.1.0/24").error,
+      Error::kOk);
+  // Not told where the broker is: read-only while the list is set.
+  command("goto", R"({"az": 200})");
+  EXPECT_EQ(last_result(),
+            R"({"cmd":"goto","status":403,"response":{"error":"read-only: the broker's address )"
+            R"(is not in access.control_networks"}})");
+  bridge.set_broker_peer(access::Peer::from_ipv4(0x0A000001));  // 10.0.0.1
+  command("park", "{}");
+  EXPECT_NE(last_result().find(R"("status":403)"), std::string::npos) << last_result();
+  r.run_ms(100);
+  EXPECT_FALSE(r.controller->status().moving());
+  command("stop", "");  // STOP always
+  EXPECT_EQ(last_result(), R"({"cmd":"stop","status":200,"response":{"ok":true}})");
+  bridge.set_broker_peer(access::Peer::from_ipv4(0xC0A80105));  // 192.168.1.5
+  command("goto", R"({"az": 200})");
+  EXPECT_NE(last_result().find(R"("status":200)"), std::string::npos) << last_result();
+}
+
+TEST_F(MqttBridge, TheControlLockRefusesTheBroker) {
+  api.controller().settings().set(Id::kMqttControl, 1);
+  access::LockHolder holder;
+  holder.key[0] = 1;
+  api.controller().control_lock().take(holder, 1'000'000);
+  command("goto", R"({"az": 200})");
+  EXPECT_NE(last_result().find(R"("cmd":"goto","status":423)"), std::string::npos) << last_result();
+  command("stop", "");
+  EXPECT_EQ(last_result(), R"({"cmd":"stop","status":200,"response":{"ok":true}})");
 }
 
 TEST_F(MqttBridge, DiscoveryOnConnectAndAgainAfterAReconnect) {
