@@ -17,7 +17,7 @@
 //   clear                -> ok     faults cleared
 //   settings [KEY=VALUE ...] -> the stored settings document for this profile
 //     (the user's layer over the table's defaults, as the firmware saves it),
-//     on one line, then "end"
+//     on one line (or "error: ..."), then "end"
 //   q                    -> (exits)
 // Bad input answers "error: <why>".
 #include <cmath>
@@ -128,7 +128,7 @@ void print_settings(const sim::Profile& profile, char* args) {
   }
   // One line: the harness reads line by line (JSON needs no newlines).
   for (const char* p = storage.document(); *p != '\0'; ++p) std::putchar(*p == '\n' ? ' ' : *p);
-  std::printf("\nend\n");
+  std::printf("\n");
 }
 
 }  // namespace
@@ -254,6 +254,7 @@ int main(int argc, char** argv) {
       std::printf("ok\n");
     } else if (std::strncmp(line, "settings", 8) == 0) {
       print_settings(profile, line + 8);
+      std::printf("end\n");
     } else if (line[0] == 'q') {
       return 0;
     } else {
