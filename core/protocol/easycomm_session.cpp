@@ -121,7 +121,7 @@ void EasycommSession::handle_line(std::string_view line, ByteSink& out) {
 // The command table, in the order of docs/protocols/easycomm.md.
 using C = EasycommSession;
 using A = EasycommSession::Arg;
-const EasycommSession::Command EasycommSession::kCommands[] = {
+constexpr EasycommSession::Command EasycommSession::kCommands[] = {
     {"AZ", A::kQueryOrNumber, nullptr, &LineRequest::query_az, &LineRequest::set_az_deg,
      "AZ: azimuth query; AZx.x: go to (one go-to with ELy.y on the line)", true},
     {"EL", A::kQueryOrNumber, nullptr, &LineRequest::query_el, &LineRequest::set_el_deg,

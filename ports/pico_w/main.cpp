@@ -458,8 +458,16 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
   Wifi::Config wifi_config =
       Wifi::config_from(settings, ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000});
   // Announced by mDNS, as rotord on Linux announces them through Avahi.
-  wifi_config.ports =
-      net::ServicePorts{kHttpPort, kRotctldPort, kWrcPort, kGs232Port, kEasycommPort, 0};
+  // The TCP ports are the registry's (every line protocol is served below).
+  const auto tcp_port = [](Personality personality) {
+    return protocol::protocol_info(personality).tcp_port;
+  };
+  wifi_config.ports = net::ServicePorts{kHttpPort,
+                                        tcp_port(Personality::kRotctld),
+                                        tcp_port(Personality::kWrc),
+                                        tcp_port(Personality::kGs232),
+                                        tcp_port(Personality::kEasycomm),
+                                        tcp_port(Personality::kSeed)};
   static Wifi wifi(wifi_config);
   // WRC MONITOR lines also go to the USB log port as they happen, where the
   // WRC firmware prints them, but only while a terminal listens (log_port.hpp).
