@@ -15,7 +15,7 @@
 //   registers kept).
 import { readFileSync } from 'node:fs';
 import { RP2040, ConsoleLogger, LogLevel } from 'rp2040js';
-import { installFlashModel } from './flash.mjs';
+import { installFlashModel, writeSettingsSlot } from './flash.mjs';
 import { adcChannel, ma3Frame, plantInputs, pwmDuty, switchLevels } from './pins.mjs';
 import { UsbHost } from './usb_host.mjs';
 
@@ -69,6 +69,8 @@ export class Board {
     this.plant = opts.plant;
     this.flash = opts.flash ?? new Uint8Array(16 * 1024 * 1024).fill(0xff);
     if (!opts.flash) loadImage(opts.image, this.flash);
+    // Settings preloaded as the firmware would have saved them (slot 0, save #1).
+    if (opts.settingsDocument) writeSettingsSlot(this.flash, opts.settingsDocument);
     this.baseNs = 0; // emulated time before the last reset
     this.log = '';
     this.logLines = []; // { ms, text }
@@ -92,8 +94,8 @@ export class Board {
     return this.nowNs / 1e6;
   }
 
-  boot(watchdogReason) {
-    const previous = this.rp;
+  boot(watchdogReason, keepScratch = true) {
+    const previous = keepScratch ? this.rp : null;
     const rp = new RP2040();
     rp.logger = new ConsoleLogger(LogLevel.Error, true);
     // VREG_AND_CHIP_RESET is unimplemented and reads all ones: the bootrom
@@ -284,9 +286,11 @@ export class Board {
       this.runCpu(sliceEnd);
       if (this.resetPending) {
         const reason = this.resetPending;
+        this.resetAllOutputs();
         this.baseNs = this.nowNs;
         this.resets = (this.resets ?? 0) + 1;
         this.onReset?.(reason);
+        this.usbConnectedMs = undefined;
         this.boot(reason);
         continue;
       }
@@ -313,6 +317,21 @@ export class Board {
     let found = null;
     const ok = await this.runUntil(() => (found = this.logLines.find((l) => re.test(l.text))) != null, timeoutMs);
     return ok ? found : null;
+  }
+
+  /** A reset puts every pin back to an input: the outputs drop. */
+  resetAllOutputs() {
+    for (const gpio of [this.pins.az_cw, this.pins.az_ccw, this.pins.az_speed, this.pins.az_brake]) {
+      if (gpio >= 0 && this.outputLevel(gpio)) this.edges.push({ ms: this.nowMs, gpio, value: false });
+    }
+  }
+
+  /** Power off and on: a new chip on the same flash (no watchdog state kept). */
+  powerCycle() {
+    this.resetAllOutputs();
+    this.baseNs = this.nowNs;
+    this.usbConnectedMs = undefined;
+    this.boot(0, false);
   }
 
   /** Stops the core from the outside: no instruction runs, emulated time (timers, watchdog) goes on. */
