@@ -56,3 +56,10 @@ if [ "${1:-}" = "--with-web" ] && [ -f tests/web/package.json ]; then
     (cd tests/web && npm ci --no-audit --no-fund --loglevel=error)
   fi
 fi
+# The emulated-RP2040 harness (make hil, and its unit tests in make test):
+# rp2040js, pinned in tests/hil/package-lock.json.
+if [ "${1:-}" = "--with-web" ] && [ -f tests/hil/package.json ]; then
+  if [ ! -d tests/hil/node_modules/rp2040js ]; then
+    (cd tests/hil && npm ci --no-audit --no-fund --loglevel=error)
+  fi
+fi

@@ -119,6 +119,10 @@ export class Board {
     }
     watchdog.onWatchdogTrigger = () => {
       this.resetPending = watchdog.reason || 1;
+      // The chip resets here; rp2040js's counter would otherwise stay at 0
+      // and fire again at once, for ever, within the same clock tick.
+      watchdog.alarm.enable = false;
+      watchdog.timer.enable = false;
     };
     this.rp = rp;
     this.resetPending = 0;
