@@ -316,8 +316,9 @@ const scenarios = {
       check(saved !== null, `log: "${saved?.text}" (erases ${r.board.flashStats.erases}, page programs ${r.board.flashStats.programs})`);
       const stored = readSettings(r.board.flash);
       check(stored && /"gs232.az_range": "360"/.test(stored.document), `flash slot ${stored?.slot}, save #${stored?.sequence} holds gs232.az_range = 360`);
+      const since = r.board.logLines.length;
       r.board.powerCycle();
-      const loaded = await r.board.waitForLog(/settings loaded from flash/, 2000);
+      const loaded = await r.board.waitForLog(/settings loaded from flash/, 2000, since);
       check(loaded && loaded.text.includes(`save #${stored.sequence}`), `after a power cycle: "${loaded?.text}"`);
       await r.board.runUntil(() => r.board.usbConnectedMs !== undefined, 3000);
       const m = await c.send('M400');

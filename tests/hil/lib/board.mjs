@@ -317,9 +317,13 @@ export class Board {
     return pred();
   }
 
-  async waitForLog(re, timeoutMs) {
+  /** The first log line matching re, from line `since` on (running up to timeoutMs for it); null if none. */
+  async waitForLog(re, timeoutMs, since = 0) {
     let found = null;
-    const ok = await this.runUntil(() => (found = this.logLines.find((l) => re.test(l.text))) != null, timeoutMs);
+    const ok = await this.runUntil(
+      () => (found = this.logLines.slice(since).find((l) => re.test(l.text))) != null,
+      timeoutMs,
+    );
     return ok ? found : null;
   }
 

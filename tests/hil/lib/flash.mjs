@@ -60,62 +60,59 @@ export function readSettings(flash) {
 }
 
 /**
- * The flash chip behind the SSI: the bootrom's flash_range_erase and
- * flash_range_program send SPI commands through SSI DR0 between chip-select
- * edges (IO_QSPI's SS output override). Write enable (06), sector erase (20),
- * 32/64 KB block erase (52/D8) and page program (02) are applied to
- * rp2040.flash with NOR semantics (erase to FF, program ANDs); everything
- * else (status reads, XIP set-up) is ignored as before. Installed on a fresh
- * RP2040 before it runs.
+ * Flash erase and program, which rp2040js 1.4.1 does not model (its SSI only
+ * answers status reads, so the bootrom's SPI commands change nothing). The
+ * harness models the bootrom's two routines instead: their entries (found
+ * through the ROM's function table, codes 'RE' and 'RP') are overwritten
+ * with `bkpt #n; bx lr`, and the breakpoint applies the operation to
+ * rp2040.flash with NOR semantics (erase to FF by whole 4 KB sectors,
+ * program ANDs). Everything around them runs as on the chip: the SDK's
+ * flash_safe_execute, connect_internal_flash, flash_exit_xip, the cache flush
+ * and the return to XIP through boot2. Installed on a fresh RP2040 after its
+ * bootrom is loaded.
  */
+const BKPT_ERASE = 0xe5;
+const BKPT_PROGRAM = 0x9e;
+
+function romFunction(rp2040, code) {
+  const rom = new DataView(rp2040.bootrom.buffer);
+  let p = rom.getUint16(0x14, true); // rom_func_table
+  for (;;) {
+    const c = rom.getUint16(p, true);
+    if (c === 0) return -1;
+    if (c === code) return rom.getUint16(p + 2, true) & ~1;
+    p += 4;
+  }
+}
+
 export function installFlashModel(rp2040, stats = { erases: 0, programs: 0 }) {
-  const ssi = rp2040.peripherals[0x18000];
-  const ioQspi = rp2040.peripherals[0x40018];
-  let selected = false;
-  let bytes = [];
-  let writeEnabled = false;
-  const execute = () => {
-    const [cmd, a2, a1, a0] = bytes;
-    const addr = ((a2 << 16) | (a1 << 8) | a0) & (rp2040.flash.length - 1);
-    if (cmd === 0x06) writeEnabled = true;
-    else if (cmd === 0x04) writeEnabled = false;
-    else if (writeEnabled && bytes.length >= 4 && (cmd === 0x20 || cmd === 0x52 || cmd === 0xd8)) {
-      const size = cmd === 0x20 ? 4096 : cmd === 0x52 ? 32768 : 65536;
-      const start = addr & ~(size - 1);
-      rp2040.flash.fill(0xff, start, start + size);
-      stats.erases++;
-      writeEnabled = false;
-    } else if (writeEnabled && bytes.length > 4 && cmd === 0x02) {
-      const pageStart = addr & ~(PAGE - 1);
-      for (let i = 4; i < bytes.length; i++) {
-        const at = pageStart + ((addr + i - 4) & (PAGE - 1)); // wraps inside the page, as the chip does
-        rp2040.flash[at] &= bytes[i];
-      }
-      stats.programs++;
-      writeEnabled = false;
+  const rom = new DataView(rp2040.bootrom.buffer);
+  const erase = romFunction(rp2040, 0x4552); // 'R','E'
+  const program = romFunction(rp2040, 0x5052); // 'R','P'
+  if (erase < 0 || program < 0) throw new Error('bootrom without flash_range_erase/program');
+  rom.setUint16(erase, 0xbe00 | BKPT_ERASE, true);
+  rom.setUint16(erase + 2, 0x4770, true); // bx lr
+  rom.setUint16(program, 0xbe00 | BKPT_PROGRAM, true);
+  rom.setUint16(program + 2, 0x4770, true);
+  const core = rp2040.core;
+  const previous = rp2040.onBreak;
+  rp2040.onBreak = (code) => {
+    const r = core.registers;
+    if (code === BKPT_ERASE) {
+      // flash_range_erase(addr, count, block_size, block_cmd)
+      const start = r[0] & ~(SECTOR - 1);
+      const end = (r[0] + r[1] + SECTOR - 1) & ~(SECTOR - 1);
+      rp2040.flash.fill(0xff, start, end);
+      stats.erases += (end - start) / SECTOR;
+    } else if (code === BKPT_PROGRAM) {
+      // flash_range_program(addr, data, count)
+      for (let i = 0; i < r[2]; i++) rp2040.flash[r[0] + i] &= rp2040.readUint8(r[1] + i);
+      stats.programs += Math.ceil(r[2] / PAGE);
+    } else {
+      previous(code);
+      return;
     }
-  };
-  const ssiWrite = ssi.writeUint32.bind(ssi);
-  ssi.writeUint32 = (offset, value) => {
-    if (offset === 0x60 && selected) bytes.push(value & 0xff);
-    ssiWrite(offset, value);
-  };
-  // GPIO_QSPI_SS_CTRL (io[1].ctrl), OUTOVER bits 9:8: 2 = drive low (selected), 3 = high.
-  let ssCtrl = 0;
-  const ioRead = ioQspi.readUint32.bind(ioQspi);
-  ioQspi.readUint32 = (offset) => (offset === 0x0c ? ssCtrl : ioRead(offset));
-  const ioWrite = ioQspi.writeUint32.bind(ioQspi);
-  ioQspi.writeUint32 = (offset, value) => {
-    if (offset !== 0x0c) return ioWrite(offset, value);
-    ssCtrl = value;
-    const outover = (value >> 8) & 3;
-    if (outover === 2 && !selected) {
-      selected = true;
-      bytes = [];
-    } else if (outover !== 2 && selected) {
-      selected = false;
-      execute();
-    }
+    core.breakRewind = 0; // carry on with the bx lr
   };
   return stats;
 }
