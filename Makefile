@@ -4,7 +4,7 @@ PRESET    ?= default
 JOBS      ?= $(shell nproc)
 ROTORD_ARGS ?= --sim g5500
 
-.PHONY: all deps build run test bench embedded pico deb format format-check clean
+.PHONY: all deps build run test bench embedded pico hil deb format format-check clean
 
 all: build
 
@@ -44,6 +44,26 @@ ifeq ($(strip $(PICO_SDK_PATH)),)
 else
 	@cmake -S ports/pico_w -B $(PICO_BUILD_DIR) -G Ninja -DPICO_BOARD=$(PICO_BOARD) $(if $(picotool_DIR),-Dpicotool_DIR=$(picotool_DIR)) >/dev/null
 	@cmake --build $(PICO_BUILD_DIR) -j $(JOBS)
+endif
+
+# The firmware on an emulated RP2040 (ports/pico_w/README.md, "The firmware on
+# an emulated RP2040"): builds it (make pico), then runs the scenarios of
+# tests/hil/hil.mjs in rp2040js with the simulator's plant on its pins.
+# ROTORD_RP2040_BOOTROM names the RP2040 B1 bootrom (the rp2040js repository's
+# demo/bootrom.ts, or a 16 KB image); it is never part of this repository.
+# HIL_ARGS: e.g. --only=goto-relay-pot-gs232 --verbose
+HIL_ARGS ?=
+hil:
+ifeq ($(strip $(PICO_SDK_PATH)),)
+	@echo "hil: skipped: pico-sdk not found (PICO_SDK_PATH), no firmware to run"
+else ifeq ($(strip $(ROTORD_RP2040_BOOTROM)),)
+	@echo "hil: skipped: no RP2040 bootrom (ROTORD_RP2040_BOOTROM, e.g. rp2040js's demo/bootrom.ts)"
+else
+	@$(MAKE) --no-print-directory build
+	@$(MAKE) --no-print-directory pico
+	cd tests/hil && ROTORD_HIL_IMAGE=$(abspath $(PICO_BUILD_DIR))/rotord_pico_w.elf \
+	  ROTORD_HIL_PLANT=$(abspath $(BUILD_DIR))/tests/hil/rotord_hil_plant \
+	  ROTORD_HIL_OUT=$(abspath $(BUILD_DIR))/bench/hil.json node hil.mjs $(HIL_ARGS)
 endif
 
 # The Debian package for this machine's architecture (arm64/armhf on a Pi),

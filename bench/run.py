@@ -29,7 +29,7 @@ def run_control(build_dir):
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--build-dir", default="build")
-    ap.add_argument("--only", default="", help="comma-separated parts: control,protocol,footprint,tracking")
+    ap.add_argument("--only", default="", help="comma-separated parts: control,protocol,footprint,tracking,hil")
     args = ap.parse_args()
     parts = {
         "control": run_control,
@@ -42,6 +42,11 @@ def main():
     try:
         import footprint
         parts["footprint"] = footprint.run
+    except ImportError:
+        pass
+    try:
+        import hil
+        parts["hil"] = hil.run
     except ImportError:
         pass
     chosen = [p for p in args.only.split(",") if p] or list(parts)

@@ -86,3 +86,11 @@ fetch_lwip_source() {
 if [ "${1:-}" != "--deb" ]; then
   fetch_lwip_source || echo "install-deps: WARNING: no lwIP source: the Pico W's MQTT host test will be skipped" >&2
 fi
+
+# The emulated-RP2040 harness (make hil, and its unit tests in make test):
+# rp2040js, pinned in tests/hil/package-lock.json.
+if [ "${1:-}" = "--with-web" ] && [ -f tests/hil/package.json ]; then
+  if [ ! -d tests/hil/node_modules/rp2040js ]; then
+    (cd tests/hil && npm ci --no-audit --no-fund --loglevel=error)
+  fi
+fi

@@ -123,6 +123,32 @@ struct Running {
 };
 Running g_running;
 
+/// Starts the Wi-Fi chip and says why the network is down if it cannot.
+/// cyw43_arch_init() only sets up the driver: the chip is powered and its
+/// firmware loaded by the first call that needs it, and a chip that does
+/// not answer would then be retried (20 + 50 ms of power-up delays, then a
+/// failed bus init) by every later Wi-Fi call, several times a second from
+/// the loop, stalling the control tick. So one call here brings it up, and
+/// a chip that does not answer is left alone: USB and the controller run
+/// without network. Found by running the image on an emulated RP2040 with
+/// no Wi-Fi chip (make hil).
+bool wifi_chip_up() {
+  if (cyw43_arch_init() != 0) {
+    std::printf("rotord: Wi-Fi driver init failed; running without network (USB only)\n");
+    return false;
+  }
+  std::uint32_t power_mode = 0;
+  const int err = cyw43_wifi_get_pm(&cyw43_state, &power_mode);
+  if (err != 0) {
+    std::printf(
+        "rotord: the Wi-Fi chip does not answer (CYW43 bus init error %d); running without "
+        "network: USB and the controller keep working\n",
+        err);
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void network_start(const NetworkDeps& d, Millis now) {
@@ -135,8 +161,7 @@ void network_start(const NetworkDeps& d, Millis now) {
 
   // Without the Wi-Fi chip the controller still runs (USB logs, safety
   // rules, the USB protocol port), it just takes no network commands.
-  g_running.network = cyw43_arch_init() == 0;
-  if (!g_running.network) std::printf("rotord: Wi-Fi chip init failed; running without network\n");
+  g_running.network = wifi_chip_up();
 
   // wifi.*, net.*, time.* as loaded at boot (they all need a restart).
   Wifi::Config wifi_config =

@@ -1,0 +1,382 @@
+// make hil: the Pico W firmware image on an emulated RP2040 (rp2040js), the
+// rotator played on its pins by the simulator's plant, real clients on a pty
+// bridged to the USB protocol port. Each scenario boots a fresh chip.
+//
+//   ROTORD_RP2040_BOOTROM=<rp2040js>/demo/bootrom.ts node hil.mjs [--only a,b] [--verbose]
+//
+// Environment: ROTORD_HIL_IMAGE (default <root>/build-pico/rotord_pico_w.elf),
+// ROTORD_HIL_PLANT (default <root>/build/tests/hil/rotord_hil_plant),
+// ROTORD_HIL_OUT (default <root>/build/bench/hil.json: the figures bench/run.py reports).
+// Exit status 0 when every scenario passed. Results are read on emulated
+// time only; the wall clock matters only to the clients' own timeouts.
+import { execFile } from 'node:child_process';
+import { closeSync, constants, existsSync, mkdirSync, openSync, readSync, writeFileSync, writeSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { Board, loadBootrom } from './lib/board.mjs';
+import { PtyBridge } from './lib/bridge.mjs';
+import { readSettings } from './lib/flash.mjs';
+import { pinDefaults } from './lib/pins.mjs';
+import { Plant } from './lib/plant.mjs';
+
+const here = dirname(fileURLToPath(import.meta.url));
+const root = process.env.ROTORD_ROOT ?? join(here, '../..');
+const args = process.argv.slice(2);
+const verbose = args.includes('--verbose');
+const onlyArg = args.find((a) => a.startsWith('--only='))?.slice(7) ?? (args.includes('--only') ? args[args.indexOf('--only') + 1] : '');
+const only = onlyArg ? onlyArg.split(',') : [];
+const imagePath = process.env.ROTORD_HIL_IMAGE ?? join(root, 'build-pico/rotord_pico_w.elf');
+const plantBinary = process.env.ROTORD_HIL_PLANT ?? join(root, 'build/tests/hil/rotord_hil_plant');
+const outPath = process.env.ROTORD_HIL_OUT ?? join(root, 'build/bench/hil.json');
+const bootrom = loadBootrom(process.env.ROTORD_RP2040_BOOTROM);
+const pins = pinDefaults(root);
+const TICK_MS = 10;
+
+// ---- a rig: plant, chip, pty ----
+
+async function rig({ profile = 'g5500', sensor, thetaDeg, speedScale, settings = {} }) {
+  const plant = new Plant({ binary: plantBinary, profile, sensor, thetaDeg, speedScale });
+  const settingsDocument = await plant.settingsDocument(settings);
+  const board = new Board({ bootrom, image: imagePath, pins, plant, settingsDocument, echoLog: verbose });
+  const bridge = new PtyBridge({ endpoint: board.ports[1] });
+  const pty = await bridge.start();
+  if (!(await board.runUntil(() => board.usbConnectedMs !== undefined, 3000)))
+    throw new Error('USB did not enumerate within 3 s');
+  const r = { plant, board, bridge, pty };
+  r.close = async () => {
+    await bridge.stop();
+    plant.close();
+  };
+  return r;
+}
+
+/** Runs a client program while the chip runs; its stdout. */
+async function client(board, file, argv, timeoutMs = 30000) {
+  let done = null;
+  const child = execFile(file, argv, { timeout: timeoutMs }, (err, stdout, stderr) => {
+    done = { err, stdout, stderr };
+  });
+  void child;
+  while (done === null) await board.run(2);
+  if (done.err) throw new Error(`${file} ${argv.join(' ')}: ${done.err.message} ${done.stderr}`);
+  if (verbose) console.log(`  $ ${file} ${argv.join(' ')} -> ${done.stdout.trim().replace(/\n/g, ' | ')}`);
+  return done.stdout;
+}
+
+const rotctl = (r, model, ...cmd) => client(r.board, 'rotctl', ['-m', String(model), '-r', r.pty, ...cmd]);
+
+/** A line-protocol client on the pty (the seed protocol, raw GS-232): one line, its reply. */
+class LineClient {
+  constructor(r) {
+    this.r = r;
+    this.fd = openSync(r.pty, constants.O_RDWR | constants.O_NOCTTY | constants.O_NONBLOCK);
+    this.buf = '';
+  }
+  read() {
+    const b = Buffer.alloc(512);
+    for (;;) {
+      let n = 0;
+      try {
+        n = readSync(this.fd, b, 0, b.length, null);
+      } catch (e) {
+        if (e.code === 'EAGAIN') return;
+        throw e;
+      }
+      if (n <= 0) return;
+      this.buf += b.subarray(0, n).toString('latin1');
+    }
+  }
+  async send(line, timeoutMs = 500) {
+    this.buf = '';
+    writeSync(this.fd, line + '\r');
+    let reply = null;
+    await this.r.board.runUntil(() => {
+      this.read();
+      const m = this.buf.match(/^([^\r\n]*)\r?\n/) ?? this.buf.match(/^([^\r\n]*\r)/);
+      if (m && m[1].length > 0) reply = m[1].replace(/\r$/, '');
+      return reply !== null;
+    }, timeoutMs, 1);
+    if (verbose) console.log(`  > ${line} < ${reply}`);
+    return reply;
+  }
+  close() {
+    closeSync(this.fd);
+  }
+}
+
+// ---- checks ----
+
+const angle = (r) => r.board.sensors?.thetaDeg ?? NaN;
+const driving = (r) => {
+  const u = r.board.plantInputs();
+  return u.cw || u.ccw || u.pwmCw > 0 || u.pwmCcw > 0;
+};
+
+/** Waits until the axis has stood still (no drive) for 500 ms; false on timeout. */
+async function settle(r, timeoutMs) {
+  let quietSince = r.board.nowMs;
+  return r.board.runUntil(() => {
+    if (driving(r)) quietSince = r.board.nowMs;
+    return r.board.nowMs - quietSince >= 500;
+  }, timeoutMs, 10);
+}
+
+/** Ticks from the ADC: the pot is converted in a burst once per tick. */
+function tickTimes(board, fromMs, toMs) {
+  const out = [];
+  let last = -1e9;
+  for (const t of board.adcReads) {
+    if (t < fromMs || t > toMs) continue;
+    if (t - last > 1) out.push(t);
+    last = t;
+  }
+  return out;
+}
+
+function tickStats(board, fromMs, toMs, busyCycles) {
+  const ticks = tickTimes(board, fromMs, toMs);
+  const periods = ticks.slice(1).map((t, i) => t - ticks[i]);
+  const mean = periods.reduce((a, b) => a + b, 0) / periods.length;
+  const worst = Math.max(...periods.map((p) => Math.abs(p - TICK_MS)));
+  const seconds = (toMs - fromMs) / 1000;
+  return {
+    ticks: ticks.length,
+    seconds,
+    hz: 1000 / mean,
+    worstDeviationUs: worst * 1000,
+    cyclesPerTick: busyCycles / (seconds * 100),
+    busyPercent: (busyCycles / (seconds * 125e6)) * 100,
+  };
+}
+
+// ---- scenarios ----
+
+const results = [];
+const benchRows = [];
+
+function check(ok, what) {
+  if (!ok) throw new Error(what);
+  console.log(`    ok  ${what}`);
+}
+
+const scenarios = {
+  /** No answer from the Wi-Fi chip: USB and the control go on, the log says why; the tick rate and its cost. */
+  async 'no-wifi-tick'() {
+    const r = await rig({ thetaDeg: 200 });
+    try {
+      const line = await r.board.waitForLog(/Wi-Fi|network/i, 1000);
+      check(line && /does not answer|without network/.test(line.text), `log: "${line?.text}"`);
+      check(!r.board.logLines.some((l) => /access point|on port \d+/.test(l.text)), 'no access point or TCP port claimed');
+      const p = (await rotctl(r, 603, 'p')).trim().split('\n').map(Number);
+      check(Math.abs(p[0] - 200) < 0.6, `rotctl -m 603 p: ${p[0]} (plant 200.0)`);
+      // The control tick, standing still, over 2 s of emulated time.
+      const from = r.board.nowMs + 10;
+      const cycles0 = r.board.busyCycles;
+      await r.board.run(2000);
+      const s = tickStats(r.board, from, r.board.nowMs - 1, r.board.busyCycles - cycles0);
+      check(Math.abs(s.hz - 100) < 0.05 && s.worstDeviationUs < 100,
+        `control tick ${s.hz.toFixed(2)} Hz of emulated time, ${s.ticks} ticks in ${s.seconds.toFixed(1)} s, worst period deviation ${s.worstDeviationUs.toFixed(0)} us`);
+      console.log(`    --  CPU at rest: ${Math.round(s.cyclesPerTick)} cycles per 10 ms tick period (${s.busyPercent.toFixed(2)} % of 125 MHz; the whole loop: tick, USB, log port)`);
+      benchRows.push({ name: 'hil/pico_w_idle', inputs: { tick_hz: 100, mhz: 125 }, metrics: { cycles_per_tick: Math.round(s.cyclesPerTick), busy_percent: s.busyPercent, tick_hz: s.hz } });
+    } finally {
+      await r.close();
+    }
+  },
+
+  /** rotctl -m 603 (GS-232B) go-to on the relay drive with the pot. */
+  async 'goto-relay-pot-gs232'() {
+    await gotoScenario({ profile: 'g5500', sensor: 'pot', model: 603, from: 100, to: 125, bench: 'relay_pot' });
+  },
+  /** rotctl -m 202 (Easycomm II) go-to on the H-bridge with the MA3 (PIO). */
+  async 'goto-hbridge-ma3-easycomm'() {
+    await gotoScenario({ profile: 'spid', sensor: 'ma3', model: 202, from: 100, to: 80, settings: { 'usb.personality': 'easycomm' }, bench: 'hbridge_ma3' });
+  },
+  /** The cross pairs: relay with the MA3, H-bridge with the pot. */
+  async 'goto-relay-ma3-gs232'() {
+    await gotoScenario({ profile: 'g5500', sensor: 'ma3', model: 603, from: 200, to: 215 });
+  },
+  async 'goto-hbridge-pot-easycomm'() {
+    await gotoScenario({ profile: 'spid', sensor: 'pot', model: 202, from: 30, to: 50, settings: { 'usb.personality': 'easycomm' } });
+  },
+
+  /** The seed protocol as a jog panel: enable, run CW, stop when the target is passed. */
+  async 'seed-jog'() {
+    const r = await rig({ thetaDeg: 100, settings: { 'usb.personality': 'seed' } });
+    const c = new LineClient(r);
+    try {
+      check((await c.send('$E')) === '$OK,E', '$E enables');
+      check((await c.send('$S,100')) === '$OK,S,100', '$S,100');
+      check((await c.send('$R,cw')) === '$OK,R,CW', '$R,cw');
+      let q = '';
+      await r.board.runUntil(() => angle(r) >= 110, 6000, 10);
+      q = await c.send('$Q');
+      const az = Number(q.split(',')[1]);
+      check(Math.abs(az - angle(r)) < 0.6, `$Q while turning: ${q} (plant ${angle(r).toFixed(2)})`);
+      check((await c.send('$D')) === '$OK,D', '$D stops');
+      check(await settle(r, 3000), 'the drive is off');
+      check(angle(r) > 110 && angle(r) < 113, `stopped at ${angle(r).toFixed(2)} deg (passed 110 when $D was sent)`);
+    } finally {
+      c.close();
+      await r.close();
+    }
+  },
+
+  /** A limit switch that closes while turning cuts that direction on the first tick after. */
+  async 'limit-switch'() {
+    const r = await rig({ thetaDeg: 200 });
+    const c = new LineClient(r);
+    try {
+      check((await c.send('R')) !== null, 'R (turn CW)');
+      await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 2000, 1);
+      await r.board.run(300);
+      check(r.board.outputLevel(pins.az_cw), `CW relay (GPIO ${pins.az_cw}) on`);
+      await r.plant.command('limit cw 1 -1');
+      await r.board.run(1); // the plant applies it at its next millisecond
+      const closedMs = r.board.nowMs;
+      check(!r.board.rp.gpio[pins.az_l2].inputValue, `L2 (GPIO ${pins.az_l2}) reads low: closed`);
+      await r.board.runUntil(() => !r.board.outputLevel(pins.az_cw), 100, 0.1);
+      const cut = r.board.edges.find((e) => e.gpio === pins.az_cw && !e.value && e.ms >= closedMs - 1);
+      const tick = tickTimes(r.board, closedMs - 1, closedMs + 20).find((t) => t >= closedMs - 1);
+      check(cut && tick !== undefined && cut.ms - closedMs <= TICK_MS + 0.5 && cut.ms - tick < 1,
+        `CW cut ${(cut.ms - closedMs).toFixed(2)} ms after the switch closed, in the first tick after it (at +${(tick - closedMs).toFixed(2)} ms)`);
+      const again = await c.send('R');
+      check(again === '?>', `R refused while the CW limit is closed: "${again}"`);
+      await r.board.run(200);
+      check(!r.board.outputLevel(pins.az_cw), 'CW stays off');
+    } finally {
+      c.close();
+      await r.close();
+    }
+  },
+
+  /** A jammed rotator: the stall rule cuts the drive after az.stall_ms and latches the fault. */
+  async 'stall'() {
+    const r = await rig({ thetaDeg: 200, settings: { 'usb.personality': 'seed' } });
+    const c = new LineClient(r);
+    try {
+      await r.plant.command('jam -1'); // seized: the motor gets power, nothing turns
+      await c.send('$E');
+      await c.send('$R,cw');
+      await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 2000, 1);
+      const on = r.board.edges.find((e) => e.gpio === pins.az_cw && e.value);
+      await r.board.runUntil(() => !r.board.outputLevel(pins.az_cw), 5000, 1);
+      const cut = r.board.edges.find((e) => e.gpio === pins.az_cw && !e.value && e.ms > on.ms);
+      check(cut !== undefined, 'the CW relay was cut');
+      const after = cut.ms - on.ms;
+      check(Math.abs(after - 3000) <= TICK_MS + 0.5, `cut ${after.toFixed(1)} ms after it was energised (az.stall_ms 3000)`);
+      const q = await c.send('$Q');
+      check(q.endsWith(',STALL'), `fault latched: ${q}`);
+      const refused = await c.send('$R,cw');
+      check(refused === '$ERR,FAULT', `$R,cw refused: ${refused}`);
+      await r.board.run(500);
+      check(!r.board.outputLevel(pins.az_cw), 'CW stays off');
+    } finally {
+      c.close();
+      await r.close();
+    }
+  },
+
+  /** A hung loop: the watchdog resets the chip within 2 s; the relay drops and the firmware comes back. */
+  async 'watchdog'() {
+    const r = await rig({ thetaDeg: 200 });
+    const c = new LineClient(r);
+    try {
+      await c.send('R');
+      await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 2000, 1);
+      await r.board.run(200);
+      // The harness stops the core from the outside: no instruction runs,
+      // the timers and the watchdog go on (a loop stuck in a busy wait
+      // would look the same from the pins).
+      r.board.hang();
+      const hungMs = r.board.nowMs;
+      await r.board.run(1000);
+      check(r.board.outputLevel(pins.az_cw), 'hung: the CW relay is still on (nothing else turns it off)');
+      await r.board.runUntil(() => r.board.resets > 0, 2000, 1);
+      const resetMs = r.board.baseNs / 1e6;
+      check(r.board.resets === 1 && Math.abs(resetMs - hungMs - 2000) < 15, `watchdog reset ${(resetMs - hungMs).toFixed(1)} ms after the loop stopped (2000 ms)`);
+      check(!r.board.outputLevel(pins.az_cw), 'the reset dropped the CW relay');
+      const line = await r.board.waitForLog(/restarted by the watchdog/, 3000);
+      check(line !== null, `log: "${line?.text}"`);
+      const p = await c.send('C2', 3000);
+      check(/^AZ=\d{3}/.test(p ?? ''), `GS-232 answers again: ${p}`);
+    } finally {
+      c.close();
+      await r.close();
+    }
+  },
+
+  /** A setting changed over USB is saved to flash and survives a power cycle. */
+  async 'flash-settings'() {
+    const r = await rig({ thetaDeg: 200 });
+    const c = new LineClient(r);
+    try {
+      const reply = await c.send('P36');
+      check(reply !== null && reply !== '?>', `P36 accepted: "${reply}"`);
+      const saved = await r.board.waitForLog(/settings saved to flash/, 6000);
+      check(saved !== null, `log: "${saved?.text}" (erases ${r.board.flashStats.erases}, page programs ${r.board.flashStats.programs})`);
+      const stored = readSettings(r.board.flash);
+      check(stored && /"gs232.az_range": "360"/.test(stored.document), `flash slot ${stored?.slot}, save #${stored?.sequence} holds gs232.az_range = 360`);
+      const since = r.board.logLines.length;
+      r.board.powerCycle();
+      const loaded = await r.board.waitForLog(/settings loaded from flash/, 2000, since);
+      check(loaded && loaded.text.includes(`save #${stored.sequence}`), `after a power cycle: "${loaded?.text}"`);
+      await r.board.runUntil(() => r.board.usbConnectedMs !== undefined, 3000);
+      const m = await c.send('M400');
+      check(m === '?>', `M400 refused on the 360 scale kept from flash: "${m}"`);
+    } finally {
+      c.close();
+      await r.close();
+    }
+  },
+};
+
+async function gotoScenario({ profile, sensor, model, from, to, settings = {}, bench }) {
+  const r = await rig({ profile, sensor, thetaDeg: from, settings });
+  try {
+    const p0 = (await rotctl(r, model, 'p')).trim().split('\n').map(Number);
+    check(Math.abs(p0[0] - from) < 0.6, `rotctl -m ${model} p: ${p0[0]} (plant ${from})`);
+    const cycles0 = r.board.busyCycles;
+    const t0 = r.board.nowMs;
+    await rotctl(r, model, 'P', String(to), '0');
+    const reached = await r.board.runUntil(() => Math.abs(angle(r) - to) < 1.5 && !driving(r), 15000, 10);
+    check(reached && (await settle(r, 5000)), `reached ${angle(r).toFixed(2)} deg for a target of ${to} in ${((r.board.nowMs - t0) / 1000).toFixed(1)} s`);
+    const p = (await rotctl(r, model, 'p')).trim().split('\n').map(Number);
+    check(Math.abs(p[0] - angle(r)) < 0.6 && Math.abs(p[0] - to) < 1.5, `rotctl -m ${model} p: ${p[0]} (plant ${angle(r).toFixed(2)})`);
+    if (bench) {
+      const seconds = (r.board.nowMs - t0) / 1000;
+      benchRows.push({ name: `hil/pico_w_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { seconds_emulated: seconds, cycles_per_tick: Math.round((r.board.busyCycles - cycles0) / (seconds * 100)) } });
+    }
+  } finally {
+    await r.close();
+  }
+}
+
+// ---- run ----
+
+if (!existsSync(imagePath)) {
+  console.error(`hil: no firmware image at ${imagePath} (make pico)`);
+  process.exit(2);
+}
+console.log(`hil: ${imagePath} on rp2040js, plant ${plantBinary}`);
+let failed = 0;
+for (const [name, fn] of Object.entries(scenarios)) {
+  if (only.length && !only.includes(name)) continue;
+  const wall0 = Date.now();
+  console.log(`hil: ${name}`);
+  try {
+    await fn();
+    results.push({ name, ok: true });
+    console.log(`PASS ${name} (${((Date.now() - wall0) / 1000).toFixed(1)} s wall)`);
+  } catch (e) {
+    failed++;
+    results.push({ name, ok: false, error: e.message });
+    console.log(`FAIL ${name}: ${e.message}`);
+    if (verbose) console.log(e.stack);
+  }
+}
+if (benchRows.length) {
+  mkdirSync(dirname(outPath), { recursive: true });
+  writeFileSync(outPath, JSON.stringify(benchRows, null, 1) + '\n');
+}
+console.log(`hil: ${results.length - failed} of ${results.length} scenarios passed`);
+process.exit(failed ? 1 : 0);

@@ -1,0 +1,371 @@
+// The Pico W on an emulated RP2040 (rp2040js 1.4.1) with the rotator on its
+// pins: the unmodified firmware image, the B1 bootrom (read from a path given
+// at run time), the simulator's plant (lib/plant.mjs) stepped every emulated
+// millisecond, and a USB host bound to both CDC ports. Everything runs on
+// emulated time; the wall clock never enters a result.
+//
+// What the harness adds because rp2040js 1.4.1 does not model it
+// (docs: /ports/pico_w/README.md, "The firmware on an emulated RP2040"):
+// - PIO: stepped on emulated time at each state machine's clock divider
+//   (rp2040js steps it from setTimeout, so the MA3 would always read 0);
+// - pull-ups: the switch pins are driven by the harness (closed = low);
+// - the log port: lib/usb_host.mjs binds every CDC port;
+// - flash erase/program (lib/flash.mjs), and the reset a watchdog causes
+//   (a new chip on the same flash, with the watchdog's reason and scratch
+//   registers kept).
+import { readFileSync } from 'node:fs';
+import { RP2040, ConsoleLogger, LogLevel } from 'rp2040js';
+import { installFlashModel, writeSettingsSlot } from './flash.mjs';
+import { adcChannel, ma3Frame, plantInputs, pwmDuty, switchLevels } from './pins.mjs';
+import { UsbHost } from './usb_host.mjs';
+
+const NS_PER_CYCLE = 8; // 125 MHz
+const PIO_CATCH_UP_NS = 50_000; // the PIO never lags the CPU by more than this
+
+/** The B1 bootrom: the rp2040js repository's demo/bootrom.ts, or a raw 16 KB image. */
+export function loadBootrom(path) {
+  if (!path) throw new Error('no bootrom: set ROTORD_RP2040_BOOTROM');
+  const data = readFileSync(path);
+  if (path.endsWith('.ts') || path.endsWith('.js')) {
+    const words = data.toString('utf8').split('Uint32Array([')[1]?.match(/0x[0-9a-fA-F]+/g) ?? [];
+    if (words.length !== 4096) throw new Error(`${path}: expected 4096 bootrom words, found ${words.length}`);
+    return Uint32Array.from(words, (w) => Number(w));
+  }
+  if (data.length !== 16384) throw new Error(`${path}: a bootrom image is 16384 bytes`);
+  return new Uint32Array(data.buffer, data.byteOffset, 4096);
+}
+
+/** The flash contents of a firmware image (.elf: its PT_LOAD segments in XIP flash; .bin: as is). */
+export function loadImage(path, flash) {
+  const data = readFileSync(path);
+  if (data.readUInt32BE(0) !== 0x7f454c46) {
+    flash.set(data, 0);
+    return;
+  }
+  const phoff = data.readUInt32LE(28);
+  const phentsize = data.readUInt16LE(42);
+  const phnum = data.readUInt16LE(44);
+  for (let i = 0; i < phnum; i++) {
+    const ph = phoff + i * phentsize;
+    const type = data.readUInt32LE(ph);
+    const offset = data.readUInt32LE(ph + 4);
+    const paddr = data.readUInt32LE(ph + 12);
+    const filesz = data.readUInt32LE(ph + 16);
+    if (type !== 1 || filesz === 0) continue;
+    if (paddr < 0x10000000 || paddr >= 0x10000000 + flash.length) continue; // RAM-only (.bss)
+    flash.set(data.subarray(offset, offset + filesz), paddr - 0x10000000);
+  }
+}
+
+export class Board {
+  /**
+   * opts: { bootrom (Uint32Array), image (path), pins (lib/pins.mjs pinDefaults),
+   *         plant (lib/plant.mjs Plant), flash (optional Uint8Array to start from),
+   *         echoLog (print the log port) }
+   */
+  constructor(opts) {
+    this.opts = opts;
+    this.pins = opts.pins;
+    this.plant = opts.plant;
+    this.flash = opts.flash ?? new Uint8Array(16 * 1024 * 1024).fill(0xff);
+    if (!opts.flash) loadImage(opts.image, this.flash);
+    // Settings preloaded as the firmware would have saved them (slot 0, save #1).
+    if (opts.settingsDocument) writeSettingsSlot(this.flash, opts.settingsDocument);
+    this.baseNs = 0; // emulated time before the last reset
+    this.log = '';
+    this.logLines = []; // { ms, text }
+    this.partialLine = '';
+    this.edges = []; // { ms, gpio, value } of the output pins
+    this.adcReads = []; // emulated ms of every ADC conversion started
+    this.busyCycles = 0;
+    this.boots = 0;
+    this.flashStats = { erases: 0, programs: 0 };
+    this.hung = false;
+    this.plantMs = 0;
+    this.sensors = null;
+    this.ports = [makePort(), makePort()]; // log, protocol: stable across resets
+    this.boot(0);
+  }
+
+  get nowNs() {
+    return this.baseNs + this.rp.clock.nanos;
+  }
+  get nowMs() {
+    return this.nowNs / 1e6;
+  }
+
+  boot(watchdogReason, keepScratch = true) {
+    const previous = keepScratch ? this.rp : null;
+    const rp = new RP2040();
+    rp.logger = new ConsoleLogger(LogLevel.Error, true);
+    // VREG_AND_CHIP_RESET is unimplemented and reads all ones: the bootrom
+    // would see CHIP_RESET.PSM_RESTART_FLAG (a debugger's rescue request)
+    // and park the core. A power-on reset reads 0 there.
+    rp.peripherals[0x40064].readUint32 = () => 0;
+    rp.peripherals[0x40064].writeUint32 = () => {};
+    rp.loadBootrom(this.opts.bootrom); // resets the core from the bootrom's vectors; clears flash
+    rp.flash.set(this.flash);
+    // Straight into boot2 at the start of flash, as rp2040js's own demo
+    // does: the bootrom's flash boot reads boot2 through the SSI, which
+    // rp2040js does not model. The bootrom stays for its ROM functions.
+    rp.core.PC = 0x10000000;
+    this.flash = rp.flash; // the chip's own array from now on (survives the next reset)
+    installFlashModel(rp, this.flashStats);
+    const watchdog = rp.peripherals[0x40058];
+    if (previous) {
+      const old = previous.peripherals[0x40058];
+      watchdog.scratchData.set(old.scratchData);
+      watchdog.reason = watchdogReason;
+    }
+    watchdog.onWatchdogTrigger = () => {
+      this.resetPending = watchdog.reason || 1;
+      // The chip resets here; rp2040js's counter would otherwise stay at 0
+      // and fire again at once, for ever, within the same clock tick.
+      watchdog.alarm.enable = false;
+      watchdog.timer.enable = false;
+    };
+    this.rp = rp;
+    this.resetPending = 0;
+    this.boots++;
+    this.hung = false;
+    this.installPio(rp);
+    this.installUsb(rp);
+    this.installPins(rp);
+    this.startMa3(rp);
+  }
+
+  installPio(rp) {
+    for (const pio of rp.pio) {
+      pio.run = () => {}; // stepped below, on emulated time
+      pio.lastNs = rp.clock.nanos;
+      for (const m of pio.machines) m.stepAcc = 0;
+    }
+    const tick = () => {
+      this.pioCatchUp();
+      alarm.schedule(PIO_CATCH_UP_NS);
+    };
+    const alarm = rp.clock.createAlarm(tick);
+    alarm.schedule(PIO_CATCH_UP_NS);
+  }
+
+  /** Runs each enabled state machine for the emulated time since the last call. */
+  pioCatchUp() {
+    const now = this.rp.clock.nanos;
+    for (const pio of this.rp.pio) {
+      const dt = now - pio.lastNs;
+      pio.lastNs = now;
+      if (pio.stopped || dt <= 0) continue;
+      let stepped = false;
+      for (const m of pio.machines) {
+        if (!m.enabled) continue;
+        const div = m.clockDivInt + m.clockDivFrac / 256 || 65536;
+        m.stepAcc += dt / NS_PER_CYCLE / div;
+        while (m.stepAcc >= 1) {
+          m.step();
+          m.stepAcc -= 1;
+          stepped = true;
+        }
+      }
+      if (stepped) pio.checkChangedPins();
+    }
+  }
+
+  installUsb(rp) {
+    const host = new UsbHost(rp.usbCtrl);
+    this.usb = host;
+    host.onPorts = (ports) => {
+      ports.forEach((p, i) => this.ports[i]?.bind(p));
+      this.ports[0].onData = (bytes) => this.onLog(bytes);
+    };
+    host.onConnected = () => {
+      this.usbConnectedMs = this.nowMs;
+    };
+    for (const p of this.ports) p.unbind();
+  }
+
+  onLog(bytes) {
+    const text = Buffer.from(bytes).toString('latin1');
+    this.log += text;
+    const parts = (this.partialLine + text).split('\n');
+    this.partialLine = parts.pop();
+    for (const line of parts) {
+      const entry = { ms: this.nowMs, text: line.replace(/\r$/, '') };
+      this.logLines.push(entry);
+      if (this.opts.echoLog) console.log(`  [${entry.ms.toFixed(1).padStart(9)} ms] log: ${entry.text}`);
+    }
+  }
+
+  installPins(rp) {
+    const outputs = [this.pins.az_cw, this.pins.az_ccw, this.pins.az_speed, this.pins.az_brake];
+    for (const gpio of outputs) {
+      if (gpio < 0) continue;
+      rp.gpio[gpio].addListener(() => {
+        this.edges.push({ ms: this.nowMs, gpio, value: this.outputLevel(gpio) });
+      });
+    }
+    const adc = rp.adc;
+    const read = adc.onADCRead;
+    adc.onADCRead = (channel) => {
+      this.adcReads.push(this.nowMs);
+      read(channel);
+    };
+    if (this.sensors) this.applySensors(this.sensors);
+  }
+
+  /** The level an output pin drives (false when it is not an output). */
+  outputLevel(gpio) {
+    const pin = this.rp.gpio[gpio];
+    return pin.outputEnable && pin.outputValue;
+  }
+
+  /** The PWM duty of a pin in PWM mode, from its slice's registers. */
+  duty(gpio) {
+    const pin = this.rp.gpio[gpio];
+    if (pin.functionSelect !== 4) return 0; // GPIO_FUNC_PWM
+    const ch = this.rp.pwm.channels[(gpio >> 1) & 7];
+    return pwmDuty(ch.csr, ch.cc, ch.top, gpio);
+  }
+
+  /** The MA3 waveform on its pin, frame after frame, from the plant's latest reading. */
+  startMa3(rp) {
+    const gpio = this.pins.az_ma3;
+    if (gpio < 0) return;
+    const pin = rp.gpio[gpio];
+    let frame = null;
+    const rise = rp.clock.createAlarm(() => {
+      const s = this.sensors;
+      frame = s ? ma3Frame(s.ma3Valid && this.ma3Connected !== false, s.ma3HighUs, s.ma3LowUs) : null;
+      if (!frame) {
+        rise.schedule(1_000_000);
+        return;
+      }
+      this.pioCatchUp();
+      pin.setInputValue(true);
+      fall.schedule(frame.fallNs);
+    });
+    const fall = rp.clock.createAlarm(() => {
+      this.pioCatchUp();
+      pin.setInputValue(false);
+      rise.schedule(frame.periodNs - frame.fallNs);
+    });
+    rise.schedule(1000);
+  }
+
+  applySensors(s) {
+    const rp = this.rp;
+    const ch = adcChannel(this.pins.az_pot);
+    if (ch >= 0) rp.adc.channelValues[ch] = s.potCounts;
+    for (const [gpio, level] of switchLevels(this.pins, s)) {
+      if (rp.gpio[gpio].rawInputValue !== level) rp.gpio[gpio].setInputValue(level);
+    }
+  }
+
+  plantInputs() {
+    return plantInputs(this.pins, (g) => this.outputLevel(g), (g) => this.duty(g));
+  }
+
+  /** Executes instructions until emulated time targetNs (or a reset). */
+  runCpu(targetNs) {
+    const rp = this.rp;
+    const core = rp.core;
+    const clock = rp.clock;
+    const target = targetNs - this.baseNs;
+    while (clock.nanos < target && !this.resetPending) {
+      if (core.waiting || this.hung) {
+        const next = clock.nextAlarm ? clock.nextAlarm.nanos : target;
+        clock.tick(Math.max(0, Math.min(next, target) - clock.nanos));
+      } else {
+        const cycles = core.executeInstruction();
+        this.busyCycles += cycles;
+        clock.tick(cycles * NS_PER_CYCLE);
+      }
+    }
+  }
+
+  /** Advances emulated time by ms, the plant in 1 ms steps. */
+  async run(ms) {
+    const end = this.nowNs + ms * 1e6;
+    while (this.nowNs < end - 1) {
+      const sliceEnd = Math.min(end, (Math.floor(this.nowNs / 1e6) + 1) * 1e6);
+      this.runCpu(sliceEnd);
+      if (this.resetPending) {
+        const reason = this.resetPending;
+        this.resetAllOutputs();
+        this.baseNs = this.nowNs;
+        this.resets = (this.resets ?? 0) + 1;
+        this.onReset?.(reason);
+        this.usbConnectedMs = undefined;
+        this.boot(reason);
+        continue;
+      }
+      const plantMs = Math.floor(this.nowNs / 1e6);
+      if (plantMs > this.plantMs) {
+        this.sensors = await this.plant.step(plantMs, this.plantInputs());
+        this.plantMs = plantMs;
+        this.applySensors(this.sensors);
+      }
+    }
+  }
+
+  /** Runs until pred() holds, checking every step ms; false after timeoutMs of emulated time. */
+  async runUntil(pred, timeoutMs, step = 5) {
+    const end = this.nowMs + timeoutMs;
+    while (this.nowMs < end) {
+      if (pred()) return true;
+      await this.run(step);
+    }
+    return pred();
+  }
+
+  /** The first log line matching re, from line `since` on (running up to timeoutMs for it); null if none. */
+  async waitForLog(re, timeoutMs, since = 0) {
+    let found = null;
+    const ok = await this.runUntil(
+      () => (found = this.logLines.slice(since).find((l) => re.test(l.text))) != null,
+      timeoutMs,
+    );
+    return ok ? found : null;
+  }
+
+  /** A reset puts every pin back to an input: the outputs drop. */
+  resetAllOutputs() {
+    for (const gpio of [this.pins.az_cw, this.pins.az_ccw, this.pins.az_speed, this.pins.az_brake]) {
+      if (gpio >= 0 && this.outputLevel(gpio)) this.edges.push({ ms: this.nowMs, gpio, value: false });
+    }
+  }
+
+  /** Power off and on: a new chip on the same flash (no watchdog state kept). */
+  powerCycle() {
+    this.resetAllOutputs();
+    this.baseNs = this.nowNs;
+    this.usbConnectedMs = undefined;
+    this.boot(0, false);
+  }
+
+  /** Stops the core from the outside: no instruction runs, emulated time (timers, watchdog) goes on. */
+  hang() {
+    this.hung = true;
+  }
+}
+
+/** A CDC port that outlives the chip: re-bound to the new device after a reset. */
+function makePort() {
+  const port = {
+    target: null,
+    onData: null,
+    queued: [],
+    bind(p) {
+      port.target = p;
+      p.onData = (bytes) => port.onData?.(bytes);
+      if (port.queued.length) p.write(port.queued.splice(0));
+    },
+    unbind() {
+      port.target = null;
+    },
+    write(bytes) {
+      if (port.target) port.target.write(bytes);
+      else port.queued.push(...bytes);
+    },
+  };
+  return port;
+}

@@ -1,0 +1,80 @@
+// The simulator's plant (sim/) in its own process, rotord_hil_plant
+// (tests/hil/plant/hil_plant.cpp), one request line and one reply line at a
+// time over its stdin/stdout.
+import { spawn } from 'node:child_process';
+import { createInterface } from 'node:readline';
+
+export class Plant {
+  /** opts: { binary, profile, sensor, thetaDeg, speedScale, noise } */
+  constructor(opts) {
+    const args = ['--profile', opts.profile ?? 'g5500'];
+    if (opts.sensor) args.push('--sensor', opts.sensor);
+    if (opts.thetaDeg !== undefined) args.push('--theta', String(opts.thetaDeg));
+    if (opts.speedScale !== undefined) args.push('--speed-scale', String(opts.speedScale));
+    if (opts.noise) args.push('--noise', 'on');
+    this.proc = spawn(opts.binary, args, { stdio: ['pipe', 'pipe', 'inherit'] });
+    this.waiting = [];
+    this.lines = createInterface({ input: this.proc.stdout });
+    this.lines.on('line', (line) => {
+      const w = this.waiting.shift();
+      if (w) w(line);
+    });
+    this.proc.on('exit', () => {
+      for (const w of this.waiting.splice(0)) w('error: the plant exited');
+    });
+  }
+
+  request(line) {
+    return new Promise((resolve) => {
+      this.waiting.push(resolve);
+      this.proc.stdin.write(line + '\n');
+    });
+  }
+
+  /** A request answered by `n` lines. */
+  requestLines(line, n) {
+    const replies = [];
+    for (let i = 0; i < n; i++) replies.push(new Promise((resolve) => this.waiting.push(resolve)));
+    this.proc.stdin.write(line + '\n');
+    return Promise.all(replies);
+  }
+
+  async command(line) {
+    const reply = await this.request(line);
+    if (reply !== 'ok') throw new Error(`plant: ${line}: ${reply}`);
+  }
+
+  /** Outputs held from now, then advance to ms; the sensors at ms. */
+  async step(ms, u) {
+    const reply = await this.request(
+      `s ${ms} ${u.cw} ${u.ccw} ${u.fast} ${u.brake} ${u.pwmCw.toFixed(4)} ${u.pwmCcw.toFixed(4)}`,
+    );
+    const f = reply.split(' ');
+    if (f.length !== 10) throw new Error(`plant: ${reply}`);
+    return {
+      thetaDeg: Number(f[0]),
+      potCounts: Number(f[1]),
+      ma3Valid: f[2] === '1',
+      ma3HighUs: Number(f[3]),
+      ma3LowUs: Number(f[4]),
+      limitCw: f[5] === '1',
+      limitCcw: f[6] === '1',
+      t1: f[7] === '1',
+      t2: f[8] === '1',
+      stalled: f[9] === '1',
+    };
+  }
+
+  /** The stored settings document for this profile plus `extra` (KEY=VALUE). */
+  async settingsDocument(extra = {}) {
+    const pairs = Object.entries(extra).map(([k, v]) => `${k}=${v}`);
+    const [doc, end] = await this.requestLines(`settings ${pairs.join(' ')}`, 2);
+    if (doc.startsWith('error')) throw new Error(`plant: ${doc}`);
+    if (end !== 'end') throw new Error(`plant: settings: ${end}`);
+    return doc.trim();
+  }
+
+  close() {
+    this.proc.stdin.end('q\n');
+  }
+}

@@ -1,0 +1,144 @@
+// The plant on the pins, without the emulator: which GPIO carries what (the
+// settings table's defaults), the relay and H-bridge outputs as the plant's
+// inputs, the MA3 waveform for an angle, the pot's ADC code, the switches'
+// polarity, and the settings slot the harness writes into the flash image.
+import assert from 'node:assert/strict';
+import { dirname, join } from 'node:path';
+import { test } from 'node:test';
+import { fileURLToPath } from 'node:url';
+import { crc32, readSettings, writeSettingsSlot, FLASH_BYTES } from '../lib/flash.mjs';
+import {
+  adcChannel,
+  ma3DecodeDeg,
+  ma3Frame,
+  pinDefaults,
+  plantInputs,
+  potCountsToDeg,
+  pwmDuty,
+  switchLevels,
+} from '../lib/pins.mjs';
+import { Plant } from '../lib/plant.mjs';
+
+const here = dirname(fileURLToPath(import.meta.url));
+const root = process.env.ROTORD_ROOT ?? join(here, '../../..');
+const binary = process.env.ROTORD_HIL_PLANT ?? join(root, 'build/tests/hil/rotord_hil_plant');
+const pins = pinDefaults(root);
+const off = { cw: 0, ccw: 0, fast: 0, brake: 0, pwmCw: 0, pwmCcw: 0 };
+
+test('the pin map is the pins.* defaults of the settings table', () => {
+  assert.deepEqual(
+    [pins.az_cw, pins.az_ccw, pins.az_speed, pins.az_brake, pins.az_t1, pins.az_t2, pins.az_l1, pins.az_l2],
+    [5, 6, 7, 8, 9, 10, 11, 12],
+  );
+  assert.deepEqual([pins.az_pwm_cw, pins.az_pwm_ccw, pins.az_ma3, pins.az_pot], [14, 15, 2, 26]);
+  assert.equal(pins.btn_cw, -1); // buttons unwired by default
+  assert.equal(adcChannel(pins.az_pot), 0);
+  assert.equal(adcChannel(pins.el_pot), 1);
+  assert.equal(adcChannel(pins.az_cw), -1);
+});
+
+test('relay levels and H-bridge duties become the plant inputs', () => {
+  const high = new Set([pins.az_cw, pins.az_speed]);
+  const u = plantInputs(pins, (g) => high.has(g), (g) => (g === pins.az_pwm_ccw ? 0.25 : 0));
+  assert.deepEqual(u, { cw: 1, ccw: 0, fast: 1, brake: 0, pwmCw: 0, pwmCcw: 0.25 });
+});
+
+test('PWM duty from the slice registers: channel A on even pins, B on odd, 0 while disabled', () => {
+  const cc = (300 << 16) | 500;
+  assert.equal(pwmDuty(1, cc, 999, 14), 0.5);
+  assert.equal(pwmDuty(1, cc, 999, 15), 0.3);
+  assert.equal(pwmDuty(0, cc, 999, 14), 0);
+  assert.equal(pwmDuty(1, 1000, 999, 14), 1);
+});
+
+test('the MA3 waveform for an angle decodes to that angle (12-bit, one count)', async () => {
+  const plant = new Plant({ binary, profile: 'spid', thetaDeg: 0 });
+  try {
+    let ms = 1;
+    for (const deg of [0.5, 90, 179.9, 271.3, 359.9]) {
+      await plant.command(`set ${deg}`);
+      const s = await plant.step(ms++, off);
+      const frame = ma3Frame(s.ma3Valid, s.ma3HighUs, s.ma3LowUs);
+      assert.ok(frame, `a frame at ${deg}`);
+      assert.equal(frame.periodNs, 4098_000);
+      assert.ok(Math.abs(ma3DecodeDeg(frame.fallNs / 1000, (frame.periodNs - frame.fallNs) / 1000) - deg) <= 360 / 4096, `${deg}`);
+    }
+    assert.equal(ma3Frame(false, 100, 3998), null); // no signal: the pin stays low
+  } finally {
+    plant.close();
+  }
+});
+
+test('the pot reads back through the firmware default calibration (ADC 12 bits over 3.3 V)', async () => {
+  const plant = new Plant({ binary, profile: 'g5500', thetaDeg: 0 });
+  try {
+    let ms = 1;
+    for (const deg of [0, 100, 225, 449]) {
+      await plant.command(`set ${deg}`);
+      const s = await plant.step(ms++, off);
+      assert.ok(s.potCounts >= 0 && s.potCounts <= 4095);
+      assert.ok(Math.abs(potCountsToDeg(s.potCounts) - deg) < 0.2, `${deg}: ${s.potCounts}`);
+    }
+  } finally {
+    plant.close();
+  }
+});
+
+test('switches pull their pin low when closed (the input has a pull-up)', async () => {
+  const plant = new Plant({ binary, profile: 'g5500', thetaDeg: 200 });
+  try {
+    let s = await plant.step(1, off);
+    let levels = switchLevels(pins, s);
+    assert.equal(levels.get(pins.az_l2), true); // open: high
+    assert.equal(levels.get(pins.az_l1), true);
+    await plant.command('limit cw 1 -1');
+    s = await plant.step(2, off);
+    levels = switchLevels(pins, s);
+    assert.equal(levels.get(pins.az_l2), false); // the CW end switch closed: low
+    assert.equal(levels.get(pins.az_l1), true);
+    // The overlap switch T1 closes above 360 deg on the 450 deg G-5500.
+    await plant.command('clear');
+    await plant.command('set 400');
+    s = await plant.step(3, off);
+    assert.equal(switchLevels(pins, s).get(pins.az_t1), false);
+  } finally {
+    plant.close();
+  }
+});
+
+test('the plant turns from the pins: CW relay, then H-bridge duty, and stalls on a jam', async () => {
+  const relay = new Plant({ binary, profile: 'g5500', thetaDeg: 100 });
+  const bridge = new Plant({ binary, profile: 'spid', thetaDeg: 100 });
+  try {
+    const r = await relay.step(1000, { ...off, cw: 1 });
+    assert.ok(r.thetaDeg > 103 && r.thetaDeg < 106, `${r.thetaDeg}`); // 6 deg/s after 10 ms relay delay and tau
+    const b = await bridge.step(1000, { ...off, pwmCcw: 0.8 });
+    assert.ok(b.thetaDeg < 98, `${b.thetaDeg}`);
+    await relay.command('jam -1');
+    const j = await relay.step(1200, { ...off, cw: 1 });
+    assert.ok(j.stalled);
+  } finally {
+    relay.close();
+    bridge.close();
+  }
+});
+
+test('the settings document for a profile, in a flash slot the firmware reads', async () => {
+  const plant = new Plant({ binary, profile: 'spid', sensor: 'ma3' });
+  try {
+    const doc = await plant.settingsDocument({ 'usb.personality': 'easycomm' });
+    const parsed = JSON.parse(doc);
+    assert.equal(parsed['az.drive'], 'hbridge');
+    assert.equal(parsed['az.sensor'], 'ma3');
+    assert.equal(parsed['usb.personality'], 'easycomm');
+    await assert.rejects(plant.settingsDocument({ 'no.such': 1 }), /unknown setting/);
+    assert.equal(crc32(new TextEncoder().encode('123456789')), 0xcbf43926);
+    const flash = new Uint8Array(FLASH_BYTES).fill(0xff);
+    writeSettingsSlot(flash, doc, { slot: 1, sequence: 7 });
+    assert.deepEqual(readSettings(flash), { slot: 1, sequence: 7, document: doc });
+    flash[FLASH_BYTES - 8192 + 256] ^= 1; // a flipped payload bit invalidates the slot
+    assert.equal(readSettings(flash), null);
+  } finally {
+    plant.close();
+  }
+});
