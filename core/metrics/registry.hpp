@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "hal/monotonic_clock.hpp"
+#include "protocol/datagram_registry.hpp"
 #include "util/metrics_protocol.hpp"
 
 namespace rotord {
@@ -59,6 +60,14 @@ class Registry {
   void on_reply(Protocol p, std::string_view reply) {
     if (is_error_reply(p, reply)) ++protocol(p).errors;
   }
+  /// The UDP transports' hook for every datagram they hand their protocol.
+  void on_datagram(protocol::DatagramPersonality p, protocol::DatagramOutcome outcome) {
+    ++datagrams_[static_cast<std::size_t>(p)][static_cast<std::size_t>(outcome)];
+  }
+  std::uint64_t datagrams(protocol::DatagramPersonality p,
+                          protocol::DatagramOutcome outcome) const {
+    return datagrams_[static_cast<std::size_t>(p)][static_cast<std::size_t>(outcome)];
+  }
 
   /// The loop's tick schedule (period, jitter, overruns); nullptr: not reported.
   const TickScheduler* ticks = nullptr;
@@ -74,6 +83,9 @@ class Registry {
 
  private:
   std::array<ProtocolCounters, kProtocolCount> protocols_{};
+  std::array<std::array<std::uint64_t, protocol::kDatagramOutcomeCount>,
+             protocol::kDatagramPersonalityCount>
+      datagrams_{};
 };
 
 }  // namespace rotord::metrics

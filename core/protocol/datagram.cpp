@@ -41,6 +41,13 @@ const char* outcome_name(DatagramOutcome outcome) {
   return "?";
 }
 
+const char* outcome_label(DatagramOutcome outcome) {
+  static constexpr const char* kLabels[kDatagramOutcomeCount] = {
+      "done", "not_for_us", "malformed", "oversize", "refused", "failed"};
+  const auto i = static_cast<std::size_t>(outcome);
+  return i < kDatagramOutcomeCount ? kLabels[i] : "?";
+}
+
 bool datagram_may_control(Controller& controller, const access::Peer& from) {
   return access::may_control(controller.settings(), from) && !controller.control_lock().held();
 }

@@ -46,7 +46,11 @@ enum class DatagramOutcome : std::uint8_t {
   kRefused,    ///< a read-only sender asked for a move: refused (STOP and queries still served)
   kFailed,     ///< the controller refused it (out of range, a fault)
 };
+inline constexpr std::size_t kDatagramOutcomeCount = 6;
+/// For the log: "malformed, ignored".
 const char* outcome_name(DatagramOutcome outcome);
+/// For GET /metrics: "malformed".
+const char* outcome_label(DatagramOutcome outcome);
 
 /// A protocol of whole UDP datagrams (docs/protocols/udp.md): each
 /// datagram is one message, read whole or not at all, with no connection

@@ -141,6 +141,15 @@ void write_protocols(PrometheusWriter& w, const metrics::Registry& r) {
                 r.protocol(protocol).*col.counter);
     }
   }
+  w.family("rotord_udp_datagrams_total", "counter",
+           "UDP rotor datagrams (N1MM+, PstRotator) by what became of them.");
+  for (const protocol::DatagramInfo& info : protocol::datagram_protocols()) {
+    for (std::size_t o = 0; o < protocol::kDatagramOutcomeCount; ++o) {
+      const auto outcome = static_cast<protocol::DatagramOutcome>(o);
+      w.integer({{"protocol", info.key}, {"outcome", protocol::outcome_label(outcome)}},
+                r.datagrams(info.personality, outcome));
+    }
+  }
 }
 
 void write_ticks(PrometheusWriter& w, const TickScheduler& t) {

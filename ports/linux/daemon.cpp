@@ -264,7 +264,8 @@ bool Daemon::start_udp(const asio::ip::address& bind) {
     const auto port = static_cast<std::uint16_t>(settings_.i(p.port));
     try {
       udp_servers_.push_back(std::make_unique<UdpServer>(io_, bind, port, std::string(p.name),
-                                                         datagram_handlers_->get(p.personality)));
+                                                         datagram_handlers_->get(p.personality),
+                                                         p.personality, &metrics_));
     } catch (const std::system_error& e) {
       log::error("cannot listen on UDP %s:%u: %s", options_.bind.c_str(),
                  static_cast<unsigned>(port), e.what());

@@ -5,8 +5,13 @@
 namespace rotord::linux_port {
 
 UdpServer::UdpServer(asio::io_context& io, const asio::ip::address& bind, std::uint16_t port,
-                     std::string name, protocol::DatagramProtocol& protocol)
-    : socket_(io), name_(std::move(name)), protocol_(protocol) {
+                     std::string name, protocol::DatagramProtocol& protocol,
+                     protocol::DatagramPersonality personality, metrics::Registry* metrics)
+    : socket_(io),
+      name_(std::move(name)),
+      protocol_(protocol),
+      personality_(personality),
+      metrics_(metrics) {
   const asio::ip::udp::endpoint endpoint(bind, port);
   socket_.open(endpoint.protocol());
   // Another program on this host may listen for the same broadcasts.
@@ -34,6 +39,7 @@ void UdpServer::handle(std::size_t size) {
   // (the kernel dropped the rest): the handler refuses it by its size.
   const protocol::DatagramOutcome outcome =
       protocol_.receive(std::string_view(buffer_.data(), size), peer, replies);
+  if (metrics_ != nullptr) metrics_->on_datagram(personality_, outcome);
   if (outcome != protocol::DatagramOutcome::kDone)
     log::debug("%s: datagram from %s %s", name_.c_str(), address.to_string().c_str(),
                protocol::outcome_name(outcome));

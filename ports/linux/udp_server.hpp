@@ -4,7 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "protocol/datagram.hpp"
+#include "metrics/registry.hpp"
+#include "protocol/datagram_registry.hpp"
 
 namespace rotord::linux_port {
 
@@ -17,8 +18,11 @@ namespace rotord::linux_port {
 /// too (N1MM+ may broadcast its rotor messages).
 class UdpServer {
  public:
+  /// Datagrams are counted in `metrics` (GET /metrics) under `personality`;
+  /// nullptr counts nothing.
   UdpServer(asio::io_context& io, const asio::ip::address& bind, std::uint16_t port,
-            std::string name, protocol::DatagramProtocol& protocol);
+            std::string name, protocol::DatagramProtocol& protocol,
+            protocol::DatagramPersonality personality, metrics::Registry* metrics = nullptr);
   UdpServer(const UdpServer&) = delete;
   UdpServer& operator=(const UdpServer&) = delete;
 
@@ -36,6 +40,8 @@ class UdpServer {
   asio::ip::udp::socket socket_;
   std::string name_;
   protocol::DatagramProtocol& protocol_;
+  protocol::DatagramPersonality personality_;
+  metrics::Registry* metrics_;
   std::uint16_t port_ = 0;
   asio::ip::udp::endpoint from_;
   std::array<char, protocol::DatagramProtocol::kMaxDatagramBytes + 1> buffer_{};

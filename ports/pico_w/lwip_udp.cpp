@@ -55,6 +55,7 @@ void UdpService::handle(std::size_t size, const void* from_addr) {
   protocol::DatagramReplies replies;
   last_outcome_ = protocol_.receive(std::string_view(in_.data(), size), peer, replies);
   ++datagrams_;
+  if (metrics_ != nullptr) metrics_->on_datagram(personality_, last_outcome_);
   send(replies, addr);
 }
 

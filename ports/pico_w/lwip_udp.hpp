@@ -13,7 +13,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "protocol/datagram.hpp"
+#include "metrics/registry.hpp"
+#include "protocol/datagram_registry.hpp"
 
 struct udp_pcb;
 
@@ -21,8 +22,11 @@ namespace rotord::lwip_port {
 
 class UdpService {
  public:
-  UdpService(const char* name, protocol::DatagramProtocol& protocol)
-      : name_(name), protocol_(protocol) {}
+  /// Datagrams are counted in `metrics` (GET /metrics) under `personality`;
+  /// nullptr counts nothing.
+  UdpService(const char* name, protocol::DatagramProtocol& protocol,
+             protocol::DatagramPersonality personality, metrics::Registry* metrics = nullptr)
+      : name_(name), protocol_(protocol), personality_(personality), metrics_(metrics) {}
   ~UdpService();
   UdpService(const UdpService&) = delete;
   UdpService& operator=(const UdpService&) = delete;
@@ -48,6 +52,8 @@ class UdpService {
 
   const char* name_;
   protocol::DatagramProtocol& protocol_;
+  protocol::DatagramPersonality personality_;
+  metrics::Registry* metrics_;
   udp_pcb* pcb_ = nullptr;
   std::uint16_t port_ = 0;
   std::uint32_t datagrams_ = 0;

@@ -263,9 +263,11 @@ void network_start(const NetworkDeps& d, Millis now) {
   };
   using protocol::DatagramPersonality;
   static lwip_port::UdpService n1mm(udp_name(DatagramPersonality::kN1mm),
-                                    datagram_handlers.get(DatagramPersonality::kN1mm));
+                                    datagram_handlers.get(DatagramPersonality::kN1mm),
+                                    DatagramPersonality::kN1mm, &registry);
   static lwip_port::UdpService pst(udp_name(DatagramPersonality::kPst),
-                                   datagram_handlers.get(DatagramPersonality::kPst));
+                                   datagram_handlers.get(DatagramPersonality::kPst),
+                                   DatagramPersonality::kPst, &registry);
   static_assert(protocol::kDatagramPersonalityCount == 2, "serve every UDP protocol");
   static lwip_port::UdpService* const udp_services[] = {&n1mm, &pst};
   g_running.udp_services = udp_services;

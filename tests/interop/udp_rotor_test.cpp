@@ -251,6 +251,13 @@ TEST_F(UdpRotor, GarbageAndOversizeDatagramsAreIgnoredAndMoveNothing) {
   daemon->advance_ms(5000);
   EXPECT_FALSE(moving());
   EXPECT_EQ(pst_then_az(""), at_start);
+  // Counted in GET /metrics by what became of them.
+  const std::string metrics = http(daemon->ports().web, "GET", "/metrics").body;
+  for (const char* line : {R"(rotord_udp_datagrams_total{protocol="pst",outcome="malformed"} 4)",
+                           R"(rotord_udp_datagrams_total{protocol="pst",outcome="oversize"} 1)",
+                           R"(rotord_udp_datagrams_total{protocol="n1mm",outcome="malformed"} 1)",
+                           R"(rotord_udp_datagrams_total{protocol="n1mm",outcome="oversize"} 1)"})
+    EXPECT_NE(metrics.find(line), std::string::npos) << line << "\n" << metrics;
 }
 
 }  // namespace

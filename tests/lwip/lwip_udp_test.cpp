@@ -163,8 +163,11 @@ class LwipUdpTest : public ::testing::Test {
 
   testing::FakeRotator rotator;
   protocol::DatagramHandlers handlers{*rotator.controller};
-  lwip_port::UdpService pst{"PstRotator UDP", handlers.get(protocol::DatagramPersonality::kPst)};
-  lwip_port::UdpService n1mm{"N1MM+ rotor", handlers.get(protocol::DatagramPersonality::kN1mm)};
+  metrics::Registry registry;
+  lwip_port::UdpService pst{"PstRotator UDP", handlers.get(protocol::DatagramPersonality::kPst),
+                            protocol::DatagramPersonality::kPst, &registry};
+  lwip_port::UdpService n1mm{"N1MM+ rotor", handlers.get(protocol::DatagramPersonality::kN1mm),
+                             protocol::DatagramPersonality::kN1mm, &registry};
   Listener sender, reports, answers;
   netif netif_{};
   ip_addr_t addr_{};
@@ -232,6 +235,11 @@ TEST_F(LwipUdpTest, GarbageAndOversizeDatagramsAreIgnored) {
   CoreLock lock;
   EXPECT_TRUE(answers.received.empty());
   EXPECT_TRUE(reports.received.empty());
+  // Counted for GET /metrics.
+  EXPECT_EQ(registry.datagrams(protocol::DatagramPersonality::kPst, DatagramOutcome::kMalformed),
+            2u);
+  EXPECT_EQ(registry.datagrams(protocol::DatagramPersonality::kN1mm, DatagramOutcome::kOversize),
+            1u);
 }
 
 }  // namespace
