@@ -378,7 +378,7 @@ void ConsoleSession::start_listing(Listing listing, std::string_view prefix, Byt
   listing_sent_ = 0;
   listing_revision_ = controller_.settings().revision();
   const std::size_t n = std::min(prefix.size(), sizeof list_prefix_ - 1);
-  std::memcpy(list_prefix_, prefix.data(), n);
+  if (n > 0) std::memcpy(list_prefix_, prefix.data(), n);  // an empty view's data() may be null
   list_prefix_[n] = '\0';
 }
 
