@@ -382,7 +382,6 @@ void ConsoleSession::write_more(std::size_t room_bytes, ByteSink& out) {
   } else {
     WindowSink window(out, listing_sent_, room_bytes, WindowSink::Cut::kWhole);
     write_listing(window);
-    window.flush();
     listing_sent_ += window.written();
     if (listing_sent_ < window.total()) return;
   }

@@ -6,10 +6,8 @@
 // listings and the HTTP session's long GET responses
 // (protocol::Session::output_pending / write_more).
 #include <algorithm>
-#include <array>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <optional>
 #include <string_view>
 
@@ -33,7 +31,6 @@ class WindowSink final : public ByteSink {
   WindowSink(ByteSink& out, std::size_t skip, std::size_t room, Cut cut,
              std::optional<std::uint32_t> sent_hash = std::nullopt)
       : out_(out), skip_(skip), room_(room), cut_(cut), expected_hash_(sent_hash) {}
-  ~WindowSink() override { flush(); }
   WindowSink(const WindowSink&) = delete;
   WindowSink& operator=(const WindowSink&) = delete;
 
@@ -51,7 +48,7 @@ class WindowSink final : public ByteSink {
       mismatch_ = full_ = true;
       return;
     }
-    const std::size_t room = std::min(room_, free_room());
+    const std::size_t room = std::min(room_, out_.room());
     if (bytes.size() > room) {
       full_ = true;
       if (cut_ == Cut::kWhole && written_ > 0) return;
@@ -60,19 +57,9 @@ class WindowSink final : public ByteSink {
     room_ -= bytes.size();
     written_ += bytes.size();
     sent_hash_ = hash(bytes, sent_hash_);
-    while (!bytes.empty()) {
-      if (used_ == buf_.size()) flush();
-      const std::size_t n = std::min(bytes.size(), buf_.size() - used_);
-      std::memcpy(buf_.data() + used_, bytes.data(), n);
-      used_ += n;
-      bytes.remove_prefix(n);
-    }
+    out_.write(bytes);  // as the reply wrote it: one unit, or its cut end
   }
-  std::size_t room() const override { return std::min(room_, free_room()); }
-  void flush() {
-    if (used_ > 0) out_.write(std::string_view(buf_.data(), used_));
-    used_ = 0;
-  }
+  std::size_t room() const override { return std::min(room_, out_.room()); }
 
   /// The whole reply's length (the window's reply was written to the end).
   std::size_t total() const { return total_; }
@@ -93,12 +80,6 @@ class WindowSink final : public ByteSink {
   }
 
  private:
-  /// What the transport takes now, less what waits in the buffer.
-  std::size_t free_room() const {
-    const std::size_t out_room = out_.room();
-    return out_room > used_ ? out_room - used_ : 0;
-  }
-
   ByteSink& out_;
   std::size_t skip_;
   std::size_t room_;
@@ -110,8 +91,6 @@ class WindowSink final : public ByteSink {
   std::size_t written_ = 0;
   std::uint32_t skipped_hash_ = kHashStart;
   std::uint32_t sent_hash_ = kHashStart;
-  std::array<char, 128> buf_{};
-  std::size_t used_ = 0;
 };
 
 }  // namespace rotord::protocol

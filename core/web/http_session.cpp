@@ -35,13 +35,13 @@ void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
     }
     const HttpRequest& request = parser_.request();
     // Only the last request of what arrived may go out in windows: the
-    // parser must keep it until then.
-    if (bytes.empty() && windowed(request)) {
+    // parser must keep it until then. A transport that takes everything
+    // (Linux) gets it directly.
+    if (bytes.empty() && windowed(request) && out.room() != static_cast<std::size_t>(-1)) {
       const bool closing = close_;
       protocol::WindowSink window(out, 0, static_cast<std::size_t>(-1),
                                   protocol::WindowSink::Cut::kBytes);
       handle(request, window);
-      window.flush();
       if (window.written() < window.total() && !close_ && !events_ && !pending_) {
         replay_ = true;
         replay_sent_ = window.written();
@@ -82,7 +82,6 @@ void HttpSession::write_more(std::size_t room_bytes, protocol::ByteSink& out) {
   protocol::WindowSink window(out, replay_sent_, room_bytes, protocol::WindowSink::Cut::kBytes,
                               replay_hash_);
   handle(request, window);
-  window.flush();
   close_ = closing;
   if (window.total() < replay_sent_ || window.mismatch()) {
     // Not the response whose start went out: it cannot be completed.

@@ -180,7 +180,6 @@ class TestSession final : public protocol::Session {
       for (std::size_t k = 0; k < sizeof chunk; ++k) chunk[k] = pattern(at + k);
       window.write(std::string_view(chunk, sizeof chunk));
     }
-    window.flush();
     long_sent_ += window.written();
     long_pending_ = long_sent_ < window.total();
   }
