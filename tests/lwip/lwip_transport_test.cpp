@@ -29,6 +29,7 @@ extern "C" {
 #include "lwip/tcpip.h"
 #include "lwip/udp.h"
 }
+#include "protocol/window_sink.hpp"
 #include "protocol/wrc_session.hpp"
 #include "settings/settings.hpp"
 
@@ -134,7 +135,9 @@ bool in_asset(const void* data, std::size_t size) {
 class TestSession final : public protocol::Session {
  public:
   static constexpr std::size_t kFloodBytes = 200000;
+  static constexpr std::size_t kLongBytes = 300000;  // > Debian's TCP_SND_BUF (64 KB) + 1 KiB
   static inline int live = 0;
+  static inline int windows = 0;
 
   TestSession() { ++live; }
   ~TestSession() override { --live; }
@@ -155,9 +158,33 @@ class TestSession final : public protocol::Session {
         close_ = true;
       }
       if (ch == 'E') events_ = true;
+      // HTTP keep-alive as HttpSession reports it: K answered a request and
+      // waits for the next, B began one.
+      if (ch == 'K') between_ = true;
+      if (ch == 'B') between_ = false;
+      // A reply longer than lwIP's send buffer, as HttpSession writes the
+      // settings schema: written again from its start for each window.
+      if (ch == 'L') {
+        long_pending_ = true;
+        long_sent_ = 0;
+        write_more(static_cast<std::size_t>(-1), out);
+      }
     }
   }
+  bool output_pending() const override { return long_pending_; }
+  void write_more(std::size_t room, protocol::ByteSink& out) override {
+    ++windows;
+    protocol::WindowSink window(out, long_sent_, room, protocol::WindowSink::Cut::kBytes);
+    char chunk[1000];
+    for (std::size_t at = 0; at < kLongBytes; at += sizeof chunk) {
+      for (std::size_t k = 0; k < sizeof chunk; ++k) chunk[k] = pattern(at + k);
+      window.write(std::string_view(chunk, sizeof chunk));
+    }
+    long_sent_ += window.written();
+    long_pending_ = long_sent_ < window.total();
+  }
   bool is_event_stream() const override { return events_; }
+  bool between_requests() const override { return between_; }
   void poll(Millis, protocol::ByteSink& out) override {
     for (int i = 0; i < 4 && flood_left_ > 0; ++i) {
       char chunk[200];
@@ -177,6 +204,9 @@ class TestSession final : public protocol::Session {
   std::size_t sent_ = 0;
   bool close_ = false;
   bool events_ = false;
+  bool between_ = false;
+  bool long_pending_ = false;
+  std::size_t long_sent_ = 0;
 };
 
 auto make_test_session() {
@@ -460,6 +490,30 @@ TEST_F(LwipTransportTest, AClientThatStopsReadingIsDroppedAndTheOthersCarryOn) {
   EXPECT_TRUE(wait([&] { return other.received == "PONG\n"; }));
 }
 
+// A reply longer than lwIP's send buffer and the output buffer together (the
+// Pico's GET /api/settings/schema, 41 KB through 11.7 + 1 KB) goes out in
+// windows, each written when the peer has acknowledged enough (tcp_sent, or
+// the loop's poll): whole and in order, the client never dropped.
+TEST_F(LwipTransportTest, AReplyLongerThanTheSendBufferGoesOutInWindows) {
+  TestService service(test_config(1), make_test_session());
+  auto served = serve(service.server());
+  TestSession::windows = 0;
+  Client& c = connect();
+  send(c, "L");
+  ASSERT_TRUE(wait([&] { return c.received.size() >= TestSession::kLongBytes || c.reset; }));
+  EXPECT_FALSE(c.reset);
+  ASSERT_EQ(c.received.size(), TestSession::kLongBytes);
+  for (std::size_t i = 0; i < c.received.size(); ++i) {
+    if (c.received[i] != TestSession::pattern(i)) {
+      ADD_FAILURE() << "byte " << i << " out of order";
+      break;
+    }
+  }
+  CoreLock lock;
+  EXPECT_GT(TestSession::windows, 4);
+  EXPECT_EQ(service.server().stats().dropped_backlog, 0u);
+}
+
 TEST_F(LwipTransportTest, ImmutableDataLargerThanTheBufferGoesOutByReferenceInOrder) {
   TestService service(test_config(4), make_test_session());
   auto served = serve(service.server());
@@ -562,6 +616,38 @@ TEST_F(LwipAdmissionTest, AFullPortServesANewcomerOnceAClientHasBeenIdleSixtySec
   EXPECT_EQ(service.server().counters().refused_full, 1u);
   EXPECT_EQ(service.server().counters().evicted_idle, 1u);
   EXPECT_EQ(service.server().stats().rejected, 1u);
+  EXPECT_EQ(TestSession::live, 2);
+}
+
+// As on Linux (ClientInfo::between_requests): a keep-alive connection
+// waiting for its next request makes room for a newcomer at once, not after
+// net.idle_evict_s; one in the middle of a request does not.
+TEST_F(LwipAdmissionTest, AKeepAliveConnectionBetweenRequestsMakesRoomAtOnce) {
+  ServerConfig config = test_config(2);
+  config.settings = &settings_;
+  TestService service(config, make_test_session());
+  auto served = serve(service.server());
+  Client& a = connect_from(1);
+  send(a, "B");
+  ASSERT_TRUE(pong(a));  // a request in progress
+  Client& b = connect_from(2);
+  send(b, "B");
+  ASSERT_TRUE(pong(b));
+  advance(1000);
+  Client& early = connect_from(3);
+  EXPECT_TRUE(wait([&] { return early.peer_closed || early.reset; }));
+  EXPECT_EQ(early.received, "busy\r\n");
+
+  send(a, "K");  // a answered, now waiting for its next request
+  ASSERT_TRUE(pong(a));
+  advance(1000);  // 2 s, far below net.idle_evict_s
+  Client& newcomer = connect_from(3);
+  EXPECT_TRUE(pong(newcomer));
+  EXPECT_TRUE(wait([&] { return a.peer_closed; }));  // a FIN: the browser opens another
+  EXPECT_TRUE(pong(b));
+  CoreLock lock;
+  EXPECT_EQ(service.server().counters().refused_full, 1u);
+  EXPECT_EQ(service.server().counters().evicted_idle, 1u);
   EXPECT_EQ(TestSession::live, 2);
 }
 
