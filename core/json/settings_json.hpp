@@ -82,6 +82,10 @@ struct ApplyOutcome {
 ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& target,
                                  settings::Settings& scratch, SettingErrors& errors);
 
+/// The stored settings document (pretty-printed), with room to grow: the
+/// buffers that load, save or export it (web::Api, the Pico's boot buffer).
+inline constexpr std::size_t kMaxSettingsDocumentBytes = 7168;
+
 /// The outcome of reading the stored document at start-up.
 struct LoadOutcome {
   enum Status : unsigned char { kNothingStored, kLoaded, kCorrupt } status = kNothingStored;

@@ -78,8 +78,8 @@ class Api {
   static constexpr Millis kDefaultHoldMs = 1000;
   static constexpr Millis kMinHoldMs = 100;
   static constexpr Millis kMaxHoldMs = 10000;
-  /// The stored settings document (pretty-printed), with room to grow.
-  static constexpr std::size_t kMaxDocumentBytes = 7168;
+  /// The stored settings document (json/settings_json.hpp).
+  static constexpr std::size_t kMaxDocumentBytes = kMaxSettingsDocumentBytes;
 
   explicit Api(const ApiContext& context);
 

@@ -88,6 +88,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
   void poll(Millis now) {
     if (closing_) return;
     session_->poll(now, *this);
+    protocol::drain_output(*session_, *this);
     // A session may end itself from poll too (HTTP idle and request timeouts).
     if (session_->wants_close()) close_after_flush();
   }
@@ -116,6 +117,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
                               }
                               info_.last_receive_ms = server_.now_;
                               session_->receive(std::string_view(buffer_.data(), n), *this);
+                              protocol::drain_output(*session_, *this);
                               if (!stream_seen_ && session_->is_event_stream()) {
                                 stream_seen_ = true;
                                 server_.stream_started(this);

@@ -6,12 +6,12 @@
 //
 // Environment: ROTORD_HIL_IMAGE (default <root>/build-pico/rotord_pico_w.elf),
 // ROTORD_HIL_PLANT (default <root>/build/tests/hil/rotord_hil_plant),
-// ROTORD_HIL_OUT (default <root>/build/bench/hil.json: the figures bench/run.py reports).
+// ROTORD_HIL_OUT (default <root>/build/bench/hil_<board>.json: the figures bench/run.py reports).
 // Exit status 0 when every scenario passed. Results are read on emulated
 // time only; the wall clock matters only to the clients' own timeouts.
 import { execFile } from 'node:child_process';
 import { closeSync, constants, existsSync, mkdirSync, openSync, readSync, writeFileSync, writeSync } from 'node:fs';
-import { dirname, join } from 'node:path';
+import { basename, dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Board, loadBootrom } from './lib/board.mjs';
 import { PtyBridge } from './lib/bridge.mjs';
@@ -27,7 +27,10 @@ const onlyArg = args.find((a) => a.startsWith('--only='))?.slice(7) ?? (args.inc
 const only = onlyArg ? onlyArg.split(',') : [];
 const imagePath = process.env.ROTORD_HIL_IMAGE ?? join(root, 'build-pico/rotord_pico_w.elf');
 const plantBinary = process.env.ROTORD_HIL_PLANT ?? join(root, 'build/tests/hil/rotord_hil_plant');
-const outPath = process.env.ROTORD_HIL_OUT ?? join(root, 'build/bench/hil.json');
+// pico_w or pico, from the image's name (rotord_pico_w.elf, rotord_pico.elf).
+const boardName = basename(imagePath).replace(/^rotord_/, '').replace(/\.elf$/, '');
+const hasWifi = boardName === 'pico_w';
+const outPath = process.env.ROTORD_HIL_OUT ?? join(root, `build/bench/hil_${boardName}.json`);
 const bootrom = loadBootrom(process.env.ROTORD_RP2040_BOOTROM);
 const pins = pinDefaults(root);
 const TICK_MS = 10;
@@ -160,12 +163,17 @@ function check(ok, what) {
 }
 
 const scenarios = {
-  /** No answer from the Wi-Fi chip: USB and the control go on, the log says why; the tick rate and its cost. */
+  /** No answer from the Wi-Fi chip (Pico W; the plain Pico has none): USB and the control go on, the log says why; the tick rate and its cost. */
   async 'no-wifi-tick'() {
     const r = await rig({ thetaDeg: 200 });
     try {
-      const line = await r.board.waitForLog(/Wi-Fi|network/i, 1000);
-      check(line && /does not answer|without network/.test(line.text), `log: "${line?.text}"`);
+      if (hasWifi) {
+        const line = await r.board.waitForLog(/Wi-Fi|network/i, 1000);
+        check(line && /does not answer|without network/.test(line.text), `log: "${line?.text}"`);
+      } else {
+        await r.board.run(200);
+        check(!r.board.logLines.some((l) => /Wi-Fi|CYW43/.test(l.text)), 'plain Pico: no Wi-Fi in the log');
+      }
       check(!r.board.logLines.some((l) => /access point|on port \d+/.test(l.text)), 'no access point or TCP port claimed');
       const p = (await rotctl(r, 603, 'p')).trim().split('\n').map(Number);
       check(Math.abs(p[0] - 200) < 0.6, `rotctl -m 603 p: ${p[0]} (plant 200.0)`);
@@ -177,7 +185,7 @@ const scenarios = {
       check(Math.abs(s.hz - 100) < 0.05 && s.worstDeviationUs < 100,
         `control tick ${s.hz.toFixed(2)} Hz of emulated time, ${s.ticks} ticks in ${s.seconds.toFixed(1)} s, worst period deviation ${s.worstDeviationUs.toFixed(0)} us`);
       console.log(`    --  CPU at rest: ${Math.round(s.cyclesPerTick)} cycles per 10 ms tick period (${s.busyPercent.toFixed(2)} % of 125 MHz; the whole loop: tick, USB, log port)`);
-      benchRows.push({ name: 'hil/pico_w_idle', inputs: { tick_hz: 100, mhz: 125 }, metrics: { cycles_per_tick: Math.round(s.cyclesPerTick), busy_percent: s.busyPercent, tick_hz: s.hz } });
+      benchRows.push({ name: `hil/${boardName}_idle`, inputs: { tick_hz: 100, mhz: 125 }, metrics: { cycles_per_tick: Math.round(s.cyclesPerTick), busy_percent: s.busyPercent, tick_hz: s.hz } });
     } finally {
       await r.close();
     }
@@ -344,7 +352,7 @@ async function gotoScenario({ profile, sensor, model, from, to, settings = {}, b
     check(Math.abs(p[0] - angle(r)) < 0.6 && Math.abs(p[0] - to) < 1.5, `rotctl -m ${model} p: ${p[0]} (plant ${angle(r).toFixed(2)})`);
     if (bench) {
       const seconds = (r.board.nowMs - t0) / 1000;
-      benchRows.push({ name: `hil/pico_w_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { seconds_emulated: seconds, cycles_per_tick: Math.round((r.board.busyCycles - cycles0) / (seconds * 100)) } });
+      benchRows.push({ name: `hil/${boardName}_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { seconds_emulated: seconds, cycles_per_tick: Math.round((r.board.busyCycles - cycles0) / (seconds * 100)) } });
     }
   } finally {
     await r.close();
@@ -357,7 +365,7 @@ if (!existsSync(imagePath)) {
   console.error(`hil: no firmware image at ${imagePath} (make pico)`);
   process.exit(2);
 }
-console.log(`hil: ${imagePath} on rp2040js, plant ${plantBinary}`);
+console.log(`hil: ${boardName}: ${imagePath} on rp2040js, plant ${plantBinary}`);
 let failed = 0;
 for (const [name, fn] of Object.entries(scenarios)) {
   if (only.length && !only.includes(name)) continue;
@@ -378,5 +386,5 @@ if (benchRows.length) {
   mkdirSync(dirname(outPath), { recursive: true });
   writeFileSync(outPath, JSON.stringify(benchRows, null, 1) + '\n');
 }
-console.log(`hil: ${results.length - failed} of ${results.length} scenarios passed`);
+console.log(`hil: ${boardName}: ${results.length - failed} of ${results.length} scenarios passed`);
 process.exit(failed ? 1 : 0);

@@ -1,0 +1,292 @@
+// The Pico W's network side (network_services.hpp): moved out of main.cpp so
+// that the plain Pico image (no Wi-Fi chip) is built without it.
+#include "network_services.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "lwip_transport.hpp"
+#include "pico/cyw43_arch.h"
+#include "pico_crypto.hpp"
+#include "pico_flash.hpp"
+#include "sntp_clock.hpp"
+#include "storage/flash_slots.hpp"
+#include "tracking/tle_catalog.hpp"
+#include "web/http_session.hpp"
+#include "web/web_api.hpp"
+#include "wifi.hpp"
+#include "wifi_secrets.h"
+
+namespace rotord::pico_w {
+namespace {
+
+// Every line protocol of the registry (core/protocol/protocol_registry.hpp)
+// on its TCP port, with a static pool of connection slots each;
+// net.max_clients is clamped to the pool. lwIP's pools (config/lwipopts.h)
+// are sized for these 17 slots plus the web's 4 and 6 listeners.
+using protocol::Personality;
+template <Personality P>
+constexpr std::size_t kTcpSlots = 0;
+template <>
+constexpr std::size_t kTcpSlots<Personality::kWrc> = 4;
+// ~2.6 KB each (a whole reply, the arguments, input held by \pause): Gpredict
+// or SatNOGS, a logger and a rotctl at once.
+template <>
+constexpr std::size_t kTcpSlots<Personality::kRotctld> = 3;
+template <>
+constexpr std::size_t kTcpSlots<Personality::kGs232> =
+    2;  // under 1 KB each; PstRotator or N1MM plus one
+template <>
+constexpr std::size_t kTcpSlots<Personality::kEasycomm> = 2;  // a tracker plus one
+// A jog panel or script plus one; about 100 B each.
+template <>
+constexpr std::size_t kTcpSlots<Personality::kSeed> = 2;
+// A new personality in the registry fails to build here until it is served
+// (or this says why not). The console is not: it writes settings and
+// reboots, which the network does through the web and REST with access
+// control; it is on USB only (the log port, or usb.personality).
+static_assert(protocol::kPersonalityCount == 6, "serve every personality on TCP");
+
+/// Builds a session of personality P for a static pool (returned by value:
+/// guaranteed copy elision builds it in its slot).
+template <Personality P>
+struct MakeSession {
+  const protocol::SessionDeps* deps;
+  typename protocol::SessionOf<P>::type operator()() const {
+    return protocol::SessionOf<P>::make(*deps);
+  }
+};
+template <Personality P>
+using LineService =
+    lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>, MakeSession<P>>;
+constexpr std::uint16_t kHttpPort = 80;
+// A browser holds a page connection and the event stream, plus short API
+// requests; each HTTP session is ~6 KB of RAM (request head and body buffers).
+constexpr std::size_t kHttpSlots = 4;
+// Open pages' event streams share those slots; at most this many, so two
+// always remain for requests (web.max_event_streams is clamped to it), and a
+// newcomer finding all four taken closes the oldest stream (net/admission.hpp).
+constexpr std::size_t kHttpEventStreams = 2;
+// The web password's PBKDF2-HMAC-SHA256 (web_auth.hpp). One iteration is
+// about 29 300 instructions with the SDK's mbedtls 3.6 and this port's
+// mbedtls_config.h (counted under qemu -icount: tests/embedded, target
+// m0_pico_crypto), some 35 000-44 000 cycles on the Cortex-M0+ (1.2-1.5
+// cycles per instruction), 0.28-0.35 ms at 125 MHz. 5000 iterations: about
+// 1.5-1.8 s of CPU per login or new password (not measured on a chip), run
+// in slices of 3 iterations (about 1 ms) in the loop's idle time, so a tick
+// is never late by more than one slice. A hash made on Linux (100 000
+// iterations) also verifies here, 20 times slower: set the password on the
+// Pico itself.
+constexpr std::uint32_t kPbkdf2Iterations = 5'000;
+constexpr std::uint32_t kPbkdf2SliceIterations = 3;
+// A slice is started only when at least this much time is left before the tick.
+constexpr std::int64_t kSliceHeadroomUs = 2000;
+
+Millis now_ms() {
+  return static_cast<Millis>(to_us_since_boot(get_absolute_time()) / 1000);
+}
+
+/// The program's flash (XIP) never changes while it runs: the web UI's
+/// gzipped files there are sent by reference, without a copy in RAM.
+bool in_program_flash(const void* data, std::size_t size) {
+  const auto begin = reinterpret_cast<std::uintptr_t>(data);
+  return begin >= XIP_BASE && begin + size <= XIP_BASE + PICO_FLASH_SIZE_BYTES;
+}
+
+// The stored TLEs: their own two slots right below the settings.
+PicoFlash g_tle_flash(PicoFlash::kRegionBytes, PicoFlash::kTleRegionBytes);
+FlashSlots g_tle_storage(g_tle_flash);
+tracking::TleCatalog g_tles;
+
+/// POST /api/reboot, handed to the loop (NetworkDeps::request_reboot).
+class WebReboot final : public web::RebootHook {
+ public:
+  explicit WebReboot(void (*request)()) : request_(request) {}
+  bool request_reboot() override {
+    request_();
+    return true;
+  }
+
+ private:
+  void (*request_)();
+};
+
+/// What the loop calls once network_start() has built it.
+struct Running {
+  bool network = false;  ///< the Wi-Fi chip answered
+  Wifi* wifi = nullptr;
+  web::Api* api = nullptr;
+  std::span<lwip_port::TcpServer* const> servers;
+};
+Running g_running;
+
+/// Starts the Wi-Fi chip and says why the network is down if it cannot.
+/// cyw43_arch_init() only sets up the driver: the chip is powered and its
+/// firmware loaded by the first call that needs it, and a chip that does
+/// not answer would then be retried (20 + 50 ms of power-up delays, then a
+/// failed bus init) by every later Wi-Fi call, several times a second from
+/// the loop, stalling the control tick. So one call here brings it up, and
+/// a chip that does not answer is left alone: USB and the controller run
+/// without network. Found by running the image on an emulated RP2040 with
+/// no Wi-Fi chip (make hil).
+bool wifi_chip_up() {
+  if (cyw43_arch_init() != 0) {
+    std::printf("rotord: Wi-Fi driver init failed; running without network (USB only)\n");
+    return false;
+  }
+  std::uint32_t power_mode = 0;
+  const int err = cyw43_wifi_get_pm(&cyw43_state, &power_mode);
+  if (err != 0) {
+    std::printf(
+        "rotord: the Wi-Fi chip does not answer (CYW43 bus init error %d); running without "
+        "network: USB and the controller keep working\n",
+        err);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void network_start(const NetworkDeps& d, Millis now) {
+  settings::Settings& settings = d.settings;
+  Controller& controller = d.controller;
+  metrics::Registry& registry = d.registry;
+  // Without the HELP lines the page is about 7 KB: it must pass through
+  // lwIP's send buffer (TCP_SND_BUF, 11.7 KB) and the 1 KiB output buffer.
+  registry.help_text = false;
+
+  // Without the Wi-Fi chip the controller still runs (USB logs, safety
+  // rules, the USB protocol port), it just takes no network commands.
+  g_running.network = wifi_chip_up();
+
+  // wifi.*, net.*, time.* as loaded at boot (they all need a restart).
+  Wifi::Config wifi_config =
+      Wifi::config_from(settings, ROTORD_WIFI_CONNECT_TIMEOUT_S * Millis{1000});
+  // Announced by mDNS, as rotord on Linux announces them through Avahi; the
+  // TCP ports are the registry's (every line protocol is served below).
+  const auto tcp_port = [](Personality personality) {
+    return protocol::protocol_info(personality).tcp_port;
+  };
+  wifi_config.ports = net::ServicePorts{kHttpPort,
+                                        tcp_port(Personality::kRotctld),
+                                        tcp_port(Personality::kWrc),
+                                        tcp_port(Personality::kGs232),
+                                        tcp_port(Personality::kEasycomm),
+                                        tcp_port(Personality::kSeed)};
+  static Wifi wifi(wifi_config);
+  // WRC MONITOR lines also go to the USB log port as they happen, where the
+  // WRC firmware prints them, but only while a terminal listens (log_port.hpp).
+  static protocol::MonitorTap monitor_tap(d.log);
+  static const protocol::SessionDeps deps{controller, ROTORD_VERSION, &monitor_tap};
+  // Every server admits by net/admission.hpp with the live settings (idle
+  // eviction, per-address cap, allow-list), as on Linux.
+  auto line_config = [&settings, &registry](Personality personality) {
+    const protocol::ProtocolInfo& info = protocol::protocol_info(personality);
+    lwip_port::ServerConfig config;
+    config.name = info.name.data();  // a string literal
+    config.port = info.tcp_port;
+    config.max_clients = static_cast<std::size_t>(settings.i(settings::Id::kNetMaxClients));
+    config.reject_message = info.refusal;
+    config.settings = &settings;
+    config.metrics = &registry;
+    config.protocol = info.metric;
+    return config;
+  };
+  static LineService<Personality::kWrc> wrc(line_config(Personality::kWrc),
+                                            MakeSession<Personality::kWrc>{&deps});
+  static LineService<Personality::kRotctld> rotctld(line_config(Personality::kRotctld),
+                                                    MakeSession<Personality::kRotctld>{&deps});
+  static LineService<Personality::kGs232> gs232(line_config(Personality::kGs232),
+                                                MakeSession<Personality::kGs232>{&deps});
+  static LineService<Personality::kEasycomm> easycomm(line_config(Personality::kEasycomm),
+                                                      MakeSession<Personality::kEasycomm>{&deps});
+  // The seed protocol: on the Pico's TCP too since issue 11 (port 4603).
+  static LineService<Personality::kSeed> seed(line_config(Personality::kSeed),
+                                              MakeSession<Personality::kSeed>{&deps});
+  static SntpWallClock wall_clock(&now_ms);  // time_utc once SNTP has answered
+  // Access control's crypto: seeded once here (its only heap allocation).
+  static PicoCrypto crypto;
+  if (!crypto.begin()) std::printf("rotord: mbedtls could not seed: web logins refused\n");
+  static WebReboot reboot(d.request_reboot);
+  web::ApiContext api_context{controller,     d.storage,   d.defaults, &reboot,
+                              ROTORD_VERSION, &wall_clock, nullptr,    &registry};
+  api_context.crypto = crypto.ready() ? &crypto : nullptr;
+  api_context.pbkdf2_iterations = kPbkdf2Iterations;
+  api_context.pbkdf2_slice = kPbkdf2SliceIterations;
+  api_context.log = &d.log;
+  // Tracking: UTC from SNTP (refused until it has answered), one target
+  // evaluation (about 3 ms) per tick for the pass search and the plan, and
+  // GET /api/passes a slice per loop. The TLEs in their flash slots; a PUT
+  // while the rotator moves is refused (a flash write pauses this loop).
+  controller.attach_utc_clock(&wall_clock);
+  controller.set_track_budget(1);
+  api_context.passes_request_budget = 10;
+  api_context.passes_poll_budget = 1;
+  api_context.tle_save_while_moving = false;
+  if (g_tle_flash.region_free()) {
+    static char tle_text[tracking::TleCatalog::kMaxTextBytes];
+    g_tles.load(g_tle_storage, tle_text, sizeof tle_text);
+    api_context.tle_storage = &g_tle_storage;
+    std::printf("rotord: %u TLEs in flash\n", static_cast<unsigned>(g_tles.size()));
+  }
+  api_context.tles = &g_tles;
+  static web::Api api(api_context);
+  auto make_http = [] { return web::HttpSession(api); };
+  lwip_port::ServerConfig http_config;
+  http_config.name = "web UI and REST API";
+  http_config.port = kHttpPort;
+  http_config.max_clients = kHttpSlots;
+  http_config.reject_message = web::HttpSession::kTooManyConnections;
+  http_config.is_immutable = &in_program_flash;
+  http_config.settings = &settings;
+  http_config.max_event_streams = std::min(
+      kHttpEventStreams, static_cast<std::size_t>(settings.i(settings::Id::kWebMaxEventStreams)));
+  http_config.metrics = &registry;
+  http_config.protocol = metrics::Protocol::kHttp;
+  static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
+      http_config, make_http);
+  static lwip_port::TcpServer* const servers[] = {&wrc.server(),   &rotctld.server(),
+                                                  &gs232.server(), &easycomm.server(),
+                                                  &seed.server(),  &http.server()};
+  g_running.wifi = &wifi;
+  g_running.api = &api;
+  g_running.servers = servers;
+  if (g_running.network) {
+    wifi.begin(now);
+    // lwIP listens on every address, so the servers work on the station and
+    // on the setup access point alike.
+    for (lwip_port::TcpServer* server : servers) {
+      if (server->start())
+        std::printf("rotord: %s on port %u\n", server->name(), server->port());
+      else
+        std::printf("rotord: %s: cannot listen\n", server->name());
+    }
+  }
+}
+
+void network_service() {
+  if (g_running.network) cyw43_arch_poll();
+}
+
+void network_tick(Millis now) {
+  g_running.api->poll(now);  // hold-to-move's dead-man, with or without a connection
+  if (!g_running.network) return;
+  for (lwip_port::TcpServer* server : g_running.servers) server->poll(now);
+  g_running.wifi->step(now);
+}
+
+void network_wait_until(absolute_time_t next_tick) {
+  // A login or a new password being hashed: its slices fill the time up to
+  // the next tick instead of sleeping (the tick is never late by more than
+  // one slice, and the watchdog is fed on every pass).
+  while (g_running.api->auth_busy() &&
+         absolute_time_diff_us(get_absolute_time(), next_tick) > kSliceHeadroomUs)
+    g_running.api->work();
+  if (g_running.network)
+    cyw43_arch_wait_for_work_until(next_tick);
+  else
+    sleep_until(next_tick);
+}
+
+}  // namespace rotord::pico_w
