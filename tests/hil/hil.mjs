@@ -89,6 +89,21 @@ class LineClient {
       this.buf += b.subarray(0, n).toString('latin1');
     }
   }
+  /** The console's reply: the lines up to the first that starts with ok or error: (log lines may come between). */
+  async command(line, timeoutMs = 1000) {
+    this.buf = '';
+    writeSync(this.fd, line + '\r\n');
+    let reply = null;
+    await this.r.board.runUntil(() => {
+      this.read();
+      const lines = this.buf.split(/\r?\n/);
+      const last = lines.findIndex((l) => /^(ok|error:)/.test(l));
+      if (last >= 0) reply = lines.slice(0, last + 1);
+      return reply !== null;
+    }, timeoutMs, 1);
+    if (verbose) console.log(`  console> ${line} < ${reply?.join(' | ')}`);
+    return reply ?? [];
+  }
   async send(line, timeoutMs = 500) {
     this.buf = '';
     writeSync(this.fd, line + '\r');
@@ -303,12 +318,58 @@ const scenarios = {
       const resetMs = r.board.baseNs / 1e6;
       check(r.board.resets === 1 && Math.abs(resetMs - hungMs - 2000) < 15, `watchdog reset ${(resetMs - hungMs).toFixed(1)} ms after the loop stopped (2000 ms)`);
       check(!r.board.outputLevel(pins.az_cw), 'the reset dropped the CW relay');
-      const line = await r.board.waitForLog(/restarted by the watchdog/, 3000);
+      const line = await r.board.waitForLog(/restarted by the watchdog \(the loop hung\)/, 3000);
       check(line !== null, `log: "${line?.text}"`);
       const p = await c.send('C2', 3000);
       check(/^AZ=\d{3}/.test(p ?? ''), `GS-232 answers again: ${p}`);
     } finally {
       c.close();
+      await r.close();
+    }
+  },
+
+  /**
+   * The console on the log port, through a second pty: status shows a
+   * latched stall, reset clears it (GS-232 has no command for that), set
+   * changes a setting, reboot restarts the chip.
+   */
+  async 'console'() {
+    const r = await rig({ thetaDeg: 200 });
+    const logBridge = new PtyBridge({ endpoint: r.board.logEndpoint() });
+    const con = new LineClient({ board: r.board, pty: await logBridge.start() });
+    const gs = new LineClient(r);
+    try {
+      await r.plant.command('jam -1');
+      await gs.send('R');
+      await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 2000, 1);
+      await r.board.runUntil(() => !r.board.outputLevel(pins.az_cw), 4000, 5);
+      let status = await con.command('status');
+      const az = status.find((l) => l.startsWith('az '));
+      check(/fault=STALL/.test(az ?? ''), `status after the stall: "${az}"`);
+      check((await gs.send('R')) === '?>', 'GS-232 R refused while the fault is latched');
+      await r.plant.command('clear');
+      const reset = await con.command('reset');
+      check(reset.at(-1) === 'ok stopped, faults cleared', `reset: "${reset.at(-1)}"`);
+      status = await con.command('status');
+      check(/fault=NONE|fault=-|fault=none/i.test(status.find((l) => l.startsWith('az ')) ?? ''), `status after reset: "${status.find((l) => l.startsWith('az '))}"`);
+      await gs.send('R');
+      check(await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 2000, 1), 'GS-232 R turns CW again');
+      await gs.send('S');
+      const set = await con.command('set az.stall_ms 1500');
+      check(set.at(-1) === 'ok az.stall_ms=1500', `set: "${set.at(-1)}"`);
+      const bad = await con.command('set az.stall_ms 5');
+      check(bad.at(-1)?.startsWith('error: '), `a bad value is refused: "${bad.at(-1)}"`);
+      const since = r.board.logLines.length;
+      const reboot = await con.command('reboot');
+      check(reboot.at(-1) === 'ok rebooting', `reboot: "${reboot.at(-1)}"`);
+      const banner = await r.board.waitForLog(/^rotord \d/, 3000, since);
+      check(banner !== null && r.board.boots === 2 && /reboot requested/.test(banner.text), `the chip restarted: "${banner?.text}"`);
+      const stored = readSettings(r.board.flash);
+      check(/"az.stall_ms": 1500/.test(stored?.document ?? ''), `az.stall_ms 1500 saved before the reboot (save #${stored?.sequence})`);
+    } finally {
+      con.close();
+      gs.close();
+      await logBridge.stop();
       await r.close();
     }
   },

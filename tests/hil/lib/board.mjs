@@ -175,7 +175,10 @@ export class Board {
     this.usb = host;
     host.onPorts = (ports) => {
       ports.forEach((p, i) => this.ports[i]?.bind(p));
-      this.ports[0].onData = (bytes) => this.onLog(bytes);
+      this.ports[0].onData = (bytes) => {
+        this.onLog(bytes);
+        this.logTap?.(bytes);
+      };
     };
     host.onConnected = () => {
       this.usbConnectedMs = this.nowMs;
@@ -327,8 +330,23 @@ export class Board {
     return ok ? found : null;
   }
 
-  /** A reset puts every pin back to an input: the outputs drop. */
+  /**
+   * The log port as a CDC endpoint for a bridge (the console is served
+   * there): what it prints still goes to the log as well.
+   */
+  logEndpoint() {
+    const board = this;
+    return {
+      write: (bytes) => board.ports[0].write(bytes),
+      set onData(fn) {
+        board.logTap = fn;
+      },
+    };
+  }
+
+  /** A reset puts every pin back to an input: the outputs drop. A log line cut by it ends there. */
   resetAllOutputs() {
+    if (this.partialLine) this.onLog(new TextEncoder().encode(' [cut by the reset]\n'));
     for (const gpio of [this.pins.az_cw, this.pins.az_ccw, this.pins.az_speed, this.pins.az_brake]) {
       if (gpio >= 0 && this.outputLevel(gpio)) this.edges.push({ ms: this.nowMs, gpio, value: false });
     }
