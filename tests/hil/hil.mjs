@@ -37,10 +37,10 @@ const TICK_MS = 10;
 
 // ---- a rig: plant, chip, pty ----
 
-async function rig({ profile = 'g5500', sensor, thetaDeg, speedScale, settings = {} }) {
+async function rig({ profile = 'g5500', sensor, thetaDeg, speedScale, settings = {}, pinMap = pins }) {
   const plant = new Plant({ binary: plantBinary, profile, sensor, thetaDeg, speedScale });
   const settingsDocument = await plant.settingsDocument(settings);
-  const board = new Board({ bootrom, image: imagePath, pins, plant, settingsDocument, echoLog: verbose });
+  const board = new Board({ bootrom, image: imagePath, pins: pinMap, plant, settingsDocument, echoLog: verbose });
   const bridge = new PtyBridge({ endpoint: board.ports[1] });
   const pty = await bridge.start();
   if (!(await board.runUntil(() => board.usbConnectedMs !== undefined, 3000)))
@@ -303,6 +303,27 @@ const scenarios = {
       check(!r.board.outputLevel(pins.az_cw), 'CW stays off');
     } finally {
       c.close();
+      await r.close();
+    }
+  },
+
+  /** Push buttons (wired by settings: GPIO 4 and 13, free by default): held, the axis turns; released, it stops. */
+  async 'buttons'() {
+    const wired = { ...pins, btn_cw: 4, btn_ccw: 13 };
+    const r = await rig({ thetaDeg: 200, pinMap: wired, settings: { 'buttons.enabled': 'true', 'pins.btn_cw': 4, 'pins.btn_ccw': 13 } });
+    try {
+      await r.board.run(300);
+      check(!driving(r), 'released: no drive');
+      r.board.press('btn_ccw', true);
+      check(await r.board.runUntil(() => r.board.outputLevel(pins.az_ccw), 500, 1), `CCW button held: CCW relay (GPIO ${pins.az_ccw}) on`);
+      await r.board.run(1000);
+      const held = angle(r);
+      check(held < 199.5, `the axis turned CCW to ${held.toFixed(2)} deg`);
+      r.board.press('btn_ccw', false);
+      const releasedMs = r.board.nowMs;
+      check(await r.board.runUntil(() => !r.board.outputLevel(pins.az_ccw), 500, 1), `released: CCW off ${(r.board.nowMs - releasedMs).toFixed(1)} ms later (debounce ${30} ms)`);
+      check(!r.board.outputLevel(pins.az_cw), 'CW never on');
+    } finally {
       await r.close();
     }
   },

@@ -81,6 +81,7 @@ export class Board {
     this.boots = 0;
     this.flashStats = { erases: 0, programs: 0 };
     this.hung = false;
+    this.pressed = new Set(); // buttons held down: 'btn_cw', 'btn_ccw'
     this.plantMs = 0;
     this.sensors = null;
     this.ports = [makePort(), makePort()]; // log, protocol: stable across resets
@@ -258,7 +259,7 @@ export class Board {
     const rp = this.rp;
     const ch = adcChannel(this.pins.az_pot);
     if (ch >= 0) rp.adc.channelValues[ch] = s.potCounts;
-    for (const [gpio, level] of switchLevels(this.pins, s)) {
+    for (const [gpio, level] of switchLevels(this.pins, { ...s, buttons: this.pressed })) {
       if (rp.gpio[gpio].rawInputValue !== level) rp.gpio[gpio].setInputValue(level);
     }
   }
@@ -342,6 +343,13 @@ export class Board {
         board.logTap = fn;
       },
     };
+  }
+
+  /** Presses (true) or releases a push button ('btn_cw', 'btn_ccw'); applied at once. */
+  press(button, down) {
+    if (down) this.pressed.add(button);
+    else this.pressed.delete(button);
+    if (this.sensors) this.applySensors(this.sensors);
   }
 
   /** A reset puts every pin back to an input: the outputs drop. A log line cut by it ends there. */
