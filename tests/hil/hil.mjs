@@ -144,6 +144,7 @@ class LineClient {
       line + '\r\n',
       (buf) => {
         const lines = buf.split(/\r?\n/);
+        lines.pop(); // not yet a whole line
         const last = lines.findIndex((l) => /^(ok|error:)/.test(l));
         return last >= 0 ? lines.slice(0, last + 1) : null;
       },
@@ -425,6 +426,26 @@ const scenarios = {
     } finally {
       con.close();
       gs.close();
+      await logBridge.stop();
+      await r.close();
+    }
+  },
+
+  /** The console's bootsel: the chip reboots into the ROM's USB bootloader (mass storage + PICOBOOT). */
+  async 'bootsel'() {
+    const r = await rig({ thetaDeg: 200 });
+    const logBridge = new PtyBridge({ endpoint: r.board.logEndpoint() });
+    const con = new LineClient({ board: r.board, pty: await logBridge.start() }, logBridge);
+    try {
+      check(r.board.usb.interfaceClasses.includes(2), `rotord enumerates CDC (interface classes ${r.board.usb.interfaceClasses})`);
+      const reply = await con.command('bootsel');
+      check(reply.at(-1)?.startsWith('ok rebooting into the USB bootloader'), `bootsel: "${reply.at(-1)}"`);
+      check(await r.board.runUntil(() => r.board.boots === 2 && r.board.romEntry, 2000, 1), 'the chip reset into the bootrom');
+      check(await r.board.runUntil(() => r.board.usb.interfaceClasses?.length > 0, 3000, 5), 'the bootloader enumerates');
+      const classes = r.board.usb.interfaceClasses;
+      check(classes.includes(8) && classes.includes(0xff) && !classes.includes(2), `as the RPI-RP2 drive and PICOBOOT (interface classes ${classes}: mass storage, vendor)`);
+    } finally {
+      con.close();
       await logBridge.stop();
       await r.close();
     }

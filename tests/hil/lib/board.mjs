@@ -106,10 +106,16 @@ export class Board {
     rp.peripherals[0x40064].writeUint32 = () => {};
     rp.loadBootrom(this.opts.bootrom); // resets the core from the bootrom's vectors; clears flash
     rp.flash.set(this.flash);
+    const oldWatchdog = previous?.peripherals[0x40058];
+    // The bootrom's "boot to an address" (scratch 4 = 0xb007c0d3), set by
+    // its reset_usb_boot (the console's bootsel): through the bootrom's own
+    // reset path, which takes the core into the USB bootloader.
+    const romEntry = oldWatchdog && oldWatchdog.scratchData[4] === 0xb007c0d3;
     // Straight into boot2 at the start of flash, as rp2040js's own demo
     // does: the bootrom's flash boot reads boot2 through the SSI, which
     // rp2040js does not model. The bootrom stays for its ROM functions.
-    rp.core.PC = 0x10000000;
+    if (!romEntry) rp.core.PC = 0x10000000;
+    this.romEntry = romEntry;
     this.flash = rp.flash; // the chip's own array from now on (survives the next reset)
     installFlashModel(rp, this.flashStats);
     const watchdog = rp.peripherals[0x40058];
