@@ -1,4 +1,4 @@
-// The Pico W on an emulated RP2040 (rp2040js 1.4.1) with the rotator on its
+// A Pico or Pico W on an emulated RP2040 (rp2040js 1.4.1) with the rotator on its
 // pins: the unmodified firmware image, the B1 bootrom (read from a path given
 // at run time), the simulator's plant (lib/plant.mjs) stepped every emulated
 // millisecond, and a USB host bound to both CDC ports. Everything runs on
