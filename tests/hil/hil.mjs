@@ -496,7 +496,7 @@ async function gotoScenario({ profile, sensor, model, from, to, settings = {}, b
     if (bench) {
       const cyclesPerTick = Math.round(moveCycles / (moveS * 100));
       console.log(`    --  CPU while moving: ${cyclesPerTick} cycles per 10 ms tick period`);
-      benchRows.push({ name: `hil/${boardName}_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { drive_on_s: moveS, cycles_per_tick: cyclesPerTick } });
+      benchRows.push({ name: `hil/${boardName}_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { cycles_per_tick: cyclesPerTick } });
     }
   } finally {
     await r.close();
