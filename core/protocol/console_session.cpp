@@ -7,6 +7,7 @@
 #include "json/json_writer.hpp"
 #include "json/settings_json.hpp"
 #include "protocol/gs232_calibration.hpp"
+#include "protocol/window_sink.hpp"
 #include "rotator/controller.hpp"
 #include "settings/settings_layers.hpp"
 #include "util/slice.hpp"
@@ -42,59 +43,6 @@ struct Echo {
     text[n] = '\0';
   }
   char text[33];
-};
-
-/// The next part of a reply, after the `skip` bytes already sent, as much as
-/// fits in `room`, in as few writes as its buffer allows: a transport with a
-/// bounded buffer (the Pico's USB) takes each write whole or not at all. A
-/// window ends before the first of the reply's writes that does not fit, so
-/// a listing's lines are never cut (log lines printed between two windows
-/// fall between its lines), except a write larger than the whole room,
-/// which is cut so that every window makes progress.
-class WindowSink final : public ByteSink {
- public:
-  WindowSink(ByteSink& out, std::size_t skip, std::size_t room)
-      : out_(out), skip_(skip), room_(room) {}
-  void write(std::string_view bytes) override {
-    total_ += bytes.size();
-    if (skip_ >= bytes.size()) {
-      skip_ -= bytes.size();
-      return;
-    }
-    bytes = text::slice(bytes, skip_);
-    skip_ = 0;
-    if (full_) return;
-    if (bytes.size() > room_) {
-      full_ = true;
-      if (written_ > 0) return;
-      bytes = text::slice(bytes, 0, room_);
-    }
-    room_ -= bytes.size();
-    written_ += bytes.size();
-    while (!bytes.empty()) {
-      if (used_ == buf_.size()) flush();
-      const std::size_t n = std::min(bytes.size(), buf_.size() - used_);
-      std::memcpy(buf_.data() + used_, bytes.data(), n);
-      used_ += n;
-      bytes.remove_prefix(n);
-    }
-  }
-  void flush() {
-    if (used_ > 0) out_.write(std::string_view(buf_.data(), used_));
-    used_ = 0;
-  }
-  std::size_t total() const { return total_; }
-  std::size_t written() const { return written_; }
-
- private:
-  ByteSink& out_;
-  std::size_t skip_;
-  std::size_t room_;
-  bool full_ = false;
-  std::size_t total_ = 0;
-  std::size_t written_ = 0;
-  std::array<char, 128> buf_{};
-  std::size_t used_ = 0;
 };
 
 /// Formats one setting for a reply: "key=value" (secrets masked).
@@ -432,9 +380,8 @@ void ConsoleSession::write_more(std::size_t room_bytes, ByteSink& out) {
     if (listing_sent_ > 0) out.write("\r\n");
     error(out, "the settings changed during the listing: ask again");
   } else {
-    WindowSink window(out, listing_sent_, room_bytes);
+    WindowSink window(out, listing_sent_, room_bytes, WindowSink::Cut::kWhole);
     write_listing(window);
-    window.flush();
     listing_sent_ += window.written();
     if (listing_sent_ < window.total()) return;
   }

@@ -30,8 +30,8 @@ constexpr std::array<ProtocolInfo, kPersonalityCount> kProtocols = {{
     // person at a terminal: a pty or serial line on Linux, the Pico's USB
     // log port. Never on TCP unless --console-port is given (the web and
     // REST do all of it on the network); the Pico serves it on USB only.
-    {P::kConsole, "console", "rotord console", 4604, false, 115200,
-     ConsoleSession::kTooManyConnections, metrics::Protocol::kConsole},
+    {P::kConsole, "console", "console", 4604, false, 115200, ConsoleSession::kTooManyConnections,
+     metrics::Protocol::kConsole},
 }};
 
 }  // namespace

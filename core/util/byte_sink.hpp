@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <string_view>
 
 namespace rotord {
@@ -13,6 +14,10 @@ class ByteSink {
  public:
   virtual ~ByteSink() = default;
   virtual void write(std::string_view bytes) = 0;
+  /// How many bytes write() takes right now without dropping anything: a
+  /// transport with a bounded buffer (the Pico's lwIP connection) says so, and
+  /// a long reply written through a protocol::WindowSink stops there.
+  virtual std::size_t room() const { return static_cast<std::size_t>(-1); }
 };
 
 namespace protocol {

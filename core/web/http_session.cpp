@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "protocol/window_sink.hpp"
 #include "web/assets.hpp"
 #include "web/host_check.hpp"
 #include "web/http_response.hpp"
@@ -15,6 +16,13 @@ HttpSession::~HttpSession() {
 }
 
 void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
+  // A request pipelined behind a long response: the parser still holds that
+  // one, so this connection closes after it; the client sends it again on
+  // a new one (as HTTP clients do when a server closes a pipeline).
+  if (replay_) {
+    replay_close_ = true;
+    return;
+  }
   // An event stream only talks; anything the client sends is ignored.
   if (close_ || events_ || pending_) return;
   while (!bytes.empty() && !close_ && !events_ && !pending_) {
@@ -25,16 +33,67 @@ void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
       close_ = true;
       break;
     }
-    handle(parser_.request(), out);
-    answered_ = true;
-    parser_.reset();
-    request_timed_ = request_start_pending_ = false;
-    body_timed_ = body_start_pending_ = false;
-    idle_restart_pending_ = true;
+    const HttpRequest& request = parser_.request();
+    // Only the last request of what arrived may go out in windows: the
+    // parser must keep it until then. A transport that takes everything
+    // (Linux) gets it directly.
+    if (bytes.empty() && windowed(request) && out.room() != static_cast<std::size_t>(-1)) {
+      const bool closing = close_;
+      protocol::WindowSink window(out, 0, static_cast<std::size_t>(-1),
+                                  protocol::WindowSink::Cut::kBytes);
+      handle(request, window);
+      if (window.written() < window.total() && !close_ && !events_ && !pending_) {
+        replay_ = true;
+        replay_sent_ = window.written();
+        replay_hash_ = window.sent_hash();
+        close_ = closing;  // a Connection: close applies once it is all out
+        return;
+      }
+    } else {
+      handle(request, out);
+    }
+    request_done(request.keep_alive);
   }
   // What is left is the start of the next request: its deadline begins now.
   if (parser_.in_progress() && !request_timed_) request_timed_ = request_start_pending_ = true;
   if (parser_.in_body() && !body_timed_) body_timed_ = body_start_pending_ = true;
+}
+
+void HttpSession::request_done(bool keep_alive) {
+  // A pending login answers from poll() and then closes; an event stream
+  // runs until the client leaves.
+  if (!keep_alive && !pending_ && !events_) close_ = true;
+  answered_ = true;
+  parser_.reset();
+  request_timed_ = request_start_pending_ = false;
+  body_timed_ = body_start_pending_ = false;
+  idle_restart_pending_ = true;
+}
+
+bool HttpSession::windowed(const HttpRequest& request) {
+  return request.method == Method::kGet &&
+         (request.path.starts_with("/api/") || request.path == "/metrics");
+}
+
+void HttpSession::write_more(std::size_t room_bytes, protocol::ByteSink& out) {
+  if (!replay_) return;
+  const HttpRequest& request = parser_.request();
+  const bool closing = close_;
+  protocol::WindowSink window(out, replay_sent_, room_bytes, protocol::WindowSink::Cut::kBytes,
+                              replay_hash_);
+  handle(request, window);
+  close_ = closing;
+  if (window.total() < replay_sent_ || window.mismatch()) {
+    // Not the response whose start went out: it cannot be completed.
+    replay_ = false;
+    close_ = true;
+    return;
+  }
+  replay_sent_ += window.written();
+  replay_hash_ = window.sent_hash();
+  if (replay_sent_ < window.total()) return;
+  replay_ = false;
+  request_done(request.keep_alive && !replay_close_);
 }
 
 void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
@@ -90,7 +149,6 @@ void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
     o.extra_headers = "Allow: GET, HEAD\r\n";
     send_error(out, 405, "method not allowed here", o);
   }
-  if (!request.keep_alive) close_ = true;
 }
 
 void HttpSession::serve_asset(const HttpRequest& request, const ResponseOptions& options,
@@ -127,6 +185,9 @@ void HttpSession::poll(Millis now, protocol::ByteSink& out) {
   idle_restart_pending_ = request_start_pending_ = body_start_pending_ = false;
   now_ = now;
   if (close_) return;
+  // A long response going out: the transport paces it (write_more), and a
+  // reader that stopped is the admission rule's idle client.
+  if (replay_) return;
   if (pending_) {
     if (api_.finish_pending(pending_ticket_, out, {false, false, {}})) {
       pending_ = false;

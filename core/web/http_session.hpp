@@ -49,11 +49,24 @@ class HttpSession final : public protocol::Session {
   bool streaming_events() const { return events_; }
   bool is_event_stream() const override { return events_; }
   bool between_requests() const override {
-    return answered_ && !events_ && !pending_ && !close_ && !parser_.in_progress();
+    return answered_ && !events_ && !pending_ && !close_ && !replay_ && !parser_.in_progress();
   }
+  /// A GET response longer than the transport takes at once (the 41 KB
+  /// settings schema through the Pico's 11.7 KB lwIP send buffer): the rest
+  /// goes out as the transport makes room, the response written again each
+  /// time and only its next bytes let through (protocol::WindowSink). If it
+  /// came out different (the state changed meanwhile), the connection closes:
+  /// the client sees a short body and asks again.
+  bool output_pending() const override { return replay_; }
+  void write_more(std::size_t room_bytes, protocol::ByteSink& out) override;
 
  private:
   void handle(const HttpRequest& request, protocol::ByteSink& out);
+  /// Whether `request`'s response may go out in windows: GETs of the API and
+  /// /metrics (the web UI's files are sent from flash by reference).
+  static bool windowed(const HttpRequest& request);
+  /// The request has been answered in full: ready for the next one.
+  void request_done(bool keep_alive);
   void serve_asset(const HttpRequest& request, const ResponseOptions& options,
                    protocol::ByteSink& out);
   void send_event(Millis now, protocol::ByteSink& out);
@@ -70,6 +83,12 @@ class HttpSession final : public protocol::Session {
   // response goes out from poll(), the connection closes after it, and
   // bytes that arrive meanwhile are dropped (no pipelining behind a login).
   bool answered_ = false;  ///< a request has been answered on this connection
+  // A response going out in windows (output_pending): the request stays in
+  // the parser until it is done.
+  bool replay_ = false;
+  bool replay_close_ = false;  ///< bytes arrived meanwhile (pipelining): close after it
+  std::size_t replay_sent_ = 0;
+  std::uint32_t replay_hash_ = 0;  ///< of the bytes sent so far
   bool pending_ = false;
   std::uint32_t pending_ticket_ = 0;
   // Who opened the event stream: it ends when that login or token does.

@@ -160,6 +160,7 @@ struct TcpServer::Glue {
     auto* c = static_cast<Connection*>(arg);
     if (c == nullptr) return ERR_OK;
     c->flush();
+    c->continue_reply();
     return c->server_->settle(*c);
   }
 
@@ -167,6 +168,7 @@ struct TcpServer::Glue {
     auto* c = static_cast<Connection*>(arg);
     if (c == nullptr) return ERR_OK;
     c->flush();
+    c->continue_reply();
     return c->server_->settle(*c);
   }
 
@@ -201,6 +203,22 @@ void TcpServer::Connection::write(std::string_view bytes) {
     out_len_ += bytes.size();
   }
   flush();
+}
+
+std::size_t TcpServer::Connection::room() const {
+  if (pcb_ == nullptr || overflow_) return 0;
+  // Copied bytes join the last piece when it is copied too; else they need a
+  // queue entry of their own.
+  const bool joins_last = chunk_count_ > 0 && chunks_[chunk_count_ - 1].data == nullptr;
+  if (!joins_last && chunk_count_ == chunks_.size()) return 0;
+  return out_.size() - out_len_;
+}
+
+void TcpServer::Connection::continue_reply() {
+  if (pcb_ == nullptr || overflow_ || session_ == nullptr || !session_->output_pending()) return;
+  if (room() < kMinWindowBytes) return;  // the peer acknowledges more first
+  session_->write_more(static_cast<std::size_t>(-1), *this);
+  if (session_->wants_close()) close_requested_ = true;
 }
 
 bool TcpServer::Connection::push_chunk(const char* data, std::size_t size) {
@@ -318,6 +336,7 @@ void TcpServer::poll(Millis now) {
     if (c.pcb_ == nullptr) continue;
     c.session_->poll(now, c);
     c.flush();
+    c.continue_reply();
     settle(c);  // outside any lwIP callback: the returned ERR_ABRT is nobody's
   }
 }

@@ -116,11 +116,17 @@ class TcpServer {
   /// lwIP's coarse poll (units of 500 ms): retries a flush that ran out of
   /// lwIP memory and a close that failed.
   static constexpr std::uint8_t kLwipPollInterval = 2;
+  /// A long reply's next window is written only with at least this much
+  /// room: each window writes the reply again from its start.
+  static constexpr std::size_t kMinWindowBytes = kOutputBytes / 2;
 
   /// One connection slot; the storage is the caller's (a static array).
   class Connection final : public protocol::ByteSink {
    public:
     void write(std::string_view bytes) override;
+    /// What write() takes now without dropping the client: the output
+    /// buffer's free bytes (lwIP's send buffer drains it on every write).
+    std::size_t room() const override;
     bool active() const { return pcb_ != nullptr; }
 
    private:
@@ -132,6 +138,11 @@ class TcpServer {
     };
     bool push_chunk(const char* data, std::size_t size);
     void flush();
+    /// A session with a reply longer than lwIP's send buffer (the HTTP
+    /// session's long GET responses): its next window, once there is room
+    /// for a useful one. Called when the peer acknowledges data (tcp_sent),
+    /// on lwIP's poll and on the server's.
+    void continue_reply();
     bool idle() const { return chunk_count_ == 0; }
     void reset_output();
 

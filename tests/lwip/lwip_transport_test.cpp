@@ -29,6 +29,7 @@ extern "C" {
 #include "lwip/tcpip.h"
 #include "lwip/udp.h"
 }
+#include "protocol/window_sink.hpp"
 #include "protocol/wrc_session.hpp"
 #include "settings/settings.hpp"
 
@@ -134,7 +135,9 @@ bool in_asset(const void* data, std::size_t size) {
 class TestSession final : public protocol::Session {
  public:
   static constexpr std::size_t kFloodBytes = 200000;
+  static constexpr std::size_t kLongBytes = 300000;  // > Debian's TCP_SND_BUF (64 KB) + 1 KiB
   static inline int live = 0;
+  static inline int windows = 0;
 
   TestSession() { ++live; }
   ~TestSession() override { --live; }
@@ -159,7 +162,26 @@ class TestSession final : public protocol::Session {
       // waits for the next, B began one.
       if (ch == 'K') between_ = true;
       if (ch == 'B') between_ = false;
+      // A reply longer than lwIP's send buffer, as HttpSession writes the
+      // settings schema: written again from its start for each window.
+      if (ch == 'L') {
+        long_pending_ = true;
+        long_sent_ = 0;
+        write_more(static_cast<std::size_t>(-1), out);
+      }
     }
+  }
+  bool output_pending() const override { return long_pending_; }
+  void write_more(std::size_t room, protocol::ByteSink& out) override {
+    ++windows;
+    protocol::WindowSink window(out, long_sent_, room, protocol::WindowSink::Cut::kBytes);
+    char chunk[1000];
+    for (std::size_t at = 0; at < kLongBytes; at += sizeof chunk) {
+      for (std::size_t k = 0; k < sizeof chunk; ++k) chunk[k] = pattern(at + k);
+      window.write(std::string_view(chunk, sizeof chunk));
+    }
+    long_sent_ += window.written();
+    long_pending_ = long_sent_ < window.total();
   }
   bool is_event_stream() const override { return events_; }
   bool between_requests() const override { return between_; }
@@ -183,6 +205,8 @@ class TestSession final : public protocol::Session {
   bool close_ = false;
   bool events_ = false;
   bool between_ = false;
+  bool long_pending_ = false;
+  std::size_t long_sent_ = 0;
 };
 
 auto make_test_session() {
@@ -464,6 +488,30 @@ TEST_F(LwipTransportTest, AClientThatStopsReadingIsDroppedAndTheOthersCarryOn) {
   }
   send(other, "P");
   EXPECT_TRUE(wait([&] { return other.received == "PONG\n"; }));
+}
+
+// A reply longer than lwIP's send buffer and the output buffer together (the
+// Pico's GET /api/settings/schema, 41 KB through 11.7 + 1 KB) goes out in
+// windows, each written when the peer has acknowledged enough (tcp_sent, or
+// the loop's poll): whole and in order, the client never dropped.
+TEST_F(LwipTransportTest, AReplyLongerThanTheSendBufferGoesOutInWindows) {
+  TestService service(test_config(1), make_test_session());
+  auto served = serve(service.server());
+  TestSession::windows = 0;
+  Client& c = connect();
+  send(c, "L");
+  ASSERT_TRUE(wait([&] { return c.received.size() >= TestSession::kLongBytes || c.reset; }));
+  EXPECT_FALSE(c.reset);
+  ASSERT_EQ(c.received.size(), TestSession::kLongBytes);
+  for (std::size_t i = 0; i < c.received.size(); ++i) {
+    if (c.received[i] != TestSession::pattern(i)) {
+      ADD_FAILURE() << "byte " << i << " out of order";
+      break;
+    }
+  }
+  CoreLock lock;
+  EXPECT_GT(TestSession::windows, 4);
+  EXPECT_EQ(service.server().stats().dropped_backlog, 0u);
 }
 
 TEST_F(LwipTransportTest, ImmutableDataLargerThanTheBufferGoesOutByReferenceInOrder) {

@@ -551,3 +551,82 @@ TEST(HttpSessionLimits, TooManyConnectionsReplyIsAValidResponse) {
 
 }  // namespace
 }  // namespace rotord::web
+
+namespace rotord::web {
+namespace {
+
+/// A transport with a bounded buffer, as the Pico's lwIP connection is
+/// (about 12.7 KB: lwIP's send buffer and the 1 KiB output buffer): it says
+/// how much it takes now, and a write beyond that would drop the client.
+struct BoundedSink final : protocol::ByteSink {
+  std::string data;
+  std::size_t free = 0;
+  bool overflowed = false;
+  void write(std::string_view bytes) override {
+    if (bytes.size() > free) overflowed = true;
+    data.append(bytes);
+    free -= std::min(free, bytes.size());
+  }
+  std::size_t room() const override { return free; }
+};
+
+TEST_F(HttpApi, AResponseLongerThanTheTransportTakesGoesOutInWindows) {
+  const std::string request = "GET /api/settings/schema HTTP/1.1\r\nHost: localhost\r\n\r\n";
+  StringSink whole;
+  HttpSession reference(api);
+  reference.receive(request, whole);
+  ASSERT_GT(whole.data.size(), 3 * 12700u);  // the schema: more than three windows
+
+  BoundedSink sink;
+  sink.free = 12700;
+  session.receive(request, sink);
+  ASSERT_TRUE(session.output_pending());
+  EXPECT_FALSE(session.between_requests());
+  int windows = 1;
+  while (session.output_pending() && windows < 100) {
+    session.poll(r.now, sink);  // nothing goes out from poll meanwhile
+    sink.free = 12700;          // the peer acknowledged everything
+    session.write_more(static_cast<std::size_t>(-1), sink);
+    ++windows;
+  }
+  EXPECT_FALSE(sink.overflowed);
+  EXPECT_EQ(sink.data, whole.data);
+  EXPECT_GE(windows, 4);
+  EXPECT_FALSE(session.wants_close());
+  EXPECT_TRUE(session.between_requests());
+  // The connection goes on: the next request is answered as usual.
+  EXPECT_EQ(get("/api/status").status, 200);
+}
+
+TEST_F(HttpApi, AWindowedResponseThatChangesMeanwhileClosesTheConnection) {
+  BoundedSink sink;
+  sink.free = 2000;
+  session.receive("GET /api/settings HTTP/1.1\r\nHost: localhost\r\n\r\n", sink);
+  ASSERT_TRUE(session.output_pending());
+  r.settings.set(settings::Id::kAzMinDeg, 5);  // the first window said 0
+  sink.free = 100000;
+  session.write_more(static_cast<std::size_t>(-1), sink);
+  EXPECT_FALSE(session.output_pending());
+  EXPECT_TRUE(session.wants_close());  // the client sees a short body and asks again
+  EXPECT_EQ(sink.data.size(), 2000u);
+}
+
+TEST_F(HttpApi, ARequestPipelinedBehindAWindowedResponseClosesAfterIt) {
+  BoundedSink sink;
+  sink.free = 12700;
+  session.receive("GET /api/settings/schema HTTP/1.1\r\nHost: localhost\r\n\r\n", sink);
+  ASSERT_TRUE(session.output_pending());
+  session.receive("GET /api/status HTTP/1.1\r\nHost: localhost\r\n\r\n", sink);
+  while (session.output_pending()) {
+    sink.free = 12700;
+    session.write_more(static_cast<std::size_t>(-1), sink);
+  }
+  EXPECT_TRUE(session.wants_close());
+  const std::vector<HttpResponse> responses = parse_responses(sink.data);
+  ASSERT_EQ(responses.size(), 1u);
+  EXPECT_EQ(responses[0].body.size(),
+            std::strtoul(responses[0].header("Content-Length").c_str(), nullptr, 10));
+}
+
+}  // namespace
+}  // namespace rotord::web
