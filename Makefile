@@ -47,11 +47,13 @@ else
 endif
 
 # The firmware on an emulated RP2040 (ports/pico_w/README.md, "The firmware on
-# an emulated RP2040"): builds it (make pico), then runs the scenarios of
-# tests/hil/hil.mjs in rp2040js with the simulator's plant on its pins.
-# ROTORD_RP2040_BOOTROM names the RP2040 B1 bootrom (the rp2040js repository's
-# demo/bootrom.ts, or a 16 KB image); it is never part of this repository.
-# HIL_ARGS: e.g. --only=goto-relay-pot-gs232 --verbose
+# an emulated RP2040"): builds each board's image (make pico), then runs the
+# scenarios of tests/hil/hil.mjs in rp2040js with the simulator's plant on
+# its pins. ROTORD_RP2040_BOOTROM names the RP2040 B1 bootrom (the rp2040js
+# repository's demo/bootrom.ts, or a 16 KB image); it is never part of this
+# repository. HIL_BOARDS: which images (pico_w, pico); HIL_ARGS: e.g.
+# --only=goto-relay-pot-gs232 --verbose
+HIL_BOARDS ?= pico_w pico
 HIL_ARGS ?=
 hil:
 ifeq ($(strip $(PICO_SDK_PATH)),)
@@ -60,10 +62,13 @@ else ifeq ($(strip $(ROTORD_RP2040_BOOTROM)),)
 	@echo "hil: skipped: no RP2040 bootrom (ROTORD_RP2040_BOOTROM, e.g. rp2040js's demo/bootrom.ts)"
 else
 	@$(MAKE) --no-print-directory build
-	@$(MAKE) --no-print-directory pico
-	cd tests/hil && ROTORD_HIL_IMAGE=$(abspath $(PICO_BUILD_DIR))/rotord_pico_w.elf \
-	  ROTORD_HIL_PLANT=$(abspath $(BUILD_DIR))/tests/hil/rotord_hil_plant \
-	  ROTORD_HIL_OUT=$(abspath $(BUILD_DIR))/bench/hil.json node hil.mjs $(HIL_ARGS)
+	@rc=0; for board in $(HIL_BOARDS); do \
+	  dir=$$( [ $$board = pico_w ] && echo build-pico || echo build-pico-$$board ); \
+	  $(MAKE) --no-print-directory pico PICO_BOARD=$$board PICO_BUILD_DIR=$$dir || exit 1; \
+	  (cd tests/hil && ROTORD_HIL_IMAGE=$(CURDIR)/$$dir/rotord_$$board.elf \
+	    ROTORD_HIL_PLANT=$(abspath $(BUILD_DIR))/tests/hil/rotord_hil_plant \
+	    ROTORD_HIL_OUT=$(abspath $(BUILD_DIR))/bench/hil_$$board.json node hil.mjs $(HIL_ARGS)) || rc=1; \
+	done; exit $$rc
 endif
 
 # The Debian package for this machine's architecture (arm64/armhf on a Pi),

@@ -324,6 +324,17 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
   return io;
 }
 
+/// Why the chip started, for the banner. A reboot that was asked for (web,
+/// console, REST) also goes through the watchdog (watchdog_reboot), so
+/// watchdog_caused_reboot() alone would call it a watchdog reset: only a
+/// timeout of the watchdog armed by watchdog_enable() (a hung loop) leaves
+/// the SDK's magic in scratch[4]. Seen on the emulated RP2040 (make hil).
+const char* restart_reason() {
+  if (watchdog_enable_caused_reboot()) return ": restarted by the watchdog (the loop hung)";
+  if (watchdog_caused_reboot()) return ": restarted (reboot requested)";
+  return "";
+}
+
 [[noreturn]] void run() {
   // 1. Outputs off. Until the pins are known every GPIO is still an input
   // with its reset pull-down (relays off); the settings come first because
@@ -355,8 +366,7 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
   // terminal can open the port, and are sent when one does.
   stdio_set_driver_enabled(&stdio_usb, false);
   stdio_set_driver_enabled(&g_log_driver, true);
-  std::printf("rotord %s (%s)%s\n", ROTORD_VERSION, ROTORD_PICO_BOARD_NAME,
-              watchdog_caused_reboot() ? ": restarted by the watchdog" : "");
+  std::printf("rotord %s (%s)%s\n", ROTORD_VERSION, ROTORD_PICO_BOARD_NAME, restart_reason());
   report_settings(loaded);
 
   // 2. Inputs, from the pins.* settings (kAxisPins).

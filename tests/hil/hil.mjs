@@ -6,12 +6,12 @@
 //
 // Environment: ROTORD_HIL_IMAGE (default <root>/build-pico/rotord_pico_w.elf),
 // ROTORD_HIL_PLANT (default <root>/build/tests/hil/rotord_hil_plant),
-// ROTORD_HIL_OUT (default <root>/build/bench/hil.json: the figures bench/run.py reports).
+// ROTORD_HIL_OUT (default <root>/build/bench/hil_<board>.json: the figures bench/run.py reports).
 // Exit status 0 when every scenario passed. Results are read on emulated
 // time only; the wall clock matters only to the clients' own timeouts.
 import { execFile } from 'node:child_process';
 import { closeSync, constants, existsSync, mkdirSync, openSync, readSync, writeFileSync, writeSync } from 'node:fs';
-import { dirname, join } from 'node:path';
+import { basename, dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Board, loadBootrom } from './lib/board.mjs';
 import { PtyBridge } from './lib/bridge.mjs';
@@ -27,17 +27,20 @@ const onlyArg = args.find((a) => a.startsWith('--only='))?.slice(7) ?? (args.inc
 const only = onlyArg ? onlyArg.split(',') : [];
 const imagePath = process.env.ROTORD_HIL_IMAGE ?? join(root, 'build-pico/rotord_pico_w.elf');
 const plantBinary = process.env.ROTORD_HIL_PLANT ?? join(root, 'build/tests/hil/rotord_hil_plant');
-const outPath = process.env.ROTORD_HIL_OUT ?? join(root, 'build/bench/hil.json');
+// pico_w or pico, from the image's name (rotord_pico_w.elf, rotord_pico.elf).
+const boardName = basename(imagePath).replace(/^rotord_/, '').replace(/\.elf$/, '');
+const hasWifi = boardName === 'pico_w';
+const outPath = process.env.ROTORD_HIL_OUT ?? join(root, `build/bench/hil_${boardName}.json`);
 const bootrom = loadBootrom(process.env.ROTORD_RP2040_BOOTROM);
 const pins = pinDefaults(root);
 const TICK_MS = 10;
 
 // ---- a rig: plant, chip, pty ----
 
-async function rig({ profile = 'g5500', sensor, thetaDeg, speedScale, settings = {} }) {
+async function rig({ profile = 'g5500', sensor, thetaDeg, speedScale, settings = {}, pinMap = pins }) {
   const plant = new Plant({ binary: plantBinary, profile, sensor, thetaDeg, speedScale });
   const settingsDocument = await plant.settingsDocument(settings);
-  const board = new Board({ bootrom, image: imagePath, pins, plant, settingsDocument, echoLog: verbose });
+  const board = new Board({ bootrom, image: imagePath, pins: pinMap, plant, settingsDocument, echoLog: verbose });
   const bridge = new PtyBridge({ endpoint: board.ports[1] });
   const pty = await bridge.start();
   if (!(await board.runUntil(() => board.usbConnectedMs !== undefined, 3000)))
@@ -58,19 +61,31 @@ async function client(board, file, argv, timeoutMs = 30000) {
   });
   void child;
   while (done === null) await board.run(2);
-  if (done.err) throw new Error(`${file} ${argv.join(' ')}: ${done.err.message} ${done.stderr}`);
+  if (done.err) throw new Error(`${file} ${argv.join(' ')}: exit ${done.err.code ?? done.err.signal}: ${done.stderr.trim()} ${done.stdout.trim()}`);
   if (verbose) console.log(`  $ ${file} ${argv.join(' ')} -> ${done.stdout.trim().replace(/\n/g, ' | ')}`);
   return done.stdout;
 }
 
-const rotctl = (r, model, ...cmd) => client(r.board, 'rotctl', ['-m', String(model), '-r', r.pty, ...cmd]);
+// A generous serial timeout: the chip answers within a tick of emulated
+// time, but the machine running the emulation may be busy (the timeout is
+// the wall clock's).
+const rotctl = (r, model, ...cmd) =>
+  client(r.board, 'rotctl', ['-m', String(model), '-r', r.pty, '-C', 'timeout=5000,retry=3', ...cmd]);
 
-/** A line-protocol client on the pty (the seed protocol, raw GS-232): one line, its reply. */
+/**
+ * A line-protocol client on the pty (the seed protocol, raw GS-232, the
+ * console). The chip runs on emulated time, the pty and socat on the wall
+ * clock: a request is only timed in emulated time once the device has it,
+ * and the chip is held while a reply it sent is still on its way to the pty,
+ * so a fast emulation never outruns the bytes.
+ */
 class LineClient {
-  constructor(r) {
+  constructor(r, bridge = r.bridge) {
     this.r = r;
+    this.bridge = bridge;
     this.fd = openSync(r.pty, constants.O_RDWR | constants.O_NOCTTY | constants.O_NONBLOCK);
     this.buf = '';
+    this.readBytes = 0;
   }
   read() {
     const b = Buffer.alloc(512);
@@ -83,21 +98,60 @@ class LineClient {
         throw e;
       }
       if (n <= 0) return;
+      this.readBytes += n;
       this.buf += b.subarray(0, n).toString('latin1');
     }
   }
-  async send(line, timeoutMs = 500) {
+  /** Sends text, then runs the chip until parse(buffer) returns non-null; null after timeoutMs of emulated time. */
+  async exchange(text, parse, timeoutMs) {
+    const wall = (ms) => new Promise((r) => setTimeout(r, ms));
+    this.read(); // whatever is still on its way belongs to an earlier reply
     this.buf = '';
-    writeSync(this.fd, line + '\r');
-    let reply = null;
-    await this.r.board.runUntil(() => {
+    const toDevice = this.bridge.bytesToDevice + text.length;
+    const hostBase = this.bridge.bytesToHost;
+    const readBase = this.readBytes;
+    writeSync(this.fd, text);
+    for (let i = 0; i < 5000 && this.bridge.bytesToDevice < toDevice; i++) await wall(1);
+    const deadline = this.r.board.nowMs + timeoutMs;
+    for (;;) {
       this.read();
-      const m = this.buf.match(/^([^\r\n]*)\r?\n/) ?? this.buf.match(/^([^\r\n]*\r)/);
-      if (m && m[1].length > 0) reply = m[1].replace(/\r$/, '');
-      return reply !== null;
-    }, timeoutMs, 1);
+      const reply = parse(this.buf);
+      if (reply !== null) return reply;
+      const inFlight = this.bridge.bytesToHost - hostBase - (this.readBytes - readBase);
+      if (inFlight > 0) {
+        await wall(1);
+        continue;
+      }
+      if (this.r.board.nowMs >= deadline) return null;
+      await this.r.board.run(1);
+    }
+  }
+  /** One command, its one-line reply (GS-232, Easycomm, seed). */
+  async send(line, timeoutMs = 500) {
+    // GS-232 ends a reply in CR, the others in CR LF: the reply is the text
+    // up to the first CR or LF; a lone LF first is the rest of an earlier CR LF.
+    const reply = await this.exchange(
+      line + '\r',
+      (buf) => buf.replace(/^\n/, '').match(/^([^\r\n]*)[\r\n]/)?.[1] ?? null,
+      timeoutMs,
+    );
     if (verbose) console.log(`  > ${line} < ${reply}`);
     return reply;
+  }
+  /** The console's reply: the lines up to the first that starts with ok or error: (log lines may come between). */
+  async command(line, timeoutMs = 1000) {
+    const reply = await this.exchange(
+      line + '\r\n',
+      (buf) => {
+        const lines = buf.split(/\r?\n/);
+        lines.pop(); // not yet a whole line
+        const last = lines.findIndex((l) => /^(ok|error:)/.test(l));
+        return last >= 0 ? lines.slice(0, last + 1) : null;
+      },
+      timeoutMs,
+    );
+    if (verbose) console.log(`  console> ${line} < ${reply?.join(' | ')}`);
+    return reply ?? [];
   }
   close() {
     closeSync(this.fd);
@@ -160,12 +214,17 @@ function check(ok, what) {
 }
 
 const scenarios = {
-  /** No answer from the Wi-Fi chip: USB and the control go on, the log says why; the tick rate and its cost. */
+  /** No answer from the Wi-Fi chip (Pico W; the plain Pico has none): USB and the control go on, the log says why; the tick rate and its cost. */
   async 'no-wifi-tick'() {
     const r = await rig({ thetaDeg: 200 });
     try {
-      const line = await r.board.waitForLog(/Wi-Fi|network/i, 1000);
-      check(line && /does not answer|without network/.test(line.text), `log: "${line?.text}"`);
+      if (hasWifi) {
+        const line = await r.board.waitForLog(/Wi-Fi|network/i, 1000);
+        check(line && /does not answer|without network/.test(line.text), `log: "${line?.text}"`);
+      } else {
+        await r.board.run(200);
+        check(!r.board.logLines.some((l) => /Wi-Fi|CYW43/.test(l.text)), 'plain Pico: no Wi-Fi in the log');
+      }
       check(!r.board.logLines.some((l) => /access point|on port \d+/.test(l.text)), 'no access point or TCP port claimed');
       const p = (await rotctl(r, 603, 'p')).trim().split('\n').map(Number);
       check(Math.abs(p[0] - 200) < 0.6, `rotctl -m 603 p: ${p[0]} (plant 200.0)`);
@@ -177,7 +236,7 @@ const scenarios = {
       check(Math.abs(s.hz - 100) < 0.05 && s.worstDeviationUs < 100,
         `control tick ${s.hz.toFixed(2)} Hz of emulated time, ${s.ticks} ticks in ${s.seconds.toFixed(1)} s, worst period deviation ${s.worstDeviationUs.toFixed(0)} us`);
       console.log(`    --  CPU at rest: ${Math.round(s.cyclesPerTick)} cycles per 10 ms tick period (${s.busyPercent.toFixed(2)} % of 125 MHz; the whole loop: tick, USB, log port)`);
-      benchRows.push({ name: 'hil/pico_w_idle', inputs: { tick_hz: 100, mhz: 125 }, metrics: { cycles_per_tick: Math.round(s.cyclesPerTick), busy_percent: s.busyPercent, tick_hz: s.hz } });
+      benchRows.push({ name: `hil/${boardName}_idle`, inputs: { tick_hz: 100, mhz: 125 }, metrics: { cycles_per_tick: Math.round(s.cyclesPerTick), busy_percent: s.busyPercent, tick_hz: s.hz } });
     } finally {
       await r.close();
     }
@@ -249,6 +308,27 @@ const scenarios = {
     }
   },
 
+  /** Push buttons (wired by settings: GPIO 4 and 13, free by default): held, the axis turns; released, it stops. */
+  async 'buttons'() {
+    const wired = { ...pins, btn_cw: 4, btn_ccw: 13 };
+    const r = await rig({ thetaDeg: 200, pinMap: wired, settings: { 'buttons.enabled': 'true', 'pins.btn_cw': 4, 'pins.btn_ccw': 13 } });
+    try {
+      await r.board.run(300);
+      check(!driving(r), 'released: no drive');
+      r.board.press('btn_ccw', true);
+      check(await r.board.runUntil(() => r.board.outputLevel(pins.az_ccw), 500, 1), `CCW button held: CCW relay (GPIO ${pins.az_ccw}) on`);
+      await r.board.run(1000);
+      const held = angle(r);
+      check(held < 199.5, `the axis turned CCW to ${held.toFixed(2)} deg`);
+      r.board.press('btn_ccw', false);
+      const releasedMs = r.board.nowMs;
+      check(await r.board.runUntil(() => !r.board.outputLevel(pins.az_ccw), 500, 1), `released: CCW off ${(r.board.nowMs - releasedMs).toFixed(1)} ms later (debounce ${30} ms)`);
+      check(!r.board.outputLevel(pins.az_cw), 'CW never on');
+    } finally {
+      await r.close();
+    }
+  },
+
   /** A jammed rotator: the stall rule cuts the drive after az.stall_ms and latches the fault. */
   async 'stall'() {
     const r = await rig({ thetaDeg: 200, settings: { 'usb.personality': 'seed' } });
@@ -295,12 +375,78 @@ const scenarios = {
       const resetMs = r.board.baseNs / 1e6;
       check(r.board.resets === 1 && Math.abs(resetMs - hungMs - 2000) < 15, `watchdog reset ${(resetMs - hungMs).toFixed(1)} ms after the loop stopped (2000 ms)`);
       check(!r.board.outputLevel(pins.az_cw), 'the reset dropped the CW relay');
-      const line = await r.board.waitForLog(/restarted by the watchdog/, 3000);
+      const line = await r.board.waitForLog(/restarted by the watchdog \(the loop hung\)/, 3000);
       check(line !== null, `log: "${line?.text}"`);
       const p = await c.send('C2', 3000);
       check(/^AZ=\d{3}/.test(p ?? ''), `GS-232 answers again: ${p}`);
     } finally {
       c.close();
+      await r.close();
+    }
+  },
+
+  /**
+   * The console on the log port, through a second pty: status shows a
+   * latched stall, reset clears it (GS-232 has no command for that), set
+   * changes a setting, reboot restarts the chip.
+   */
+  async 'console'() {
+    const r = await rig({ thetaDeg: 200 });
+    const logBridge = new PtyBridge({ endpoint: r.board.logEndpoint() });
+    const con = new LineClient({ board: r.board, pty: await logBridge.start() }, logBridge);
+    const gs = new LineClient(r);
+    try {
+      await r.plant.command('jam -1');
+      await gs.send('R');
+      await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 2000, 1);
+      await r.board.runUntil(() => !r.board.outputLevel(pins.az_cw), 4000, 5);
+      let status = await con.command('status');
+      const az = status.find((l) => l.startsWith('az '));
+      check(/fault=STALL/.test(az ?? ''), `status after the stall: "${az}"`);
+      check((await gs.send('R')) === '?>', 'GS-232 R refused while the fault is latched');
+      await r.plant.command('clear');
+      const reset = await con.command('reset');
+      check(reset.at(-1) === 'ok stopped, faults cleared', `reset: "${reset.at(-1)}"`);
+      status = await con.command('status');
+      check(/fault=NONE|fault=-|fault=none/i.test(status.find((l) => l.startsWith('az ')) ?? ''), `status after reset: "${status.find((l) => l.startsWith('az '))}"`);
+      await gs.send('R');
+      check(await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 2000, 1), 'GS-232 R turns CW again');
+      await gs.send('S');
+      const set = await con.command('set az.stall_ms 1500');
+      check(set.at(-1) === 'ok az.stall_ms=1500', `set: "${set.at(-1)}"`);
+      const bad = await con.command('set az.stall_ms 5');
+      check(bad.at(-1)?.startsWith('error: '), `a bad value is refused: "${bad.at(-1)}"`);
+      const since = r.board.logLines.length;
+      const reboot = await con.command('reboot');
+      check(reboot.at(-1) === 'ok rebooting', `reboot: "${reboot.at(-1)}"`);
+      const banner = await r.board.waitForLog(/^rotord \d/, 3000, since);
+      check(banner !== null && r.board.boots === 2 && /reboot requested/.test(banner.text), `the chip restarted: "${banner?.text}"`);
+      const stored = readSettings(r.board.flash);
+      check(/"az.stall_ms": 1500/.test(stored?.document ?? ''), `az.stall_ms 1500 saved before the reboot (save #${stored?.sequence})`);
+    } finally {
+      con.close();
+      gs.close();
+      await logBridge.stop();
+      await r.close();
+    }
+  },
+
+  /** The console's bootsel: the chip reboots into the ROM's USB bootloader (mass storage + PICOBOOT). */
+  async 'bootsel'() {
+    const r = await rig({ thetaDeg: 200 });
+    const logBridge = new PtyBridge({ endpoint: r.board.logEndpoint() });
+    const con = new LineClient({ board: r.board, pty: await logBridge.start() }, logBridge);
+    try {
+      check(r.board.usb.interfaceClasses.includes(2), `rotord enumerates CDC (interface classes ${r.board.usb.interfaceClasses})`);
+      const reply = await con.command('bootsel');
+      check(reply.at(-1)?.startsWith('ok rebooting into the USB bootloader'), `bootsel: "${reply.at(-1)}"`);
+      check(await r.board.runUntil(() => r.board.boots === 2 && r.board.romEntry, 2000, 1), 'the chip reset into the bootrom');
+      check(await r.board.runUntil(() => r.board.usb.interfaceClasses?.length > 0, 3000, 5), 'the bootloader enumerates');
+      const classes = r.board.usb.interfaceClasses;
+      check(classes.includes(8) && classes.includes(0xff) && !classes.includes(2), `as the RPI-RP2 drive and PICOBOOT (interface classes ${classes}: mass storage, vendor)`);
+    } finally {
+      con.close();
+      await logBridge.stop();
       await r.close();
     }
   },
@@ -335,16 +481,22 @@ async function gotoScenario({ profile, sensor, model, from, to, settings = {}, b
   try {
     const p0 = (await rotctl(r, model, 'p')).trim().split('\n').map(Number);
     check(Math.abs(p0[0] - from) < 0.6, `rotctl -m ${model} p: ${p0[0]} (plant ${from})`);
+    await rotctl(r, model, 'P', String(to), '0');
+    // Timed from the drive's start: when rotctl's bytes reach the chip is a
+    // matter of the wall clock.
+    check(await r.board.runUntil(() => driving(r), 3000, 1), 'the drive starts');
     const cycles0 = r.board.busyCycles;
     const t0 = r.board.nowMs;
-    await rotctl(r, model, 'P', String(to), '0');
-    const reached = await r.board.runUntil(() => Math.abs(angle(r) - to) < 1.5 && !driving(r), 15000, 10);
-    check(reached && (await settle(r, 5000)), `reached ${angle(r).toFixed(2)} deg for a target of ${to} in ${((r.board.nowMs - t0) / 1000).toFixed(1)} s`);
+    const reached = await r.board.runUntil(() => Math.abs(angle(r) - to) < 1.5 && !driving(r), 15000, 1);
+    const moveS = (r.board.nowMs - t0) / 1000;
+    const moveCycles = r.board.busyCycles - cycles0;
+    check(reached && (await settle(r, 5000)), `reached ${angle(r).toFixed(2)} deg for a target of ${to}, the drive on for ${moveS.toFixed(2)} s`);
     const p = (await rotctl(r, model, 'p')).trim().split('\n').map(Number);
     check(Math.abs(p[0] - angle(r)) < 0.6 && Math.abs(p[0] - to) < 1.5, `rotctl -m ${model} p: ${p[0]} (plant ${angle(r).toFixed(2)})`);
     if (bench) {
-      const seconds = (r.board.nowMs - t0) / 1000;
-      benchRows.push({ name: `hil/pico_w_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { seconds_emulated: seconds, cycles_per_tick: Math.round((r.board.busyCycles - cycles0) / (seconds * 100)) } });
+      const cyclesPerTick = Math.round(moveCycles / (moveS * 100));
+      console.log(`    --  CPU while moving: ${cyclesPerTick} cycles per 10 ms tick period`);
+      benchRows.push({ name: `hil/${boardName}_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { cycles_per_tick: cyclesPerTick } });
     }
   } finally {
     await r.close();
@@ -357,7 +509,7 @@ if (!existsSync(imagePath)) {
   console.error(`hil: no firmware image at ${imagePath} (make pico)`);
   process.exit(2);
 }
-console.log(`hil: ${imagePath} on rp2040js, plant ${plantBinary}`);
+console.log(`hil: ${boardName}: ${imagePath} on rp2040js, plant ${plantBinary}`);
 let failed = 0;
 for (const [name, fn] of Object.entries(scenarios)) {
   if (only.length && !only.includes(name)) continue;
@@ -378,5 +530,5 @@ if (benchRows.length) {
   mkdirSync(dirname(outPath), { recursive: true });
   writeFileSync(outPath, JSON.stringify(benchRows, null, 1) + '\n');
 }
-console.log(`hil: ${results.length - failed} of ${results.length} scenarios passed`);
+console.log(`hil: ${boardName}: ${results.length - failed} of ${results.length} scenarios passed`);
 process.exit(failed ? 1 : 0);

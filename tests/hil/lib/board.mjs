@@ -1,4 +1,4 @@
-// The Pico W on an emulated RP2040 (rp2040js 1.4.1) with the rotator on its
+// A Pico or Pico W on an emulated RP2040 (rp2040js 1.4.1) with the rotator on its
 // pins: the unmodified firmware image, the B1 bootrom (read from a path given
 // at run time), the simulator's plant (lib/plant.mjs) stepped every emulated
 // millisecond, and a USB host bound to both CDC ports. Everything runs on
@@ -81,6 +81,7 @@ export class Board {
     this.boots = 0;
     this.flashStats = { erases: 0, programs: 0 };
     this.hung = false;
+    this.pressed = new Set(); // buttons held down: 'btn_cw', 'btn_ccw'
     this.plantMs = 0;
     this.sensors = null;
     this.ports = [makePort(), makePort()]; // log, protocol: stable across resets
@@ -105,10 +106,16 @@ export class Board {
     rp.peripherals[0x40064].writeUint32 = () => {};
     rp.loadBootrom(this.opts.bootrom); // resets the core from the bootrom's vectors; clears flash
     rp.flash.set(this.flash);
+    const oldWatchdog = previous?.peripherals[0x40058];
+    // The bootrom's "boot to an address" (scratch 4 = 0xb007c0d3), set by
+    // its reset_usb_boot (the console's bootsel): through the bootrom's own
+    // reset path, which takes the core into the USB bootloader.
+    const romEntry = oldWatchdog && oldWatchdog.scratchData[4] === 0xb007c0d3;
     // Straight into boot2 at the start of flash, as rp2040js's own demo
     // does: the bootrom's flash boot reads boot2 through the SSI, which
     // rp2040js does not model. The bootrom stays for its ROM functions.
-    rp.core.PC = 0x10000000;
+    if (!romEntry) rp.core.PC = 0x10000000;
+    this.romEntry = romEntry;
     this.flash = rp.flash; // the chip's own array from now on (survives the next reset)
     installFlashModel(rp, this.flashStats);
     const watchdog = rp.peripherals[0x40058];
@@ -175,7 +182,10 @@ export class Board {
     this.usb = host;
     host.onPorts = (ports) => {
       ports.forEach((p, i) => this.ports[i]?.bind(p));
-      this.ports[0].onData = (bytes) => this.onLog(bytes);
+      this.ports[0].onData = (bytes) => {
+        this.onLog(bytes);
+        this.logTap?.(bytes);
+      };
     };
     host.onConnected = () => {
       this.usbConnectedMs = this.nowMs;
@@ -255,7 +265,7 @@ export class Board {
     const rp = this.rp;
     const ch = adcChannel(this.pins.az_pot);
     if (ch >= 0) rp.adc.channelValues[ch] = s.potCounts;
-    for (const [gpio, level] of switchLevels(this.pins, s)) {
+    for (const [gpio, level] of switchLevels(this.pins, { ...s, buttons: this.pressed })) {
       if (rp.gpio[gpio].rawInputValue !== level) rp.gpio[gpio].setInputValue(level);
     }
   }
@@ -327,8 +337,30 @@ export class Board {
     return ok ? found : null;
   }
 
-  /** A reset puts every pin back to an input: the outputs drop. */
+  /**
+   * The log port as a CDC endpoint for a bridge (the console is served
+   * there): what it prints still goes to the log as well.
+   */
+  logEndpoint() {
+    const board = this;
+    return {
+      write: (bytes) => board.ports[0].write(bytes),
+      set onData(fn) {
+        board.logTap = fn;
+      },
+    };
+  }
+
+  /** Presses (true) or releases a push button ('btn_cw', 'btn_ccw'); applied at once. */
+  press(button, down) {
+    if (down) this.pressed.add(button);
+    else this.pressed.delete(button);
+    if (this.sensors) this.applySensors(this.sensors);
+  }
+
+  /** A reset puts every pin back to an input: the outputs drop. A log line cut by it ends there. */
   resetAllOutputs() {
+    if (this.partialLine) this.onLog(new TextEncoder().encode(' [cut by the reset]\n'));
     for (const gpio of [this.pins.az_cw, this.pins.az_ccw, this.pins.az_speed, this.pins.az_brake]) {
       if (gpio >= 0 && this.outputLevel(gpio)) this.edges.push({ ms: this.nowMs, gpio, value: false });
     }

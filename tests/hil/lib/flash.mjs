@@ -1,7 +1,7 @@
-// The Pico W's flash as the firmware sees it: the settings slots
-// (core/storage/flash_slots.hpp) written into the image before boot, and a
-// model of the flash chip's erase and program commands, which rp2040js
-// 1.4.1's SSI ignores (it only answers status reads).
+// The Pico's flash as the firmware sees it: the settings slots
+// (core/storage/flash_slots.hpp) written into the image before boot, and
+// erase and program, which rp2040js 1.4.1 does not model (its SSI only
+// answers status reads), modelled at the bootrom's routines.
 
 export const FLASH_BYTES = 2 * 1024 * 1024; // PICO_FLASH_SIZE_BYTES of the pico_w board
 export const SETTINGS_REGION_BYTES = 16 * 1024; // PicoFlash::kRegionBytes, at the very end

@@ -80,7 +80,7 @@ export function plantInputs(pins, level, duty) {
   };
 }
 
-/** The switch pins' levels from the plant's reply (az only; unwired pins left out). */
+/** The switch pins' levels from the plant's reply and the pressed buttons (az only; unwired pins left out). */
 export function switchLevels(pins, sw) {
   const out = new Map();
   const put = (gpio, closed) => {
@@ -90,6 +90,9 @@ export function switchLevels(pins, sw) {
   put(pins.az_l1, sw.limitCcw); // L1: the CCW end
   put(pins.az_t1, sw.t1);
   put(pins.az_t2, sw.t2);
+  // Push buttons to ground, as the switches (the harness presses them).
+  put(pins.btn_cw, sw.buttons?.has('btn_cw') ?? false);
+  put(pins.btn_ccw, sw.buttons?.has('btn_ccw') ?? false);
   return out;
 }
 

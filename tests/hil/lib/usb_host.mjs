@@ -47,6 +47,15 @@ export function cdcPorts(descriptors) {
   return ports;
 }
 
+/** The class of every interface in a configuration descriptor (2 CDC, 10 CDC data, 8 mass storage, 0xff vendor). */
+export function interfaceClasses(descriptors) {
+  const out = [];
+  for (let i = 0; i + 1 < descriptors.length && descriptors[i] >= 2; i += descriptors[i]) {
+    if (descriptors[i + 1] === DescriptorType.Interface && descriptors[i] === 9) out.push(descriptors[i + 5]);
+  }
+  return out;
+}
+
 /** One CDC port on the host side: write() to the device, onData from it. */
 export class CdcPort {
   constructor(host, index) {
@@ -110,6 +119,7 @@ export class UsbHost {
       if (this.descriptorsSize != null && this.descriptors.length < this.descriptorsSize) {
         this.descriptors.push(...buffer);
         if (this.descriptors.length >= this.descriptorsSize) {
+          this.interfaceClasses = interfaceClasses(this.descriptors);
           for (const p of cdcPorts(this.descriptors)) {
             const port = new CdcPort(this, this.ports.length);
             Object.assign(port, p);

@@ -84,7 +84,7 @@ test('the pot reads back through the firmware default calibration (ADC 12 bits o
   }
 });
 
-test('switches pull their pin low when closed (the input has a pull-up)', async () => {
+test('switches and buttons pull their pin low when closed (the input has a pull-up)', async () => {
   const plant = new Plant({ binary, profile: 'g5500', thetaDeg: 200 });
   try {
     let s = await plant.step(1, off);
@@ -101,6 +101,12 @@ test('switches pull their pin low when closed (the input has a pull-up)', async 
     await plant.command('set 400');
     s = await plant.step(3, off);
     assert.equal(switchLevels(pins, s).get(pins.az_t1), false);
+    // Buttons are unwired by default; wired, a pressed one reads low too.
+    assert.equal(switchLevels(pins, { ...s, buttons: new Set(['btn_cw']) }).has(4), false);
+    const wired = { ...pins, btn_cw: 4, btn_ccw: 13 };
+    const levels2 = switchLevels(wired, { ...s, buttons: new Set(['btn_cw']) });
+    assert.equal(levels2.get(4), false);
+    assert.equal(levels2.get(13), true);
   } finally {
     plant.close();
   }
