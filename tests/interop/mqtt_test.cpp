@@ -224,6 +224,17 @@ TEST_F(Mqtt, TheAllowListAppliesToTheBrokersAddress) {
   EXPECT_TRUE(seen("rotord/test/state", R"("mode":"idle")"));
 }
 
+TEST_F(Mqtt, TheControlLockRefusesTheBrokerButNotItsStop) {
+  start_daemon(true);
+  // A browser takes the lock (access control off: its cookie names it).
+  const HttpResponse lock = http(daemon->ports().web, "POST", "/api/lock", R"({"minutes": 5})");
+  ASSERT_EQ(lock.status, 200) << lock.body;
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("cmd":"goto","status":423)"),
+            std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+}
+
 TEST_F(Mqtt, ABrokerOnTheAllowListControls) {
   start_daemon(true, "rotord/test", true, R"(, "access.control_networks": "127.0.0.0/8")");
   EXPECT_NE(command("goto", R"({"az": 200})").find(R"("status":200)"), std::string::npos);
