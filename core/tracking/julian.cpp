@@ -3,16 +3,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "util/civil_date.hpp"
 #include "util/slice.hpp"
 
 namespace rotord::tracking {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  return a / b - ((a % b != 0) && ((a < 0) != (b < 0)) ? 1 : 0);
-}
 
 bool is_leap(int year) {
   return (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
@@ -43,17 +40,6 @@ double gmst_rad(double days_j2000_ut1) {
   temp = std::fmod(temp * (kPi / 180.0) / 240.0, 2.0 * kPi);
   if (temp < 0.0) temp += 2.0 * kPi;
   return temp;
-}
-
-std::int64_t days_from_civil(int year, int month, int day) {
-  // H. Hinnant's days_from_civil (public domain).
-  const std::int64_t y = static_cast<std::int64_t>(year) - (month <= 2 ? 1 : 0);
-  const std::int64_t era = floor_div(y, 400);
-  const std::int64_t yoe = y - era * 400;
-  const std::int64_t mp = (month + 9) % 12;
-  const std::int64_t doy = (153 * mp + 2) / 5 + day - 1;
-  const std::int64_t doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-  return era * 146'097 + doe - 719'468;
 }
 
 double tle_epoch_unix_ms(int year, double day_of_year) {
@@ -124,20 +110,11 @@ std::size_t format_utc_seconds(std::int64_t unix_ms, char* out, std::size_t capa
   const std::int64_t s = floor_div(unix_ms + 500, 1000);
   const std::int64_t days = floor_div(s, 86'400);
   const std::int64_t sod = s - days * 86'400;
-  // civil_from_days (H. Hinnant, public domain).
-  const std::int64_t z = days + 719'468;
-  const std::int64_t era = floor_div(z, 146'097);
-  const std::int64_t doe = z - era * 146'097;
-  const std::int64_t yoe = (doe - doe / 1460 + doe / 36'524 - doe / 146'096) / 365;
-  const std::int64_t doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-  const std::int64_t mp = (5 * doy + 2) / 153;
-  const std::int64_t d = doy - (153 * mp + 2) / 5 + 1;
-  const std::int64_t m = mp < 10 ? mp + 3 : mp - 9;
-  const std::int64_t y = yoe + era * 400 + (m <= 2 ? 1 : 0);
-  if (y < 0 || y > 9999) return 0;
+  const CivilDate date = civil_from_days(days);
+  if (date.year < 0 || date.year > 9999) return 0;
   const int n =
-      std::snprintf(out, capacity, "%04d-%02d-%02dT%02d:%02d:%02dZ", static_cast<int>(y),
-                    static_cast<int>(m), static_cast<int>(d), static_cast<int>(sod / 3600),
+      std::snprintf(out, capacity, "%04d-%02d-%02dT%02d:%02d:%02dZ", static_cast<int>(date.year),
+                    date.month, date.day, static_cast<int>(sod / 3600),
                     static_cast<int>(sod / 60 % 60), static_cast<int>(sod % 60));
   if (n < 0 || static_cast<std::size_t>(n) >= capacity) return 0;
   return static_cast<std::size_t>(n);

@@ -19,9 +19,6 @@ inline double days_since_j2000(std::int64_t unix_ms) {
 /// gstime, the one SGP4's improved mode uses), from days since J2000 UT1.
 double gmst_rad(double days_j2000_ut1);
 
-/// Days from 1970-01-01 to the given proleptic Gregorian date.
-std::int64_t days_from_civil(int year, int month, int day);
-
 /// A TLE epoch (four-digit year, day of year with fraction) as Unix ms.
 double tle_epoch_unix_ms(int year, double day_of_year);
 

@@ -82,12 +82,15 @@ class TcpServer::Connection final : public protocol::ByteSink,
       return;
     }
     pending_.append(bytes);
-    flush();
+    if (!in_session_) flush();
   }
 
   void poll(Millis now) {
     if (closing_) return;
+    in_session_ = true;
     session_->poll(now, *this);
+    in_session_ = false;
+    flush();
     // A session may end itself from poll too (HTTP idle and request timeouts).
     if (session_->wants_close()) close_after_flush();
   }
@@ -115,7 +118,10 @@ class TcpServer::Connection final : public protocol::ByteSink,
                                 return;
                               }
                               info_.last_receive_ms = server_.now_;
+                              in_session_ = true;
                               session_->receive(std::string_view(buffer_.data(), n), *this);
+                              in_session_ = false;
+                              flush();
                               if (!stream_seen_ && session_->is_event_stream()) {
                                 stream_seen_ = true;
                                 server_.stream_started(this);
@@ -165,7 +171,13 @@ class TcpServer::Connection final : public protocol::ByteSink,
   bool closing_ = false;
   bool close_requested_ = false;
   bool stream_seen_ = false;  ///< the session has become an event stream
-  std::string client_;        ///< "address:port", for debug logs only
+  /// Inside a session's receive or poll: its writes (a reply is often several,
+  /// rotctld's `p` two lines) are gathered and sent once it returns, as one
+  /// segment, instead of the first going out alone and the rest waiting a
+  /// turn of the event loop for its completion (the 1-client latency tail
+  /// the protocol benchmark showed).
+  bool in_session_ = false;
+  std::string client_;  ///< "address:port", for debug logs only
 };
 
 /// The open connections as the admission rule reads them (a copy of the

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "tracking/julian.hpp"
+#include "util/civil_date.hpp"
 
 namespace rotord::tracking {
 namespace {
