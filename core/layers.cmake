@@ -50,8 +50,9 @@ set(ROTORD_LAYER_axis sensors motion settings)
 set(ROTORD_LAYER_net access settings)
 # The Controller: axes, buttons, park, the control lock.
 set(ROTORD_LAYER_rotator axis input tracking settings access)
-# Byte sessions of the line protocols; the allow-list from net.
-set(ROTORD_LAYER_protocol rotator net)
+# Byte sessions of the line protocols; the allow-list from net; the settings
+# document's JSON codec for the console's export and import.
+set(ROTORD_LAYER_protocol rotator net json)
 # Counters per protocol and the Prometheus writer. Above protocol: each
 # protocol's error reply is recognised by that protocol's own constant.
 set(ROTORD_LAYER_metrics protocol hal)

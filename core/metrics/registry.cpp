@@ -18,6 +18,8 @@ const char* protocol_label(Protocol protocol) {
       return "easycomm";
     case Protocol::kSeed:
       return "seed";
+    case Protocol::kConsole:
+      return "console";
     case Protocol::kCount:
       break;
   }
@@ -56,6 +58,8 @@ bool is_error_reply(Protocol protocol, std::string_view reply) {
       return starts_with(reply, "AL");  // the alarm line, Easycomm's only error
     case Protocol::kSeed:
       return starts_with(reply, "$ERR");
+    case Protocol::kConsole:
+      return starts_with(reply, "error:");
     case Protocol::kCount:
       break;
   }

@@ -14,7 +14,7 @@ class TickScheduler;
 
 namespace rotord::metrics {
 
-/// "http", "wrc", "rotctld", "gs232", "easycomm", "seed".
+/// "http", "wrc", "rotctld", "gs232", "easycomm", "seed", "console".
 const char* protocol_label(Protocol protocol);
 
 /// Whether one reply unit a session wrote is that protocol's error (WRC

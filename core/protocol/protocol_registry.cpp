@@ -26,6 +26,12 @@ constexpr std::array<ProtocolInfo, kPersonalityCount> kProtocols = {{
      EasycommSession::kTooManyConnections, metrics::Protocol::kEasycomm},
     {P::kSeed, "seed", "seed $cmd protocol", 4603, false, 9600, SeedSession::kTooManyConnections,
      metrics::Protocol::kSeed},
+    // The console (configuration, calibration, fault reset, reboot) for a
+    // person at a terminal: a pty or serial line on Linux, the Pico's USB
+    // log port. Never on TCP unless --console-port is given (the web and
+    // REST do all of it on the network); the Pico serves it on USB only.
+    {P::kConsole, "console", "rotord console", 4604, false, 115200,
+     ConsoleSession::kTooManyConnections, metrics::Protocol::kConsole},
 }};
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <span>
 #include <string_view>
 
+#include "protocol/console_session.hpp"
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
 #include "protocol/rotctld_session.hpp"
@@ -19,8 +20,8 @@
 
 namespace rotord::protocol {
 
-enum class Personality : std::uint8_t { kWrc, kRotctld, kGs232, kEasycomm, kSeed };
-inline constexpr std::size_t kPersonalityCount = 5;
+enum class Personality : std::uint8_t { kWrc, kRotctld, kGs232, kEasycomm, kSeed, kConsole };
+inline constexpr std::size_t kPersonalityCount = 6;
 
 struct ProtocolInfo {
   Personality personality;
@@ -51,6 +52,9 @@ struct SessionDeps {
   /// Where WRC's MONITOR lines are copied as well (the Pico W's USB log
   /// port); nullptr: nowhere.
   MonitorTap* monitor_tap = nullptr;
+  /// What the console needs from the port (reboot, import's working copy);
+  /// nullptr: those console commands answer that they are not available.
+  const ConsolePort* console = nullptr;
 };
 
 /// The session type of each personality, and how to build one: the
@@ -84,6 +88,11 @@ struct SessionOf<Personality::kSeed> {
   using type = SeedSession;
   static type make(const SessionDeps& d) { return type(d.controller); }
 };
+template <>
+struct SessionOf<Personality::kConsole> {
+  using type = ConsoleSession;
+  static type make(const SessionDeps& d) { return type(d.controller, d.version, d.console); }
+};
 
 /// Room for any one line session, for a port with one transport that serves
 /// whichever personality a setting names (the Pico W's USB): built there with
@@ -92,12 +101,12 @@ struct SessionOf<Personality::kSeed> {
 inline constexpr std::size_t kAnySessionBytes = std::max(
     {sizeof(SessionOf<Personality::kWrc>::type), sizeof(SessionOf<Personality::kRotctld>::type),
      sizeof(SessionOf<Personality::kGs232>::type), sizeof(SessionOf<Personality::kEasycomm>::type),
-     sizeof(SessionOf<Personality::kSeed>::type)});
+     sizeof(SessionOf<Personality::kSeed>::type), sizeof(SessionOf<Personality::kConsole>::type)});
 inline constexpr std::size_t kAnySessionAlign = std::max(
     {alignof(SessionOf<Personality::kWrc>::type), alignof(SessionOf<Personality::kRotctld>::type),
      alignof(SessionOf<Personality::kGs232>::type),
-     alignof(SessionOf<Personality::kEasycomm>::type),
-     alignof(SessionOf<Personality::kSeed>::type)});
+     alignof(SessionOf<Personality::kEasycomm>::type), alignof(SessionOf<Personality::kSeed>::type),
+     alignof(SessionOf<Personality::kConsole>::type)});
 
 /// Calls `visit(SessionOf<p>{})` with the personality known at compile time,
 /// e.g. to build its session in storage of the caller's choice.
@@ -113,9 +122,11 @@ decltype(auto) with_session_type(Personality p, Visitor&& visit) {
     case Personality::kEasycomm:
       return visit(SessionOf<Personality::kEasycomm>{});
     case Personality::kSeed:
+      return visit(SessionOf<Personality::kSeed>{});
+    case Personality::kConsole:
       break;
   }
-  return visit(SessionOf<Personality::kSeed>{});
+  return visit(SessionOf<Personality::kConsole>{});
 }
 
 }  // namespace rotord::protocol

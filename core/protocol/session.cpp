@@ -8,4 +8,11 @@ bool Session::may_control(Controller& controller) const {
   return access::may_control(controller.settings(), peer_) && !controller.control_lock().held();
 }
 
+void drain_output(Session& session, ByteSink& out) {
+  // Every call with unbounded room finishes the reply; the bound only keeps
+  // a session that never does from hanging the transport.
+  constexpr std::size_t kUnbounded = static_cast<std::size_t>(-1);
+  for (int n = 0; n < 8 && session.output_pending(); ++n) session.write_more(kUnbounded, out);
+}
+
 }  // namespace rotord::protocol

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <string_view>
 
 #include "access/peer.hpp"
@@ -31,6 +32,14 @@ class Session {
   /// HTTP keep-alive: a request was answered and the next has not begun
   /// (net::ClientInfo::between_requests).
   virtual bool between_requests() const { return false; }
+  /// A reply longer than a transport may take in one write (the console's
+  /// listings) is still going out. A transport with a bounded buffer (the
+  /// Pico's USB ports) then feeds no more input and calls write_more() with
+  /// the room it has until this is false; one without (Linux) calls
+  /// drain_output() after every receive() and poll().
+  virtual bool output_pending() const { return false; }
+  /// Writes at most `room_bytes` more of the pending reply.
+  virtual void write_more(std::size_t /*room_bytes*/, ByteSink& /*out*/) {}
 
   /// Who the client is; the transport calls this once, before the first byte.
   void set_peer(const access::Peer& peer) { peer_ = peer; }
@@ -46,6 +55,10 @@ class Session {
  private:
   access::Peer peer_;
 };
+
+/// Sends all of a session's pending reply at once: for transports that
+/// queue whatever is written (Linux's TCP, pty and serial lines).
+void drain_output(Session& session, ByteSink& out);
 
 }  // namespace protocol
 }  // namespace rotord

@@ -240,7 +240,7 @@ bool Daemon::start_controller() {
     return false;
   }
   std::vector<ServiceConfig> services =
-      make_services(options_, *controller_, *api_, settings_, metrics_);
+      make_services(options_, *controller_, *api_, settings_, metrics_, &console_port_);
   if (!attach_serial_lines(services)) return false;
   for (auto& service : services) {
     if (service.port == 0) continue;
@@ -318,6 +318,16 @@ bool Daemon::request_reboot() {
   reboot_pending_ = true;
   reboot_at_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
   return true;
+}
+
+const char* Daemon::ConsoleSystem::reboot() {
+  daemon_.request_reboot();
+  return nullptr;
+}
+
+const char* Daemon::ConsoleSystem::reboot_to_bootloader() {
+  return "bootsel is for the Pico: rotord on Linux has no USB bootloader (update the package "
+         "instead)";
 }
 
 void Daemon::reboot() {

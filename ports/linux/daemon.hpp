@@ -12,6 +12,7 @@
 #include "metrics/registry.hpp"
 #include "mqtt_client.hpp"
 #include "options.hpp"
+#include "protocol/console_session.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
 #include "service_notify.hpp"
@@ -137,6 +138,19 @@ class Daemon final : private web::RebootHook {
   std::unique_ptr<MqttClient> mqtt_;  ///< mqtt.enabled: on the station's broker
   bool reboot_pending_ = false;
   std::chrono::steady_clock::time_point reboot_at_;
+  /// The console's (`--pty console`) reboot, the same as POST /api/reboot;
+  /// bootsel is refused: there is no USB bootloader here.
+  class ConsoleSystem final : public protocol::SystemHooks {
+   public:
+    explicit ConsoleSystem(Daemon& daemon) : daemon_(daemon) {}
+    const char* reboot() override;
+    const char* reboot_to_bootloader() override;
+
+   private:
+    Daemon& daemon_;
+  } console_system_{*this};
+  settings::Settings console_scratch_;  ///< the console's import working copy
+  protocol::ConsolePort console_port_{&defaults_, &console_scratch_, &console_system_, "Linux"};
   std::vector<std::unique_ptr<TcpServer>> servers_;
   std::vector<std::unique_ptr<SerialTransport>> serial_lines_;
   std::unique_ptr<AvahiPublisher> avahi_;  ///< --avahi on, not bound to loopback

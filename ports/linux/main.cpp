@@ -39,21 +39,24 @@ int main(int argc, char** argv) {
   app.add_option("--web-port", o.web_port, "Web UI and REST API port (0 disables)")
       ->check(port)
       ->capture_default_str();
-  // --wrc-port, --rotctld-port, --gs232-port, --easycomm-port, --seed-port:
-  // one per row of the protocol registry.
+  // --wrc-port, --rotctld-port, --gs232-port, --easycomm-port, --seed-port,
+  // --console-port: one per row of the protocol registry.
   for (const rotord::protocol::ProtocolInfo& p : rotord::protocol::protocols()) {
     std::string help = std::string(p.name) + " port (0 disables)";
-    if (!p.tcp_by_default)
+    if (p.personality == rotord::protocol::Personality::kConsole)
+      help += "; off unless given (the console changes settings: prefer --pty console)";
+    else if (!p.tcp_by_default)
       help += "; off unless given (the Pico W uses " + std::to_string(p.tcp_port) + ")";
     app.add_option("--" + std::string(p.key) + "-port",
                    o.line_ports[static_cast<std::size_t>(p.personality)], help)
         ->check(port)
         ->capture_default_str();
   }
-  app.add_option("--pty", o.ptys,
-                 "Serve a protocol on a new pseudo-terminal, PERSONALITY[:LINK] (wrc, rotctld, "
-                 "gs232, easycomm, seed); rotord prints its path and makes LINK a symlink to it. "
-                 "Repeatable")
+  app.add_option(
+         "--pty", o.ptys,
+         "Serve a protocol on a new pseudo-terminal, PERSONALITY[:LINK] (wrc, rotctld, "
+         "gs232, easycomm, seed, console); rotord prints its path and makes LINK a symlink to it. "
+         "Repeatable")
       ->take_all()
       ->allow_extra_args(false);
   app.add_option("--serial", o.serials,

@@ -214,6 +214,7 @@ void SerialTransport::read() {
                           if (!*alive || ec == asio::error::operation_aborted) return;
                           if (ec) return on_line_error(ec);
                           session_->receive(std::string_view(buffer_.data(), n), *this);
+                          protocol::drain_output(*session_, *this);
                           // A session that ends itself (rotctld `q`) starts
                           // afresh: the line stays, the next client gets a new one.
                           if (session_->wants_close()) session_ = new_session();
@@ -285,6 +286,7 @@ void SerialTransport::set_session_factory(SessionFactory make_session) {
 void SerialTransport::poll(Millis now) {
   if (!line_.is_open()) return;
   session_->poll(now, *this);
+  protocol::drain_output(*session_, *this);
   if (session_->wants_close()) session_ = new_session();
 }
 

@@ -7,7 +7,8 @@ namespace rotord::linux_port {
 
 std::vector<ServiceConfig> make_services(const Options& options, Controller& controller,
                                          web::Api& api, const settings::Settings& settings,
-                                         metrics::Registry& registry) {
+                                         metrics::Registry& registry,
+                                         const protocol::ConsolePort* console) {
   const auto max_clients = static_cast<std::size_t>(settings.i(settings::Id::kNetMaxClients));
   std::vector<ServiceConfig> services;
   services.push_back({"web UI and REST API", static_cast<std::uint16_t>(options.web_port),
@@ -19,7 +20,7 @@ std::vector<ServiceConfig> make_services(const Options& options, Controller& con
       static_cast<std::size_t>(settings.i(settings::Id::kWebMaxEventStreams));
   // Every line protocol of the registry, on TCP and (by its key) on --pty
   // and --serial.
-  const protocol::SessionDeps deps{controller, ROTORD_VERSION};
+  const protocol::SessionDeps deps{controller, ROTORD_VERSION, nullptr, console};
   for (const protocol::ProtocolInfo& p : protocol::protocols()) {
     ServiceConfig service;
     service.name = std::string(p.name);

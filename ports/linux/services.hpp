@@ -12,9 +12,11 @@ namespace rotord::linux_port {
 /// A port of 0 leaves that service out. Connection limits come from
 /// `settings` (net.max_clients, web.max_event_streams at start-up; the
 /// admission rule reads the rest at each newcomer). Each counts its
-/// connections and error replies in `registry` under its protocol.
+/// connections and error replies in `registry` under its protocol. The
+/// console's sessions get `console` (reboot, import's working copy).
 std::vector<ServiceConfig> make_services(const Options& options, Controller& controller,
                                          web::Api& api, const settings::Settings& settings,
-                                         metrics::Registry& registry);
+                                         metrics::Registry& registry,
+                                         const protocol::ConsolePort* console = nullptr);
 
 }  // namespace rotord::linux_port

@@ -89,6 +89,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
     if (closing_) return;
     in_session_ = true;
     session_->poll(now, *this);
+    protocol::drain_output(*session_, *this);
     in_session_ = false;
     flush();
     // A session may end itself from poll too (HTTP idle and request timeouts).
@@ -120,6 +121,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
                               info_.last_receive_ms = server_.now_;
                               in_session_ = true;
                               session_->receive(std::string_view(buffer_.data(), n), *this);
+                              protocol::drain_output(*session_, *this);
                               in_session_ = false;
                               flush();
                               if (!stream_seen_ && session_->is_event_stream()) {

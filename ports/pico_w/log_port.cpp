@@ -23,8 +23,34 @@ void LogPort::write_live(std::string_view bytes) {
   write(bytes);
 }
 
+void LogPort::attach_console(protocol::Session& console) {
+  console_ = &console;
+  console_->set_peer(access::Peer::line());
+}
+
+void LogPort::serve_console() {
+  // A listing still going out first: input waits until it is done.
+  if (console_->output_pending()) {
+    console_->write_more(kRingBytes - size_, *this);
+    if (console_->output_pending()) return;
+  }
+  std::array<char, UsbCdcLink::kReadChunkBytes> chunk{};
+  std::size_t budget = kMaxConsoleInputPerService;
+  while (budget > 0 && !console_->output_pending()) {
+    const std::size_t n = port_.read(chunk.data(), std::min(budget, chunk.size()));
+    if (n == 0) break;
+    budget -= n;
+    console_->receive(std::string_view(chunk.data(), n), *this);
+    if (console_->output_pending()) console_->write_more(kRingBytes - size_, *this);
+  }
+}
+
 void LogPort::service() {
-  port_.discard_input();
+  if (console_ != nullptr) {
+    serve_console();
+  } else {
+    port_.discard_input();
+  }
   if (!listening()) return;
   bool sent = false;
   if (untold_dropped_ > 0) {

@@ -33,8 +33,12 @@ namespace rotord::usb_port {
 ///   the port, service() sends the ring's contents first, then what follows.
 /// - The ring keeps the newest kRingBytes. When it is full the oldest whole
 ///   lines make room, and the next reader is told how many bytes it missed.
-/// - Input on the log port is read and dropped (it carries no commands).
-class LogPort {
+/// - Input on the log port goes to the console (protocol/console_session.hpp)
+///   when one is attached, else it is read and dropped. The console's
+///   replies join the log output in order; a long listing goes out in
+///   windows of the ring's free room, and the input typed meanwhile waits
+///   in the CDC FIFO (USB's own flow control).
+class LogPort final : private protocol::ByteSink {
  public:
   /// Enough for a boot's log (banner, settings, pins, Wi-Fi, every service's
   /// port: about 1.5 KB) with room for the Wi-Fi retries that follow.
@@ -50,8 +54,15 @@ class LogPort {
   LogPort(const LogPort&) = delete;
   LogPort& operator=(const LogPort&) = delete;
 
+  /// Input bytes handed to the console per service(), so a host flooding
+  /// the port cannot hold up the loop.
+  static constexpr std::size_t kMaxConsoleInputPerService = 512;
+
   /// Log output: sent now if someone listens, else kept for the next reader.
-  void write(std::string_view bytes);
+  void write(std::string_view bytes) override;
+  /// Serves `console` on this port (from now on, for good): a session on a
+  /// local line, so access.serial_control decides whether it may control.
+  void attach_console(protocol::Session& console);
   /// Output that only means something as it happens (WRC MONITOR lines):
   /// dropped while nobody listens, so it never pushes the log out of the ring.
   void write_live(std::string_view bytes);
@@ -65,6 +76,7 @@ class LogPort {
 
  private:
   bool listening() const { return port_.connected() && port_.dtr(); }
+  void serve_console();
   /// Writes to the port as much of `bytes` as the FIFO takes; returns that.
   std::size_t send(std::string_view bytes);
   void keep(std::string_view bytes);
@@ -73,6 +85,7 @@ class LogPort {
   std::string_view first_piece() const;
 
   CdcPort& port_;
+  protocol::Session* console_ = nullptr;
   std::array<char, kRingBytes> ring_{};
   std::size_t head_ = 0;  ///< the oldest byte
   std::size_t size_ = 0;

@@ -74,6 +74,11 @@ struct TcpServer::Glue {
     info.peer = peer_of(pcb);
     info.address = address_of(pcb);
     info.opened_ms = info.last_receive_ms = server->now_;
+    // Whether each client waits between two HTTP requests, as of now: such a
+    // keep-alive connection makes room at once (net/admission.hpp), as on Linux.
+    for (Connection& s : server->slots_) {
+      if (s.active()) s.info_.between_requests = s.session_->between_requests();
+    }
     const net::Admission::Decision d =
         server->admission_.admit(SlotList(server->slots_), info, server->now_);
     if (d.kind != net::Admission::Decision::Kind::kAdmit) return reject(*server, pcb);

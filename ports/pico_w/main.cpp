@@ -21,11 +21,13 @@
 #include "ma3_pio.hpp"
 #include "metrics/registry.hpp"
 #include "pico/binary_info.h"
+#include "pico/bootrom.h"
 #include "pico/stdio/driver.h"
 #include "pico/stdio_usb.h"
 #include "pico/stdlib.h"
 #include "pico_flash.hpp"
 #include "pico_hal.hpp"
+#include "protocol/console_session.hpp"
 #include "protocol/protocol_registry.hpp"
 #include "rotator/controller.hpp"
 #include "settings/pin_rules.hpp"
@@ -59,7 +61,8 @@ constexpr Millis kTickMs = 10;  // 100 Hz, as on Linux
 // a turning motor within 2 s (12 deg on a 6 deg/s G-5500; the reset puts
 // every pin back to an input with its pull-down, i.e. relays off).
 constexpr std::uint32_t kWatchdogMs = 2000;
-// POST /api/reboot answers first, then the watchdog resets the chip.
+// POST /api/reboot (and the console's reboot) answers first, then the
+// watchdog resets the chip.
 constexpr Millis kRebootDelayMs = 300;
 using protocol::Personality;
 using settings::Id;
@@ -90,15 +93,30 @@ class PicoMonotonicClock final : public hal::MonotonicClock {
   std::int64_t now_us() const override { return static_cast<std::int64_t>(time_us_64()); }
 };
 
-/// A reboot asked for (POST /api/reboot on the Pico W): remembered here,
-/// done by the loop once the answer is out (the request runs inside it).
-class Reboot {
+/// A reboot asked for (POST /api/reboot on the Pico W, the console's
+/// `reboot` and `bootsel`): remembered here, done by the loop once the
+/// answer is out (the request runs inside it).
+class Reboot final : public protocol::SystemHooks {
  public:
   void request() { requested_ = true; }
   bool requested() const { return requested_; }
+  /// Into the ROM's USB bootloader (the RPI-RP2 drive and picotool) rather
+  /// than into rotord again.
+  bool to_bootloader() const { return bootloader_; }
+
+  const char* reboot() override {
+    request();
+    return nullptr;
+  }
+  const char* reboot_to_bootloader() override {
+    bootloader_ = true;
+    request();
+    return nullptr;
+  }
 
  private:
   bool requested_ = false;
+  bool bootloader_ = false;
 };
 
 // The USB log port (CDC 0), printf's only output (log_port.hpp): what is
@@ -354,7 +372,16 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
 
   // 3. The USB protocol port: one session, fresh whenever a program opens
   // the port (usb_cdc_link.hpp).
-  static usb_port::PersonalitySessions usb_sessions(usb_personality, controller, ROTORD_VERSION);
+  // The console (protocol/console_session.hpp) on the log port, CDC 0:
+  // settings, calibration, fault reset, reboot and bootsel over USB, for a
+  // board with no network (ports/pico_w/README.md, "USB console"). g_scratch
+  // is free once the settings are loaded.
+  static const protocol::ConsolePort console_port{&g_defaults, &g_scratch, &g_reboot,
+                                                  ROTORD_PICO_BOARD_NAME};
+  static protocol::ConsoleSession console(controller, ROTORD_VERSION, &console_port);
+  g_log.attach_console(console);
+  static usb_port::PersonalitySessions usb_sessions(usb_personality, controller, ROTORD_VERSION,
+                                                    &console_port);
   static TinyUsbCdcPort usb_cdc(ROTORD_USB_PROTOCOL_CDC);
   static std::optional<usb_port::UsbCdcLink> usb_link;
   if (usb_personality) {
@@ -420,6 +447,9 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
           std::printf("rotord: rebooting\n");
           controller.shutdown();
           if (storage != nullptr) report_save(g_saver.flush(now));  // motors off first
+          // The ROM's USB bootloader for a firmware update (the console's
+          // bootsel): the RPI-RP2 drive and picotool's interface.
+          if (g_reboot.to_bootloader()) reset_usb_boot(0, 0);
           // watchdog_update() would postpone a delayed reboot forever, so
           // reboot now and wait for it here.
           watchdog_reboot(0, 0, 0);

@@ -43,8 +43,10 @@ constexpr std::size_t kTcpSlots<Personality::kEasycomm> = 2;  // a tracker plus 
 template <>
 constexpr std::size_t kTcpSlots<Personality::kSeed> = 2;
 // A new personality in the registry fails to build here until it is served
-// (or this says why not).
-static_assert(protocol::kPersonalityCount == 5, "serve every personality on TCP");
+// (or this says why not). The console is not: it writes settings and
+// reboots, which the network does through the web and REST with access
+// control; it is on USB only (the log port, or usb.personality).
+static_assert(protocol::kPersonalityCount == 6, "serve every personality on TCP");
 
 /// Builds a session of personality P for a static pool (returned by value:
 /// guaranteed copy elision builds it in its slot).

@@ -9,6 +9,11 @@
 
 extern "C" char __flash_binary_end;  // from the SDK's linker script
 
+// The build's flash layout check (cmake/check-flash-layout.cmake) assumes
+// this flash size.
+static_assert(PICO_FLASH_SIZE_BYTES == ROTORD_FLASH_BYTES,
+              "ROTORD_FLASH_BYTES (CMakeLists.txt) must be the board's flash size");
+
 namespace rotord::pico_w {
 namespace {
 

@@ -12,11 +12,12 @@ namespace rotord::pico_w {
 class PicoFlash final : public hal::Flash {
  public:
   /// Two 8 KB slots: the settings document is ~4 KB today and grows with the
-  /// settings table; 4 KB slots would leave no headroom.
-  static constexpr std::size_t kRegionBytes = 16 * 1024;
+  /// settings table; 4 KB slots would leave no headroom. The sizes come from
+  /// CMakeLists.txt, whose build check keeps the image below both regions.
+  static constexpr std::size_t kRegionBytes = ROTORD_SETTINGS_FLASH_BYTES;
   /// The stored TLEs (tracking/tle_catalog.hpp, at most 4.1 KB of text): two
   /// 8 KB slots right below the settings.
-  static constexpr std::size_t kTleRegionBytes = 16 * 1024;
+  static constexpr std::size_t kTleRegionBytes = ROTORD_TLE_FLASH_BYTES;
 
   /// A region of `size` bytes ending `end_gap` bytes before the end of the
   /// flash: the settings (default) at the very end, the TLEs below them.

@@ -59,15 +59,19 @@ void UsbCdcLink::poll(Millis now) {
 }
 
 void UsbCdcLink::pump_input() {
+  // A long reply still going out (the console's listings) first, in pieces
+  // the buffer takes whole; input waits in the FIFO until it is done.
+  continue_reply();
   std::array<char, kReadChunkBytes> chunk{};
   std::size_t budget = kMaxInputBytesPerService;
-  while (budget > 0) {
+  while (budget > 0 && !session_->output_pending()) {
     const std::size_t n = port_.read(chunk.data(), std::min(budget, chunk.size()));
     if (n == 0) break;
     budget -= n;
     stats_.received_bytes += static_cast<std::uint32_t>(n);
     heard_ = true;
     session_->receive(std::string_view(chunk.data(), n), *this);
+    continue_reply();
     // A session that ends itself (rotctld `q`) starts afresh: the line
     // stays, as on Linux's serial transport.
     if (session_->wants_close()) {
@@ -76,6 +80,12 @@ void UsbCdcLink::pump_input() {
       ++stats_.sessions;
     }
   }
+}
+
+void UsbCdcLink::continue_reply() {
+  if (!session_->output_pending()) return;
+  const std::size_t room = pending_.size() - pending_bytes();
+  if (room > 0) session_->write_more(room, *this);
 }
 
 void UsbCdcLink::write(std::string_view bytes) {

@@ -114,6 +114,9 @@ class UsbCdcLink final : private protocol::ByteSink {
   bool listening() const { return connected_ && (dtr_ || heard_); }
   void restart(bool drop_input);
   void pump_input();
+  /// Lets a session with a long reply pending write as much as the buffer
+  /// has room for (protocol::Session::write_more).
+  void continue_reply();
   void pump_output();
   bool append_pending(std::string_view bytes);
 

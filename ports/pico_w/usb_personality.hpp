@@ -21,9 +21,11 @@ const char* personality_name(std::optional<protocol::Personality> personality);
 /// for the largest session only (rotctld, ~2.6 KB), not for all five.
 class PersonalitySessions final : public SessionMaker {
  public:
+  /// `console`: what the console needs from the port, should usb.personality
+  /// be the console.
   PersonalitySessions(std::optional<protocol::Personality> personality, Controller& controller,
-                      const char* version)
-      : personality_(personality), deps_{controller, version} {}
+                      const char* version, const protocol::ConsolePort* console = nullptr)
+      : personality_(personality), deps_{controller, version, nullptr, console} {}
   ~PersonalitySessions() { end(); }
   PersonalitySessions(const PersonalitySessions&) = delete;
   PersonalitySessions& operator=(const PersonalitySessions&) = delete;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "protocol/console_session.hpp"
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
 #include "protocol/rotctld_commands.hpp"
@@ -154,6 +155,14 @@ TEST(CommandDocs, SeedPageListsExactlyTheSeedCommands) {
     for (const std::string& code : codes(cell))
       if (code.size() >= 2 && code[0] == '$') documented.insert(code.substr(1, 1));
   EXPECT_EQ(documented, names_of(protocol::SeedSession::commands()));
+}
+
+TEST(CommandDocs, ConsolePageListsExactlyTheConsoleCommands) {
+  Names documented;  // "`get <key>`" -> get
+  for (const std::string& cell : column(read_doc("docs/protocols/console.md"), "## Commands", 0))
+    for (const std::string& code : codes(cell))
+      if (!words(code).empty()) documented.insert(words(code).front());
+  EXPECT_EQ(documented, names_of(protocol::ConsoleSession::commands()));
 }
 
 TEST(CommandDocs, WebApiEndpointTableIsTheRouteTable) {

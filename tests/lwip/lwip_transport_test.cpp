@@ -155,9 +155,14 @@ class TestSession final : public protocol::Session {
         close_ = true;
       }
       if (ch == 'E') events_ = true;
+      // HTTP keep-alive as HttpSession reports it: K answered a request and
+      // waits for the next, B began one.
+      if (ch == 'K') between_ = true;
+      if (ch == 'B') between_ = false;
     }
   }
   bool is_event_stream() const override { return events_; }
+  bool between_requests() const override { return between_; }
   void poll(Millis, protocol::ByteSink& out) override {
     for (int i = 0; i < 4 && flood_left_ > 0; ++i) {
       char chunk[200];
@@ -177,6 +182,7 @@ class TestSession final : public protocol::Session {
   std::size_t sent_ = 0;
   bool close_ = false;
   bool events_ = false;
+  bool between_ = false;
 };
 
 auto make_test_session() {
@@ -562,6 +568,38 @@ TEST_F(LwipAdmissionTest, AFullPortServesANewcomerOnceAClientHasBeenIdleSixtySec
   EXPECT_EQ(service.server().counters().refused_full, 1u);
   EXPECT_EQ(service.server().counters().evicted_idle, 1u);
   EXPECT_EQ(service.server().stats().rejected, 1u);
+  EXPECT_EQ(TestSession::live, 2);
+}
+
+// As on Linux (ClientInfo::between_requests): a keep-alive connection
+// waiting for its next request makes room for a newcomer at once, not after
+// net.idle_evict_s; one in the middle of a request does not.
+TEST_F(LwipAdmissionTest, AKeepAliveConnectionBetweenRequestsMakesRoomAtOnce) {
+  ServerConfig config = test_config(2);
+  config.settings = &settings_;
+  TestService service(config, make_test_session());
+  auto served = serve(service.server());
+  Client& a = connect_from(1);
+  send(a, "B");
+  ASSERT_TRUE(pong(a));  // a request in progress
+  Client& b = connect_from(2);
+  send(b, "B");
+  ASSERT_TRUE(pong(b));
+  advance(1000);
+  Client& early = connect_from(3);
+  EXPECT_TRUE(wait([&] { return early.peer_closed || early.reset; }));
+  EXPECT_EQ(early.received, "busy\r\n");
+
+  send(a, "K");  // a answered, now waiting for its next request
+  ASSERT_TRUE(pong(a));
+  advance(1000);  // 2 s, far below net.idle_evict_s
+  Client& newcomer = connect_from(3);
+  EXPECT_TRUE(pong(newcomer));
+  EXPECT_TRUE(wait([&] { return a.peer_closed; }));  // a FIN: the browser opens another
+  EXPECT_TRUE(pong(b));
+  CoreLock lock;
+  EXPECT_EQ(service.server().counters().refused_full, 1u);
+  EXPECT_EQ(service.server().counters().evicted_idle, 1u);
   EXPECT_EQ(TestSession::live, 2);
 }
 

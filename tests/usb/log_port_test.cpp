@@ -9,6 +9,9 @@
 #include <string>
 
 #include "fake_cdc.hpp"
+#include "fake_rotator.hpp"
+#include "protocol/console_session.hpp"
+#include "string_sink.hpp"
 
 namespace rotord {
 namespace {
@@ -166,6 +169,66 @@ TEST_F(LogPortTest, InputOnTheLogPortIsDropped) {
   cdc.send("typed into the log terminal\r");
   log.service();
   EXPECT_EQ(cdc.unread_input(), 0u);  // no FIFO left full, no NAKs
+}
+
+/// The console (protocol/console_session.hpp) on the log port, as the
+/// firmware serves it (main.cpp): commands typed into the log terminal, the
+/// replies in the log's order.
+class LogPortConsoleTest : public LogPortTest {
+ protected:
+  LogPortConsoleTest() {
+    rotator.run_ms(50);
+    log.attach_console(console);
+  }
+  testing::FakeRotator rotator;
+  settings::Settings defaults = rotator.settings;
+  settings::Settings scratch;
+  protocol::ConsolePort port{&defaults, &scratch, nullptr, "test"};
+  protocol::ConsoleSession console{*rotator.controller, "9.9.9", &port};
+};
+
+TEST_F(LogPortConsoleTest, ACommandTypedIntoTheLogTerminalIsAnsweredInTheLog) {
+  log.write("rotord: boot line\r\n");
+  cdc.open();
+  cdc.send("get az.max_deg\r");
+  EXPECT_EQ(read_all(), "rotord: boot line\r\nok az.max_deg=450\r\n");
+  cdc.send("set az.max_deg 400\r\nfrobnicate\r\n");
+  EXPECT_EQ(read_all(),
+            "ok az.max_deg=400\r\nerror: unknown command 'frobnicate' (help lists the "
+            "commands)\r\n");
+  EXPECT_EQ(rotator.settings.get(settings::Id::kAzMaxDeg), 400);
+}
+
+TEST_F(LogPortConsoleTest, AListingLongerThanTheRingComesOutWholeAndInputWaitsForIt) {
+  // What the listing is, from the same session type on an unbounded sink.
+  protocol::ConsoleSession reference(*rotator.controller, "9.9.9", &port);
+  testing::StringSink expected;
+  reference.receive("list\n", expected);
+  protocol::drain_output(reference, expected);
+  ASSERT_GT(expected.data.size(), LogPort::kRingBytes);  // several windows
+
+  const std::string boot = lines(1, 60);  // about 2 KB of the ring already taken
+  log.write(boot);
+  cdc.open();
+  cdc.send("list\r");
+  log.service();
+  ASSERT_TRUE(console.output_pending());
+  cdc.send("get park.az_deg\r");  // typed during the listing: waits in the FIFO
+  log.service();                  // the terminal reads nothing yet: no room, nothing more goes out
+  log.service();
+  EXPECT_TRUE(console.output_pending());
+  EXPECT_GT(cdc.unread_input(), 0u);
+  EXPECT_EQ(read_all(), boot + expected.data + "ok park.az_deg=0\r\n");
+  EXPECT_EQ(log.stats().dropped_bytes, 0u);
+}
+
+TEST_F(LogPortConsoleTest, AReadOnlyLogTerminalMayReadButNotChange) {
+  rotator.settings.set(settings::Id::kAccessLineControl, 0);
+  cdc.open();
+  cdc.send("set az.max_deg 400\rget az.max_deg\r");
+  const std::string reply = read_all();
+  EXPECT_EQ(reply.rfind("error: read-only", 0), 0u) << reply;
+  EXPECT_NE(reply.find("\r\nok az.max_deg=450\r\n"), std::string::npos) << reply;
 }
 
 }  // namespace

@@ -9,7 +9,9 @@
 
 #include "fake_cdc.hpp"
 #include "fake_rotator.hpp"
+#include "protocol/console_session.hpp"
 #include "settings/settings.hpp"
+#include "string_sink.hpp"
 #include "usb_cdc_link.hpp"
 #include "usb_personality.hpp"
 
@@ -253,7 +255,9 @@ INSTANTIATE_TEST_SUITE_P(
                       GarbageCase{Personality::kEasycomm, "FOO\n", "ALUNKNOWN\n"},
                       GarbageCase{Personality::kSeed, "$X\n", "$ERR,UNKNOWN\r\n"},
                       GarbageCase{Personality::kWrc, "FOO\r\n", "ERROR INVALID COMMAND\r\n"},
-                      GarbageCase{Personality::kRotctld, "\\nosuchcommand\n", "RPRT -4\n"}),
+                      GarbageCase{Personality::kRotctld, "\\nosuchcommand\n", "RPRT -4\n"},
+                      GarbageCase{Personality::kConsole, "FOO\r\n",
+                                  "error: unknown command 'FOO' (help lists the commands)\r\n"}),
     [](const ::testing::TestParamInfo<GarbageCase>& param_info) {
       // "Yaesu GS-232" -> "Yaesu_GS_232": test names take letters, digits and '_'.
       std::string name = usb_port::personality_name(param_info.param.personality);
@@ -261,6 +265,41 @@ INSTANTIATE_TEST_SUITE_P(
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
       return name;
     });
+
+/// usb.personality = console: a listing longer than the link's 2 KB buffer
+/// goes out whole, in pieces the buffer takes, while the host reads; what is
+/// typed meanwhile waits in the FIFO and is answered after it.
+TEST(UsbConsole, AListingLongerThanTheBufferComesOutWhole) {
+  testing::FakeRotator rotator;
+  settings::Settings defaults = rotator.settings;
+  settings::Settings scratch;
+  const protocol::ConsolePort port{&defaults, &scratch, nullptr, "test"};
+  protocol::ConsoleSession reference(*rotator.controller, "test", &port);
+  testing::StringSink expected;
+  reference.receive("list\n", expected);
+  protocol::drain_output(reference, expected);
+  ASSERT_GT(expected.data.size(), UsbCdcLink::kPendingBytes + FakeCdc::kFifoBytes);
+
+  FakeCdc cdc;
+  PersonalitySessions sessions(Personality::kConsole, *rotator.controller, "test", &port);
+  UsbCdcLink link(cdc, sessions);
+  cdc.plug();
+  cdc.open();
+  link.service();
+  cdc.send("list\r\n");
+  link.service();
+  cdc.send("get park.az_deg\r\n");
+  link.service();
+  EXPECT_GT(cdc.unread_input(), 0u);  // the get waits behind the listing
+  std::string got;
+  for (int pass = 0; pass < 200 && got.size() < expected.data.size() + 18; ++pass) {
+    got += cdc.take();
+    link.service();
+  }
+  got += cdc.take();
+  EXPECT_EQ(got, expected.data + "ok park.az_deg=0\r\n");
+  EXPECT_EQ(link.stats().dropped_replies, 0u);
+}
 
 TEST(UsbPersonality, TheSettingsChoicesAreOffAndTheRegistrysKeys) {
   const settings::Id id = settings::Id::kUsbPersonality;
@@ -281,7 +320,8 @@ TEST(UsbPersonality, TheSettingsChoicesAreOffAndTheRegistrysKeys) {
             Personality::kGs232);
   EXPECT_EQ(usb_port::personality_from_setting(0), std::nullopt);
   EXPECT_EQ(usb_port::personality_from_setting(-1), std::nullopt);
-  EXPECT_EQ(usb_port::personality_from_setting(6), std::nullopt);
+  EXPECT_EQ(usb_port::personality_from_setting(static_cast<int>(protocol::kPersonalityCount) + 1),
+            std::nullopt);
   EXPECT_STREQ(usb_port::personality_name(Personality::kEasycomm), "Easycomm II/III");
   EXPECT_STREQ(usb_port::personality_name(std::nullopt), "off");
 }

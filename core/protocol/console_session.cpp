@@ -1,0 +1,455 @@
+#include "protocol/console_session.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "json/json_writer.hpp"
+#include "json/settings_json.hpp"
+#include "protocol/gs232_calibration.hpp"
+#include "rotator/controller.hpp"
+#include "settings/settings_layers.hpp"
+#include "util/slice.hpp"
+#include "util/text.hpp"
+
+namespace rotord::protocol {
+namespace {
+
+using settings::Id;
+
+template <typename... Args>
+void send(ByteSink& out, const char* fmt, Args... args) {
+  ConsoleSession::Reply(ConsoleSession::kReplyRules).line(out, fmt, args...);
+}
+
+void error(ByteSink& out, const char* reason) {
+  send(out, "error: %s", reason);
+}
+
+int length(std::string_view s) {
+  return static_cast<int>(s.size());
+}
+
+/// Up to 32 characters of what the client typed, for an error reply: bytes
+/// outside printable ASCII become '?', so garbage cannot upset a terminal.
+struct Echo {
+  explicit Echo(std::string_view s) {
+    const std::size_t n = std::min(s.size(), sizeof text - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto c = static_cast<unsigned char>(s[i]);
+      text[i] = c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?';
+    }
+    text[n] = '\0';
+  }
+  char text[33];
+};
+
+/// The next part of a reply, after the `skip` bytes already sent, as much as
+/// fits in `room`, in as few writes as its buffer allows: a transport with a
+/// bounded buffer (the Pico's USB) takes each write whole or not at all. A
+/// window ends before the first of the reply's writes that does not fit, so
+/// a listing's lines are never cut (log lines printed between two windows
+/// fall between its lines), except a write larger than the whole room,
+/// which is cut so that every window makes progress.
+class WindowSink final : public ByteSink {
+ public:
+  WindowSink(ByteSink& out, std::size_t skip, std::size_t room)
+      : out_(out), skip_(skip), room_(room) {}
+  void write(std::string_view bytes) override {
+    total_ += bytes.size();
+    if (skip_ >= bytes.size()) {
+      skip_ -= bytes.size();
+      return;
+    }
+    bytes = text::slice(bytes, skip_);
+    skip_ = 0;
+    if (full_) return;
+    if (bytes.size() > room_) {
+      full_ = true;
+      if (written_ > 0) return;
+      bytes = text::slice(bytes, 0, room_);
+    }
+    room_ -= bytes.size();
+    written_ += bytes.size();
+    while (!bytes.empty()) {
+      if (used_ == buf_.size()) flush();
+      const std::size_t n = std::min(bytes.size(), buf_.size() - used_);
+      std::memcpy(buf_.data() + used_, bytes.data(), n);
+      used_ += n;
+      bytes.remove_prefix(n);
+    }
+  }
+  void flush() {
+    if (used_ > 0) out_.write(std::string_view(buf_.data(), used_));
+    used_ = 0;
+  }
+  std::size_t total() const { return total_; }
+  std::size_t written() const { return written_; }
+
+ private:
+  ByteSink& out_;
+  std::size_t skip_;
+  std::size_t room_;
+  bool full_ = false;
+  std::size_t total_ = 0;
+  std::size_t written_ = 0;
+  std::array<char, 128> buf_{};
+  std::size_t used_ = 0;
+};
+
+/// Formats one setting for a reply: "key=value" (secrets masked).
+struct Value {
+  Value(const settings::Settings& s, Id id) { s.format_value(id, text, sizeof text); }
+  char text[settings::kValueTextCapacity];
+};
+
+const char* flag(bool on) {
+  return on ? "1" : "0";
+}
+
+}  // namespace
+
+// The command table, in the order of docs/protocols/console.md.
+using C = ConsoleSession;
+constexpr ConsoleSession::Command ConsoleSession::kCommands[] = {
+    {"help", "help", &C::help, "list the commands", false},
+    {"status", "status", &C::status, "position, raw sensor value, state and fault of each axis",
+     false},
+    {"get", "get <key>", &C::get, "one setting's value", false},
+    {"list", "list [prefix]", &C::list, "every setting (whose key starts with prefix), one a line",
+     false},
+    {"set", "set <key> <value>", &C::set, "change a setting (saved like the web's changes)", true},
+    {"export", "export", &C::export_settings,
+     "the settings you changed, as one JSON line (no passwords)", false},
+    {"import", "import <json>", &C::import_settings, "apply a JSON settings object, all or nothing",
+     true},
+    {"cal", "cal <az|el> <lo|hi>", &C::calibrate,
+     "the axis stands at its low/high stop: the sensor's reading becomes that calibration point",
+     true},
+    {"stop", "stop", &C::stop, "stop every motion", false},
+    {"reset", "reset", &C::reset, "stop, clear latched faults", true},
+    {"reboot", "reboot", &C::reboot, "restart the controller (settings are saved first)", true},
+    {"bootsel", "bootsel", &C::bootsel,
+     "Pico: reboot into the USB bootloader for a firmware update", true},
+};
+
+std::span<const ConsoleSession::Command> ConsoleSession::commands() {
+  return kCommands;
+}
+
+bool ConsoleSession::writable(Id id, const access::Peer& peer) {
+  const auto flags = settings::def(id).flags;
+  if ((flags & (settings::kWebOnly | settings::kHidden)) != 0) return false;
+  if ((flags & settings::kSecret) != 0) return peer.kind == access::Peer::Kind::kLine;
+  return true;
+}
+
+void ConsoleSession::receive(std::string_view bytes, ByteSink& out) {
+  feed(bytes, out);
+}
+
+void ConsoleSession::feed(std::string_view bytes, ByteSink& out) {
+  while (!bytes.empty()) {
+    if (output_pending()) {
+      // A listing is going out: what follows waits for it.
+      const std::size_t n = std::min(bytes.size(), hold_.size() - held_);
+      std::memcpy(hold_.data() + held_, bytes.data(), n);
+      held_ += n;
+      hold_dropped_ += bytes.size() - n;
+      return;
+    }
+    // One line at a time, so a command after a listing waits for it.
+    const std::size_t end = bytes.find_first_of("\r\n");
+    const std::size_t n = end == std::string_view::npos ? bytes.size() : end + 1;
+    lines_.feed(text::slice(bytes, 0, n), [&](std::string_view line, bool overflowed) {
+      if (overflowed) {
+        char reason[64];
+        std::snprintf(reason, sizeof reason, "line too long (at most %u bytes)",
+                      static_cast<unsigned>(kMaxLineLength));
+        return error(out, reason);
+      }
+      handle_line(line, out);
+    });
+    bytes = text::slice(bytes, n);
+  }
+}
+
+void ConsoleSession::handle_line(std::string_view line, ByteSink& out) {
+  line = text::trim(line);
+  if (line.empty()) return;
+  std::string_view rest = line;
+  const std::string_view word = text::next_token(rest);
+  // The arguments as typed after the word and its spaces (set's value keeps
+  // inner and trailing spaces: an SSID may have them).
+  while (!rest.empty() && (rest.front() == ' ' || rest.front() == '\t')) rest.remove_prefix(1);
+  for (const Command& c : kCommands) {
+    if (!text::iequals(word, c.name)) continue;
+    if (c.changes_state && !may_control(controller_))
+      return error(out,
+                   "read-only: this client may not change anything (access.serial_control, "
+                   "access.control_networks, or the web's control lock)");
+    return (this->*c.run)(rest, out);
+  }
+  const Echo echo(word);
+  send(out, "error: unknown command '%s' (help lists the commands)", echo.text);
+}
+
+void ConsoleSession::help(std::string_view, ByteSink& out) {
+  for (const Command& c : kCommands)
+    send(out, "%-22.*s %.*s", length(c.usage), c.usage.data(), length(c.help), c.help.data());
+  send(out, "ok");
+}
+
+void ConsoleSession::status(std::string_view, ByteSink& out) {
+  const RotatorStatus s = controller_.status();
+  const char* board = port_ != nullptr && port_->board[0] != '\0' ? port_->board : "rotord";
+  send(out, "rotord %s (%s)", version_, board);
+  send(out, "mode=%s speed_pct=%d estop=%s control=%s", mode_name(s.mode), s.speed_pct,
+       flag(controller_.estop_active()), may_control(controller_) ? "yes" : "no");
+  const auto axis = [&](const char* name, const AxisStatus& a) {
+    char target[16] = "-";
+    if (a.has_target)
+      std::snprintf(target, sizeof target, "%.1f", static_cast<double>(a.target_deg));
+    send(out,
+         "%s position_deg=%.1f valid=%s raw=%.0f target_deg=%s state=%s fault=%s "
+         "limit_cw=%s limit_ccw=%s",
+         name, static_cast<double>(a.position_deg), flag(a.position_valid),
+         static_cast<double>(a.raw), target, axis_state_name(a.state), axis_fault_name(a.fault),
+         flag(a.limit_cw), flag(a.limit_ccw));
+  };
+  axis("az", s.az);
+  if (s.el.present) axis("el", s.el);
+  send(out, "ok");
+}
+
+void ConsoleSession::get(std::string_view args, ByteSink& out) {
+  const std::string_view key = text::trim(args);
+  if (key.empty()) return error(out, "usage: get <key> (list shows every setting)");
+  const std::optional<Id> id = settings::find(key);
+  if (!id) {
+    const Echo echo(key);
+    return send(out, "error: unknown setting '%s' (list shows every setting)", echo.text);
+  }
+  const Value value(controller_.settings(), *id);
+  send(out, "ok %s=%s", settings::def(*id).key, value.text);
+}
+
+void ConsoleSession::list(std::string_view args, ByteSink& out) {
+  start_listing(Listing::kList, text::trim(args), out);
+}
+
+void ConsoleSession::set(std::string_view args, ByteSink& out) {
+  std::string_view value = args;
+  const std::string_view key = text::next_token(value);
+  if (!value.empty()) value.remove_prefix(1);  // the one separator after the key
+  if (key.empty() || (value.empty() && args.find_first_of(" \t") == std::string_view::npos))
+    return error(out, "usage: set <key> <value> (\"\" for an empty text)");
+  if (value == "\"\"") value = {};
+  const std::optional<Id> id = settings::find(key);
+  if (!id) {
+    const Echo echo(key);
+    return send(out, "error: unknown setting '%s' (list shows every setting)", echo.text);
+  }
+  const settings::Def& def = settings::def(*id);
+  if (!writable(*id, peer())) {
+    return send(out,
+                (def.flags & settings::kSecret) != 0 && (def.flags & settings::kWebOnly) == 0
+                    ? "error: %s is a password: set it over USB or serial, not the network"
+                    : "error: %s is set through the web only",
+                def.key);
+  }
+  // The same checks as every other writer: type, range, format, then the
+  // rules across settings (a value that breaks one is undone).
+  const settings::Rejection r = controller_.settings().update_from_text(*id, value);
+  if (r.error != Error::kOk) return send(out, "error: %s: %s", def.key, r.reason);
+  const Value now(controller_.settings(), *id);
+  send(out, "ok %s=%s%s", def.key, now.text,
+       (def.flags & settings::kRestart) != 0 ? " (takes effect after a reboot)" : "");
+}
+
+void ConsoleSession::export_settings(std::string_view args, ByteSink& out) {
+  if (!text::trim(args).empty()) return error(out, "usage: export");
+  if (export_base() == nullptr) return error(out, "export is not available on this port");
+  start_listing(Listing::kExport, {}, out);
+}
+
+void ConsoleSession::import_settings(std::string_view args, ByteSink& out) {
+  const std::string_view json = text::trim(args);
+  if (json.empty()) return error(out, "usage: import {\"key\": value, ...}");
+  if (port_ == nullptr || port_->scratch == nullptr)
+    return error(out, "import is not available on this port");
+  // Every key is checked before anything changes: one this client may not
+  // write refuses the whole document.
+  {
+    web::JsonObjectReader reader(json);
+    std::string_view key;
+    web::JsonValue value;
+    while (reader.valid() && reader.next(key, value)) {
+      const std::optional<Id> id = settings::find(key);
+      if (id && !writable(*id, peer()))
+        return send(out,
+                    "error: %s cannot be imported here (web only, or a password over the "
+                    "network): remove it",
+                    settings::def(*id).key);
+    }
+  }
+  web::SettingErrors errors;
+  const web::ApplyOutcome r =
+      web::apply_settings_json(json, controller_.settings(), *port_->scratch, errors);
+  if (r.status == web::ApplyOutcome::kBadJson)
+    return send(out, "error: invalid JSON: %s", r.message);
+  if (r.status == web::ApplyOutcome::kInvalid) {
+    for (std::size_t n = 0; n < errors.size(); ++n)
+      send(out, "  %s: %s", errors[n].key, errors[n].reason);
+    return send(out, "error: nothing changed: %s", r.message);
+  }
+  int changed = 0;
+  bool restart = false;
+  for (std::size_t n = 0; n < settings::kCount; ++n) {
+    if (!r.changed[n]) continue;
+    ++changed;
+    restart = restart || (settings::def(static_cast<Id>(n)).flags & settings::kRestart) != 0;
+  }
+  send(out, "ok %d settings changed%s", changed,
+       restart ? " (some take effect after a reboot)" : "");
+}
+
+void ConsoleSession::calibrate(std::string_view args, ByteSink& out) {
+  std::string_view rest = args;
+  const std::string_view axis_word = text::next_token(rest);
+  const std::string_view point_word = text::next_token(rest);
+  const bool az = text::iequals(axis_word, "az");
+  const bool lo = text::iequals(point_word, "lo");
+  if ((!az && !text::iequals(axis_word, "el")) || (!lo && !text::iequals(point_word, "hi")) ||
+      !text::trim(rest).empty())
+    return error(out, "usage: cal <az|el> <lo|hi>");
+  const Error e = gs232::calibrate(controller_, az ? AxisId::kAz : AxisId::kEl,
+                                   lo ? gs232::CalPoint::kOffset : gs232::CalPoint::kFullScale);
+  switch (e) {
+    case Error::kOk:
+      return send(out, "ok %s %s point set from the sensor's present reading", az ? "az" : "el",
+                  lo ? "lo" : "hi");
+    case Error::kFaulted:
+      return error(out, "the sensor's reading is not valid now: nothing changed");
+    case Error::kOutOfRange:
+      return error(out, "the two calibration points would be the same: nothing changed");
+    default:
+      return error(out, az || controller_.has_el()
+                            ? "this axis's sensor has no such point (pot: lo and hi; MA3: lo only)"
+                            : "there is no elevation axis");
+  }
+}
+
+void ConsoleSession::stop(std::string_view, ByteSink& out) {
+  controller_.stop();
+  send(out, "ok stopped");
+}
+
+void ConsoleSession::reset(std::string_view, ByteSink& out) {
+  if (controller_.reset() != Error::kOk)
+    return error(out, "the emergency stop is active: release it, then reset");
+  send(out, "ok stopped, faults cleared");
+}
+
+void ConsoleSession::reboot(std::string_view, ByteSink& out) {
+  if (port_ == nullptr || port_->system == nullptr)
+    return error(out, "reboot is not available on this port");
+  if (const char* why = port_->system->reboot()) return error(out, why);
+  send(out, "ok rebooting");
+}
+
+void ConsoleSession::bootsel(std::string_view, ByteSink& out) {
+  if (port_ == nullptr || port_->system == nullptr)
+    return error(out, "bootsel is not available on this port");
+  if (const char* why = port_->system->reboot_to_bootloader()) return error(out, why);
+  send(out, "ok rebooting into the USB bootloader: copy the .uf2 onto the RPI-RP2 drive");
+}
+
+const settings::Settings* ConsoleSession::export_base() const {
+  if (port_ == nullptr) return nullptr;
+  if (port_->defaults != nullptr) return port_->defaults;
+  if (port_->scratch == nullptr) return nullptr;
+  port_->scratch->reset_to_defaults();
+  return port_->scratch;
+}
+
+void ConsoleSession::start_listing(Listing listing, std::string_view prefix, ByteSink&) {
+  listing_ = listing;
+  listing_sent_ = 0;
+  listing_revision_ = controller_.settings().revision();
+  const std::size_t n = std::min(prefix.size(), sizeof list_prefix_ - 1);
+  if (n > 0) std::memcpy(list_prefix_, prefix.data(), n);  // an empty view's data() may be null
+  list_prefix_[n] = '\0';
+}
+
+void ConsoleSession::write_listing(ByteSink& out) const {
+  const settings::Settings& values = controller_.settings();
+  int count = 0;
+  if (listing_ == Listing::kExport) {
+    const settings::Settings* base = export_base();
+    const settings::KeySet keys = settings::user_layer(values, *base);
+    {
+      web::JsonWriter w(out);
+      w.begin_object().member(settings::kVersionKey, settings::kStoredVersion);
+      for (std::size_t n = 0; n < settings::kCount; ++n) {
+        const auto id = static_cast<Id>(n);
+        // Passwords are masked in any export, so they carry nothing.
+        if (!keys[n] || !writable(id, access::Peer::line()) ||
+            (settings::def(id).flags & settings::kSecret) != 0)
+          continue;
+        w.key(settings::def(id).key);
+        web::write_setting(values, id, w);
+        ++count;
+      }
+      w.end_object();
+    }
+    out.write("\r\n");
+    send(out, "ok %d settings differ from the defaults", count);
+    return;
+  }
+  const std::string_view prefix(list_prefix_);
+  for (std::size_t n = 0; n < settings::kCount; ++n) {
+    const auto id = static_cast<Id>(n);
+    const char* key = settings::def(id).key;
+    // Not the stored hashes and tokens, which the web's form hides too.
+    if ((settings::def(id).flags & settings::kHidden) != 0) continue;
+    if (!std::string_view(key).starts_with(prefix)) continue;
+    const Value value(values, id);
+    send(out, "%s=%s", key, value.text);
+    ++count;
+  }
+  if (count == 0) {
+    const Echo echo(prefix);
+    return send(out, "error: no setting starts with '%s'", echo.text);
+  }
+  send(out, "ok %d settings", count);
+}
+
+void ConsoleSession::write_more(std::size_t room_bytes, ByteSink& out) {
+  if (listing_ == Listing::kNone) return;
+  if (controller_.settings().revision() != listing_revision_) {
+    // Its windows would no longer join up.
+    if (listing_sent_ > 0) out.write("\r\n");
+    error(out, "the settings changed during the listing: ask again");
+  } else {
+    WindowSink window(out, listing_sent_, room_bytes);
+    write_listing(window);
+    window.flush();
+    listing_sent_ += window.written();
+    if (listing_sent_ < window.total()) return;
+  }
+  listing_ = Listing::kNone;
+  // What was typed meanwhile, in order.
+  std::array<char, kHoldBytes> held{};
+  const std::size_t n = held_;
+  std::memcpy(held.data(), hold_.data(), n);
+  held_ = 0;
+  if (hold_dropped_ > 0) {
+    send(out, "error: %u bytes typed during the listing were dropped",
+         static_cast<unsigned>(hold_dropped_));
+    hold_dropped_ = 0;
+  }
+  feed(std::string_view(held.data(), n), out);
+}
+
+}  // namespace rotord::protocol
