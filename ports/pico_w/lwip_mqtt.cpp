@@ -31,7 +31,6 @@ static_assert(MQTT_VAR_HEADER_BUFFER_LEN >= mqtt::kMaxTopicBytes + 5 + 2 + 2,
               "lwIP's MQTT receive buffer cannot hold a command topic");
 
 static_assert(!LWIP_ALTCP, "recv_shim sits on a plain tcp_pcb");
-constexpr std::uint8_t kPublish = 3;  // MQTT control packet type
 
 void copy_text(std::string_view from, char* out, std::size_t cap) {
   const std::size_t n = from.size() < cap - 1 ? from.size() : cap - 1;
@@ -312,12 +311,13 @@ std::uint32_t LwipMqtt::forwardable(const pbuf* chain) {
       }
     }
     if (header == 0) break;  // the header itself is incomplete
+    // Whole up to kWholeMessageBytes; of a longer one (a PUBLISH: nothing
+    // else the broker sends is that long) the part lwIP's parser buffers
+    // first, which holds its header and topic. So at most ~1 KB is held
+    // back, whatever the stream says.
     const std::uint32_t total = header + remaining;
-    const bool publish = (at(pos) >> 4) == kPublish;
-    const std::uint32_t need =
-        !publish || total <= kWholeMessageBytes
-            ? total
-            : (total < MQTT_VAR_HEADER_BUFFER_LEN ? total : MQTT_VAR_HEADER_BUFFER_LEN);
+    static_assert(kWholeMessageBytes >= MQTT_VAR_HEADER_BUFFER_LEN, "");
+    const std::uint32_t need = total <= kWholeMessageBytes ? total : MQTT_VAR_HEADER_BUFFER_LEN;
     if (len - pos < need) break;
     left = total;
   }
