@@ -7,6 +7,7 @@
 #include "mqtt/topics.hpp"
 
 extern "C" {
+#include "lwip/def.h"
 #include "lwip/err.h"
 #include "lwip/tcp.h"
 #if LWIP_DNS
@@ -177,6 +178,13 @@ void LwipMqtt::connect_to(const ip_addr_t& address) {
   info.will_msg = kOffline;
   info.will_qos = 1;
   info.will_retain = 1;
+  // access.control_networks applies to the broker's address, as on Linux.
+  if (IP_IS_V4_VAL(address)) {
+    bridge_.set_broker_peer(
+        access::Peer::from_ipv4(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(&address)))));
+  } else {
+    bridge_.set_broker_peer({access::Peer::Kind::kOther, 0});
+  }
   phase_ = Phase::kConnecting;
   const err_t err =
       mqtt_client_connect(&client_, &address, port_, &LwipMqtt::connection_cb, this, &info);
