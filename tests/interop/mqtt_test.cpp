@@ -499,8 +499,15 @@ TEST_F(Mqtt, AFloodOfCommandsAndOversizedMessagesCostsLittle) {
   // Memory: a second flood like the first costs next to nothing more.
   const long rss_after_kb = rss_kb(daemon->pid());
   EXPECT_GT(rss_before_kb, 0);
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer keeps freed memory in quarantine, so the resident size
+  // grows with every free; its leak check at the daemon's exit stands in.
+  (void)rss_after_first_kb;
+  (void)rss_after_kb;
+#else
   EXPECT_LT(rss_after_first_kb - rss_before_kb, 32 * 1024) << rss_before_kb;
   EXPECT_LT(rss_after_kb - rss_after_first_kb, 4 * 1024) << rss_after_first_kb;
+#endif
   // Still on the broker, still answering.
   EXPECT_EQ(command("goto", R"({"az": 200})"),
             R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})"
