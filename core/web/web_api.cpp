@@ -488,7 +488,10 @@ Api::Outcome Api::get_status(const Call& call) {
 
 Api::Outcome Api::get_station(const Call& call) {
   if (station_ == nullptr) {
-    send_error(call.out, 404, "no station: MQTT is off (mqtt.enabled)", call.options);
+    send_error(call.out, 404,
+               "no station here: MQTT is off (mqtt.enabled), or this is a Pico W (a Linux "
+               "rotord on the same broker shows the station)",
+               call.options);
   } else {
     send_json(call.out, 200, call.options, [this](JsonWriter& w) { station_->write_station(w); });
   }

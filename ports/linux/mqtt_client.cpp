@@ -270,8 +270,20 @@ void MqttClient::on_message(mosquitto* /*m*/, void* self, const mosquitto_messag
 bool MqttClient::publish(std::string_view topic, std::string_view payload, bool retain) {
   if (!connected_.load()) return false;
   if (unacked_.load() >= kMaxUnacked) {
+    if (!publishing_paused_) {
+      log::warn(
+          "mqtt: the broker %s:%d acknowledges nothing (%d messages waiting): publishing "
+          "paused",
+          host_.c_str(), port_, kMaxUnacked);
+      publishing_paused_ = true;
+    }
     ++refused_publishes_;
     return false;
+  }
+  if (publishing_paused_) {
+    log::info("mqtt: the broker %s:%d acknowledges again: publishing resumed", host_.c_str(),
+              port_);
+    publishing_paused_ = false;
   }
   const std::string t(topic);
   if (mosquitto_publish(mosq_, nullptr, t.c_str(), static_cast<int>(payload.size()), payload.data(),

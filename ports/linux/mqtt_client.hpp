@@ -97,6 +97,7 @@ class MqttClient final : private mqtt::Transport {
   Millis dropped_logged_ms_ = 0;
   std::atomic<int> unacked_{0};
   std::uint64_t refused_publishes_ = 0;  ///< the loop's: kMaxUnacked reached
+  bool publishing_paused_ = false;       ///< the loop's: said so in the log
   /// The broker's address of the current connection (on_connect), for
   /// access.control_networks; guarded by mutex_.
   access::Peer broker_peer_{access::Peer::Kind::kOther, 0};

@@ -7,6 +7,7 @@
 #include "mqtt/topics.hpp"
 
 extern "C" {
+#include "lwip/def.h"
 #include "lwip/err.h"
 #include "lwip/tcp.h"
 #if LWIP_DNS
@@ -31,7 +32,6 @@ static_assert(MQTT_VAR_HEADER_BUFFER_LEN >= mqtt::kMaxTopicBytes + 5 + 2 + 2,
               "lwIP's MQTT receive buffer cannot hold a command topic");
 
 static_assert(!LWIP_ALTCP, "recv_shim sits on a plain tcp_pcb");
-constexpr std::uint8_t kPublish = 3;  // MQTT control packet type
 
 void copy_text(std::string_view from, char* out, std::size_t cap) {
   const std::size_t n = from.size() < cap - 1 ? from.size() : cap - 1;
@@ -178,6 +178,13 @@ void LwipMqtt::connect_to(const ip_addr_t& address) {
   info.will_msg = kOffline;
   info.will_qos = 1;
   info.will_retain = 1;
+  // access.control_networks applies to the broker's address, as on Linux.
+  if (IP_IS_V4_VAL(address)) {
+    bridge_.set_broker_peer(
+        access::Peer::from_ipv4(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(&address)))));
+  } else {
+    bridge_.set_broker_peer({access::Peer::Kind::kOther, 0});
+  }
   phase_ = Phase::kConnecting;
   const err_t err =
       mqtt_client_connect(&client_, &address, port_, &LwipMqtt::connection_cb, this, &info);
@@ -312,12 +319,13 @@ std::uint32_t LwipMqtt::forwardable(const pbuf* chain) {
       }
     }
     if (header == 0) break;  // the header itself is incomplete
+    // Whole up to kWholeMessageBytes; of a longer one (a PUBLISH: nothing
+    // else the broker sends is that long) the part lwIP's parser buffers
+    // first, which holds its header and topic. So at most ~1 KB is held
+    // back, whatever the stream says.
     const std::uint32_t total = header + remaining;
-    const bool publish = (at(pos) >> 4) == kPublish;
-    const std::uint32_t need =
-        !publish || total <= kWholeMessageBytes
-            ? total
-            : (total < MQTT_VAR_HEADER_BUFFER_LEN ? total : MQTT_VAR_HEADER_BUFFER_LEN);
+    static_assert(kWholeMessageBytes >= MQTT_VAR_HEADER_BUFFER_LEN, "");
+    const std::uint32_t need = total <= kWholeMessageBytes ? total : MQTT_VAR_HEADER_BUFFER_LEN;
     if (len - pos < need) break;
     left = total;
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "lwip_mqtt.hpp"
 #include "lwip_transport.hpp"
 #include "lwip_udp.hpp"
 #include "pico/cyw43_arch.h"
@@ -120,6 +121,7 @@ struct Running {
   web::Api* api = nullptr;
   std::span<lwip_port::TcpServer* const> servers;
   std::span<lwip_port::UdpService* const> udp_services;
+  lwip_port::LwipMqtt* mqtt = nullptr;
 };
 Running g_running;
 
@@ -252,6 +254,18 @@ void network_start(const NetworkDeps& d, Millis now) {
   static lwip_port::TcpServer* const servers[] = {&wrc.server(),   &rotctld.server(),
                                                   &gs232.server(), &easycomm.server(),
                                                   &seed.server(),  &http.server()};
+  // The station's MQTT broker (docs/mqtt.md): state, commands and Home
+  // Assistant discovery through the same mqtt::Bridge as Linux, on lwIP's
+  // MQTT client; 9,720 bytes of static RAM (lwip_mqtt.hpp), whether or not
+  // mqtt.enabled is on. The prefix defaults to rotord/<net.hostname>.
+  static_assert(sizeof(lwip_port::LwipMqtt) <= 9720,
+                "the Pico W's MQTT RAM grew: update docs/mqtt.md and the READMEs, then this");
+  static char web_url[48];
+  const std::string_view host_name = settings.text(settings::Id::kNetHostname);
+  std::snprintf(web_url, sizeof web_url, "http://%.*s.local/", static_cast<int>(host_name.size()),
+                host_name.data());
+  static lwip_port::LwipMqtt mqtt(api, settings, host_name.empty() ? "rotord" : host_name, web_url,
+                                  ROTORD_VERSION);
   g_running.wifi = &wifi;
   g_running.api = &api;
   g_running.servers = servers;
@@ -271,6 +285,7 @@ void network_start(const NetworkDeps& d, Millis now) {
   static_assert(protocol::kDatagramPersonalityCount == 2, "serve every UDP protocol");
   static lwip_port::UdpService* const udp_services[] = {&n1mm, &pst};
   g_running.udp_services = udp_services;
+  g_running.mqtt = &mqtt;
   if (g_running.network) {
     wifi.begin(now);
     // lwIP listens on every address, so the servers work on the station and
@@ -304,6 +319,7 @@ void network_tick(Millis now) {
   for (lwip_port::TcpServer* server : g_running.servers) server->poll(now);
   for (lwip_port::UdpService* service : g_running.udp_services) service->poll();
   g_running.wifi->step(now);
+  g_running.mqtt->poll(now, g_running.wifi->state() == Wifi::State::kStation);
 }
 
 void network_wait_until(absolute_time_t next_tick) {

@@ -39,6 +39,7 @@ class Broker {
   }
   ~Broker() { stop(); }
   int port() const { return port_; }
+  pid_t pid() const { return pid_; }
   void start() {
     const std::string conf = dir_ + "/mosquitto.conf";
     std::ofstream(conf) << "listener " << port_ << " 127.0.0.1\n" << conf_;
@@ -221,6 +222,17 @@ TEST_F(Mqtt, TheAllowListAppliesToTheBrokersAddress) {
   EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
                                  "\n");
   EXPECT_TRUE(seen("rotord/test/state", R"("mode":"idle")"));
+}
+
+TEST_F(Mqtt, TheControlLockRefusesTheBrokerButNotItsStop) {
+  start_daemon(true);
+  // A browser takes the lock (access control off: its cookie names it).
+  const HttpResponse lock = http(daemon->ports().web, "POST", "/api/lock", R"({"minutes": 5})");
+  ASSERT_EQ(lock.status, 200) << lock.body;
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("cmd":"goto","status":423)"),
+            std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
 }
 
 TEST_F(Mqtt, ABrokerOnTheAllowListControls) {
@@ -487,12 +499,40 @@ TEST_F(Mqtt, AFloodOfCommandsAndOversizedMessagesCostsLittle) {
   // Memory: a second flood like the first costs next to nothing more.
   const long rss_after_kb = rss_kb(daemon->pid());
   EXPECT_GT(rss_before_kb, 0);
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer keeps freed memory in quarantine, so the resident size
+  // grows with every free; its leak check at the daemon's exit stands in.
+  (void)rss_after_first_kb;
+  (void)rss_after_kb;
+#else
   EXPECT_LT(rss_after_first_kb - rss_before_kb, 32 * 1024) << rss_before_kb;
   EXPECT_LT(rss_after_kb - rss_after_first_kb, 4 * 1024) << rss_after_first_kb;
+#endif
   // Still on the broker, still answering.
   EXPECT_EQ(command("goto", R"({"az": 200})"),
             R"({"cmd":"goto","status":200,"response":{"ok":true,"az_target":200,"el_target":null}})"
             "\n");
+}
+
+TEST_F(Mqtt, ABrokerThatStopsReadingCannotGrowTheQueue) {
+  // 10 states a second while the rotator moves; the broker, frozen, never
+  // acknowledges them: after 64 rotord stops queueing, says so, and goes on
+  // once the broker does.
+  start_daemon(false, "rotord/test", true, R"(, "mqtt.state_hz": 10)");
+  ASSERT_EQ(retained("rotord/test/availability"), "online\n");
+  const pid_t broker_pid = broker->pid();
+  ASSERT_EQ(::kill(broker_pid, SIGSTOP), 0);
+  TcpClient wrc(daemon->ports().wrc);
+  EXPECT_EQ(wrc.ask("AZ 440\n"), "OK AZ 440.00");  // a long move: a state every 100 ms
+  const bool paused = daemon->wait_for_output(
+      "acknowledges nothing (64 messages waiting): publishing paused", 60000);
+  ::kill(broker_pid, SIGCONT);
+  ASSERT_TRUE(paused) << daemon->output();
+  // The rotator was controlled throughout; the broker catches up and the
+  // state flows again.
+  EXPECT_EQ(http(daemon->ports().web, "POST", "/api/stop").status, 200);
+  EXPECT_TRUE(daemon->wait_for_output("publishing resumed", 30000)) << daemon->output();
+  EXPECT_TRUE(seen("rotord/test/state", R"("mode":"idle")", 30));
 }
 
 TEST_F(Mqtt, HomeAssistantDiscoveryFollowsTheSchema) {

@@ -339,6 +339,23 @@ TEST_F(LwipMqttTest, WithoutMqttControlOnlyStopIsObeyed) {
                                    "\n");
 }
 
+TEST_F(LwipMqttTest, TheAllowListAppliesToTheBrokersAddress) {
+  // The broker's address is not on the list: its commands are read-only.
+  r.settings.set_text(Id::kAccessControlNetworks, "192.0.2.0/24");
+  start(true);
+  ASSERT_TRUE(wait_connected());
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("cmd":"goto","status":403)"),
+            std::string::npos);
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+  // Now it is (the list is read at each command).
+  {
+    CoreLock lock;
+    r.controller->settings().set_text(Id::kAccessControlNetworks, tap().host_ip + "/32");
+  }
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("status":200)"), std::string::npos);
+}
+
 TEST_F(LwipMqttTest, TheWillSaysOfflineWhenTheConnectionDies) {
   start(false);
   ASSERT_TRUE(wait_connected());

@@ -20,11 +20,11 @@
 // copy (lwip_transport.hpp, ServerConfig::is_immutable).
 #define MEMP_NUM_PBUF 32
 
-// Connections: the static slots of main.cpp (web 4, WRC 4, rotctld 3,
-// GS-232 2, Easycomm 2, seed 2: 17), plus 5 for refused clients and pcbs in
-// TIME_WAIT. Listeners: one per protocol port (web, WRC, rotctld, GS-232,
+// Connections: the static slots of network_services.cpp (web 4, WRC 4,
+// rotctld 3, GS-232 2, Easycomm 2, seed 2: 17), the MQTT broker's (1), plus 5
+// for refused clients and pcbs in TIME_WAIT. Listeners: one per protocol port (web, WRC, rotctld, GS-232,
 // Easycomm, seed: 6).
-#define MEMP_NUM_TCP_PCB 22
+#define MEMP_NUM_TCP_PCB 23
 #define MEMP_NUM_TCP_PCB_LISTEN 6
 // UDP: DHCP client and server, DNS, SNTP, mDNS, and the two rotor
 // message ports (N1MM+, PstRotator; docs/protocols/udp.md).
@@ -72,6 +72,9 @@ void rotord_sntp_set_time_us(uint32_t sec, uint32_t us);
 #define LWIP_DHCP_DOES_ACD_CHECK 0
 // The RP2040 has no hardware checksum; this is lwIP's fastest portable one.
 #define LWIP_CHKSUM_ALGORITHM 3
+
+// lwIP's MQTT client (apps/mqtt): its buffers, sized for rotord's messages.
+#include "../lwip_mqtt_opts.h"
 
 #define MEM_STATS 0
 #define SYS_STATS 0
