@@ -7,6 +7,7 @@
 #include <thread>
 
 extern "C" {
+#include "lwip/netif.h"
 #include "lwip/tcpip.h"
 }
 
@@ -29,5 +30,19 @@ class CoreLock {
   CoreLock(const CoreLock&) = delete;
   CoreLock& operator=(const CoreLock&) = delete;
 };
+
+/// A test host: `n` up at `address`/24 with no gateway, its frames handled by
+/// `init` (which decides what "the wire" is). Hold the CoreLock. False when
+/// lwIP refuses the netif.
+[[nodiscard]] inline bool add_host_netif(netif& n, const ip4_addr_t& address, netif_init_fn init) {
+  ip4_addr_t mask;
+  ip4_addr_t gw;
+  IP4_ADDR(&mask, 255, 255, 255, 0);
+  IP4_ADDR(&gw, 0, 0, 0, 0);
+  if (netif_add(&n, &address, &mask, &gw, nullptr, init, tcpip_input) == nullptr) return false;
+  netif_set_up(&n);
+  netif_set_link_up(&n);
+  return true;
+}
 
 }  // namespace rotord::testing

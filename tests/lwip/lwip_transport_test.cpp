@@ -232,14 +232,7 @@ class LwipTransportTest : public ::testing::Test {
     CoreLock lock;
     IP4_ADDR(ip_2_ip4(&addr_), 10, 0, 0, 1);
     IP_SET_TYPE_VAL(addr_, IPADDR_TYPE_V4);
-    ip4_addr_t mask;
-    ip4_addr_t gw;
-    IP4_ADDR(&mask, 255, 255, 255, 0);
-    IP4_ADDR(&gw, 0, 0, 0, 0);
-    ASSERT_NE(netif_add(&netif_, ip_2_ip4(&addr_), &mask, &gw, nullptr, &init_netif, tcpip_input),
-              nullptr);
-    netif_set_up(&netif_);
-    netif_set_link_up(&netif_);
+    ASSERT_TRUE(testing::add_host_netif(netif_, *ip_2_ip4(&addr_), &init_netif));
   }
 
   void TearDown() override {
@@ -553,15 +546,9 @@ class LwipAdmissionTest : public LwipTransportTest {
     CoreLock lock;
     for (std::size_t i = 0; i < hosts_.size(); ++i) {
       ip4_addr_t a;
-      ip4_addr_t mask;
-      ip4_addr_t gw;
       IP4_ADDR(&a, 10, 0, static_cast<u8_t>(i + 1), 1);
-      IP4_ADDR(&mask, 255, 255, 255, 0);
-      IP4_ADDR(&gw, 0, 0, 0, 0);
       ip_addr_copy_from_ip4(host_addr_[i], a);
-      ASSERT_NE(netif_add(&hosts_[i], &a, &mask, &gw, nullptr, &init_netif, tcpip_input), nullptr);
-      netif_set_up(&hosts_[i]);
-      netif_set_link_up(&hosts_[i]);
+      ASSERT_TRUE(testing::add_host_netif(hosts_[i], a, &init_netif));
     }
   }
   void TearDown() override {

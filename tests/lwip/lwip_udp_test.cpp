@@ -75,14 +75,7 @@ class LwipUdpTest : public ::testing::Test {
     CoreLock lock;
     IP4_ADDR(ip_2_ip4(&addr_), 10, 0, 0, 1);
     IP_SET_TYPE_VAL(addr_, IPADDR_TYPE_V4);
-    ip4_addr_t mask;
-    ip4_addr_t gw;
-    IP4_ADDR(&mask, 255, 255, 255, 0);
-    IP4_ADDR(&gw, 0, 0, 0, 0);
-    ASSERT_NE(netif_add(&netif_, ip_2_ip4(&addr_), &mask, &gw, nullptr, &init_netif, tcpip_input),
-              nullptr);
-    netif_set_up(&netif_);
-    netif_set_link_up(&netif_);
+    ASSERT_TRUE(testing::add_host_netif(netif_, *ip_2_ip4(&addr_), &init_netif));
     // The defaults: lwIP's own ports here, nothing the host uses.
     ASSERT_TRUE(pst.start(12000));
     ASSERT_TRUE(n1mm.start(12040));
