@@ -63,7 +63,7 @@ fi
 # ships its header but not its source. Debian's own source tarball of the
 # same version, checksum-verified, unpacked into the build tree
 # (BUILD_DIR, default build: <build>/_deps/lwip-2.1.3); never committed. A
-# failed download only warns: that test then reports itself skipped.
+# failed download only warns here: that test then fails, naming the file.
 fetch_lwip_source() {
   local deps="${BUILD_DIR:-build}/_deps"
   local url="http://deb.debian.org/debian/pool/main/l/lwip/lwip_2.1.3+dfsg1.orig.tar.xz"
@@ -84,7 +84,7 @@ fetch_lwip_source() {
   tar -xJf "$tarball" -C "$deps" lwip-2.1.3/src/apps/mqtt lwip-2.1.3/COPYING
 }
 if [ "${1:-}" != "--deb" ]; then
-  fetch_lwip_source || echo "install-deps: WARNING: no lwIP source: the Pico W's MQTT host test will be skipped" >&2
+  fetch_lwip_source || echo "install-deps: WARNING: no lwIP source: the Pico W's MQTT host test (lwip_mqtt_tests) will fail" >&2
 fi
 
 # The emulated-RP2040 harness (make hil, and its unit tests in make test):
