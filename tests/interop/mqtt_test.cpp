@@ -20,6 +20,7 @@
 
 #include "daemon_process.hpp"
 #include "http_client.hpp"
+#include "mosquitto_broker.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
@@ -28,50 +29,21 @@ namespace {
 /// A Mosquitto broker on 127.0.0.1:port, anonymous, no persistence.
 /// `conf`: lines that replace `allow_anonymous true` (logins, ACLs);
 /// `client`: the options mosquitto_pub needs to connect then (-u, -P).
-class Broker {
+class Broker : public testing::MosquittoBroker {
  public:
   explicit Broker(const std::string& dir, int port = 0,
                   const std::string& conf = "allow_anonymous true\n",
                   const std::string& client = "")
-      : dir_(dir), port_(port), conf_(conf), client_(client) {
-    if (port_ == 0) port_ = free_port();
-    start();
-  }
-  ~Broker() { stop(); }
+      : Broker(dir, port != 0 ? port : free_port(), conf, client, Chosen{}) {}
   int port() const { return port_; }
-  pid_t pid() const { return pid_; }
-  void start() {
-    const std::string conf = dir_ + "/mosquitto.conf";
-    std::ofstream(conf) << "listener " << port_ << " 127.0.0.1\n" << conf_;
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      // Its log goes to a file in the test's directory, not the test output.
-      const int log =
-          ::open((dir_ + "/mosquitto.log").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0600);
-      if (log >= 0) {
-        ::dup2(log, 1);
-        ::dup2(log, 2);
-      }
-      ::execlp("mosquitto", "mosquitto", "-c", conf.c_str(), static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    // Ready when a client can connect (bounded; liveness only).
-    run_command("for i in $(seq 100); do mosquitto_pub -p " + std::to_string(port_) + " " +
-                client_ + " -t rotord-test/ping -n 2>/dev/null && break; sleep 0.05; done");
-  }
-  void stop() {
-    if (pid_ <= 0) return;
-    ::kill(pid_, SIGKILL);
-    ::waitpid(pid_, nullptr, 0);
-    pid_ = -1;
-  }
 
  private:
-  std::string dir_;
+  struct Chosen {};
+  Broker(const std::string& dir, int port, const std::string& conf, const std::string& client,
+         Chosen)
+      : MosquittoBroker(dir, "127.0.0.1", port, conf, "-p " + std::to_string(port) + " " + client),
+        port_(port) {}
   int port_;
-  std::string conf_;
-  std::string client_;
-  pid_t pid_ = -1;
 };
 
 class Mqtt : public ::testing::Test {

@@ -37,6 +37,7 @@
 #include "fake_rotator.hpp"
 #include "lwip_harness.hpp"
 #include "lwip_mqtt.hpp"
+#include "mosquitto_broker.hpp"
 #include "shell.hpp"
 #include "web/web_api.hpp"
 
@@ -168,37 +169,11 @@ TapNet& tap() {
 }
 
 /// A Mosquitto on the tap's host side.
-class Broker {
+class Broker : public testing::MosquittoBroker {
  public:
-  explicit Broker(const std::string& dir) : dir_(dir) { start(); }
-  ~Broker() { stop(); }
-  void start() {
-    const std::string conf = dir_ + "/mosquitto.conf";
-    std::ofstream(conf) << "listener 1883 " << tap().host_ip << "\nallow_anonymous true\n";
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      const int log =
-          ::open((dir_ + "/mosquitto.log").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0600);
-      if (log >= 0) {
-        ::dup2(log, 1);
-        ::dup2(log, 2);
-      }
-      ::execlp("mosquitto", "mosquitto", "-c", conf.c_str(), static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    run_command("for i in $(seq 100); do mosquitto_pub -h " + tap().host_ip +
-                " -t rotord-test/ping -n 2>/dev/null && break; sleep 0.05; done");
+  explicit Broker(const std::string& dir)
+      : MosquittoBroker(dir, tap().host_ip, 1883, "allow_anonymous true\n", "-h " + tap().host_ip) {
   }
-  void stop() {
-    if (pid_ <= 0) return;
-    ::kill(pid_, SIGKILL);
-    ::waitpid(pid_, nullptr, 0);
-    pid_ = -1;
-  }
-
- private:
-  std::string dir_;
-  pid_t pid_ = -1;
 };
 
 class LwipMqttTest : public ::testing::Test {
