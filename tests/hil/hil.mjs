@@ -38,7 +38,9 @@ const TICK_MS = 10;
 // ---- a rig: plant, chip, pty ----
 
 async function rig({ profile = 'g5500', sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, settings = {}, pinMap = pins }) {
-  const plant = new Plant({ binary: plantBinary, profile, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg });
+  // With noise, every conversion of a tick's burst (az.pot_samples, 8) gets its own.
+  const potSamples = noise ? 8 : undefined;
+  const plant = new Plant({ binary: plantBinary, profile, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, potSamples });
   const settingsDocument = await plant.settingsDocument(settings);
   const board = new Board({ bootrom, image: imagePath, pins: pinMap, plant, settingsDocument, echoLog: verbose });
   const bridge = new PtyBridge({ endpoint: board.ports[1] });

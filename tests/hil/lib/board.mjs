@@ -239,8 +239,21 @@ export class Board {
     }
     const adc = rp.adc;
     const read = adc.onADCRead;
+    // A pot's conversions within one plant step take its samples in turn
+    // (each with its own noise when the plant gives several, --pot-samples).
+    const turn = new Map();
     adc.onADCRead = (channel) => {
       this.adcReads.push(this.nowMs);
+      const s = this.sensors;
+      const samples =
+        channel === adcChannel(this.pins.az_pot) ? s?.potSamples
+        : channel === adcChannel(this.pins.el_pot) ? s?.el?.potSamples
+        : undefined;
+      if (samples?.length > 1) {
+        const i = turn.get(channel) ?? 0;
+        adc.channelValues[channel] = samples[i % samples.length];
+        turn.set(channel, i + 1);
+      }
       read(channel);
     };
     if (this.sensors) this.applySensors(this.sensors);

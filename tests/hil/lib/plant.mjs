@@ -4,10 +4,17 @@
 import { spawn } from 'node:child_process';
 import { createInterface } from 'node:readline';
 
+/** A POT field: one code, or several conversions comma-separated (--pot-samples). */
+function pot(field) {
+  const potSamples = field.split(',').map(Number);
+  return { potCounts: potSamples[0], potSamples };
+}
+
 export class Plant {
   /**
    * opts: { binary, profile, sensor, thetaDeg, speedScale, noise,
-   *         elSensor (plays the elevation too: 'pot' or 'ma3'), elThetaDeg }
+   *         elSensor (plays the elevation too: 'pot' or 'ma3'), elThetaDeg,
+   *         potSamples (conversions per pot per step, each with its own noise) }
    */
   constructor(opts) {
     const args = ['--profile', opts.profile ?? 'g5500'];
@@ -17,6 +24,7 @@ export class Plant {
     if (opts.noise) args.push('--noise', 'on');
     if (opts.elSensor) args.push('--el', opts.elSensor);
     if (opts.elThetaDeg !== undefined) args.push('--theta-el', String(opts.elThetaDeg));
+    if (opts.potSamples !== undefined) args.push('--pot-samples', String(opts.potSamples));
     this.playsEl = Boolean(opts.elSensor);
     this.proc = spawn(opts.binary, args, { stdio: ['pipe', 'pipe', 'inherit'] });
     this.waiting = [];
@@ -63,7 +71,7 @@ export class Plant {
     const el = this.playsEl
       ? {
           thetaDeg: Number(f[10]),
-          potCounts: Number(f[11]),
+          ...pot(f[11]),
           ma3Valid: f[12] === '1',
           ma3HighUs: Number(f[13]),
           ma3LowUs: Number(f[14]),
@@ -75,7 +83,7 @@ export class Plant {
     return {
       el,
       thetaDeg: Number(f[0]),
-      potCounts: Number(f[1]),
+      ...pot(f[1]),
       ma3Valid: f[2] === '1',
       ma3HighUs: Number(f[3]),
       ma3LowUs: Number(f[4]),

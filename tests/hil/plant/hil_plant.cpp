@@ -6,11 +6,14 @@
 // the plant to an absolute emulated millisecond.
 //
 //   rotord_hil_plant --profile g5500 [--sensor pot|ma3] [--theta DEG] [--noise on|off]
-//                    [--speed-scale K] [--el pot|ma3] [--theta-el DEG]
+//                    [--speed-scale K] [--el pot|ma3] [--theta-el DEG] [--pot-samples N]
 //
 // Without --el the harness plays the azimuth only (el.enabled = 0 in the
 // settings it prints); with it, the profile's elevation too, on its own pins.
 // --noise on: the simulator's sensor noise (seeded, so every run is the same).
+// --pot-samples N: each pot's POT field is N conversions, comma-separated,
+// each with its own noise (the firmware converts az.pot_samples times per
+// tick and takes the median: one value repeated would defeat that filter).
 //
 // Commands (stdin), replies (stdout):
 //   s MS CW CCW FAST BRAKE PWM_CW PWM_CCW [UP DOWN EL_FAST PWM_UP PWM_DOWN]
@@ -71,6 +74,7 @@ struct Options {
   double speed_scale = 1.0;
   const char* el_sensor = nullptr;  // null: the elevation is switched off
   double theta_el_deg = NAN;        // the profile's start (parked at its minimum)
+  int pot_samples = 1;              // conversions per pot per reply
 };
 
 bool parse_options(int argc, char** argv, Options& o) {
@@ -92,11 +96,13 @@ bool parse_options(int argc, char** argv, Options& o) {
       o.el_sensor = value;
     } else if (arg == "--theta-el") {
       o.theta_el_deg = std::atof(value);
+    } else if (arg == "--pot-samples") {
+      o.pot_samples = std::atoi(value);
     } else {
       return false;
     }
   }
-  return o.speed_scale > 0.0;
+  return o.speed_scale > 0.0 && o.pot_samples >= 1 && o.pot_samples <= 32;
 }
 
 /// Prints the user's layer of settings the firmware needs for this rotator:
@@ -206,16 +212,17 @@ int closed(rotord::hal::DigitalIn* in) {
 }
 
 /// One axis's part of the `s` reply: angle, pot code, MA3 frame, its two end switches.
-void print_axis(sim::SimRotator& rotator, AxisId axis, AxisSensors& sensors) {
+void print_axis(sim::SimRotator& rotator, AxisId axis, AxisSensors& sensors, int pot_samples) {
   const double now_s = rotator.plant(axis).time_s();
   sensors.pot.update(now_s);
   sensors.ma3.update(now_s);
   const rotord::hal::PwmPeriod period = sensors.ma3.read();
   const rotord::AxisIo io = rotator.io(axis);
-  std::printf("%.4f %u %d %u %u %d %d", rotator.plant(axis).theta_deg(),
-              static_cast<unsigned>(sensors.pot.read_counts()), period.valid ? 1 : 0,
-              static_cast<unsigned>(period.high_us), static_cast<unsigned>(period.low_us),
-              closed(io.limit_cw), closed(io.limit_ccw));
+  std::printf("%.4f ", rotator.plant(axis).theta_deg());
+  for (int i = 0; i < pot_samples; ++i)
+    std::printf(i == 0 ? "%u" : ",%u", static_cast<unsigned>(sensors.pot.read_counts()));
+  std::printf(" %d %u %u %d %d", period.valid ? 1 : 0, static_cast<unsigned>(period.high_us),
+              static_cast<unsigned>(period.low_us), closed(io.limit_cw), closed(io.limit_ccw));
 }
 
 /// `az`/`el` at the start of a command's arguments (skipped); the azimuth when absent.
@@ -237,7 +244,8 @@ int main(int argc, char** argv) {
   if (!parse_options(argc, argv, opt)) {
     std::fprintf(stderr,
                  "usage: rotord_hil_plant --profile NAME [--sensor pot|ma3] [--theta DEG] "
-                 "[--noise on|off] [--speed-scale K] [--el pot|ma3] [--theta-el DEG]\n");
+                 "[--noise on|off] [--speed-scale K] [--el pot|ma3] [--theta-el DEG] "
+                 "[--pot-samples N]\n");
     return 2;
   }
   const sim::Profile* base = sim::find_profile(opt.profile);
@@ -316,12 +324,12 @@ int main(int argc, char** argv) {
       io.drive->apply(outputs(u[0], u[1], u[2], u[3], u[4], u[5]));
       if (got == 12) el_io.drive->apply(outputs(u[6], u[7], u[8], 0, u[9], u[10]));
       rotator.advance_to(Millis{ms});
-      print_axis(rotator, AxisId::kAz, az_sensors);
+      print_axis(rotator, AxisId::kAz, az_sensors, opt.pot_samples);
       std::printf(" %d %d %d", closed(io.t1), closed(io.t2),
                   rotator.plant(AxisId::kAz).stalled() ? 1 : 0);
       if (play_el) {
         std::printf(" ");
-        print_axis(rotator, AxisId::kEl, el_sensors);
+        print_axis(rotator, AxisId::kEl, el_sensors, opt.pot_samples);
         std::printf(" %d", rotator.plant(AxisId::kEl).stalled() ? 1 : 0);
       }
       std::printf("\n");
