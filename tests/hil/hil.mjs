@@ -337,6 +337,31 @@ const scenarios = {
     }
   },
 
+  /** The elevation's UP end switch (GPIO 19) closing while it turns up cuts UP on the first tick after it. */
+  async 'el-limit-switch'() {
+    const r = await rig({ elSensor: 'pot', thetaDeg: 200, elThetaDeg: 30 });
+    const c = new LineClient(r);
+    try {
+      check((await c.send('U')) !== null, 'U (turn up)');
+      check(await r.board.runUntil(() => r.board.outputLevel(pins.el_up), 2000, 1), `UP relay (GPIO ${pins.el_up}) on`);
+      await r.board.run(300);
+      await r.plant.command('limit el cw 1 -1');
+      await r.board.run(1); // the plant applies it at its next millisecond
+      const closedMs = r.board.nowMs;
+      check(!r.board.rp.gpio[pins.el_limit_up].inputValue, `the UP end switch (GPIO ${pins.el_limit_up}) reads low: closed`);
+      await r.board.runUntil(() => !r.board.outputLevel(pins.el_up), 100, 0.1);
+      const cut = r.board.edges.find((e) => e.gpio === pins.el_up && !e.value && e.ms >= closedMs - 1);
+      check(cut && cut.ms - closedMs <= TICK_MS + 0.5, `UP cut ${(cut?.ms - closedMs).toFixed(2)} ms after the switch closed (within a tick)`);
+      const again = await c.send('U');
+      await r.board.run(200);
+      check(again === '?>' && !r.board.outputLevel(pins.el_up), `U refused while the UP end switch is closed: "${again}", UP stays off`);
+      check(!r.board.outputLevel(pins.az_cw) && !r.board.outputLevel(pins.az_ccw), 'the azimuth never moved');
+    } finally {
+      c.close();
+      await r.close();
+    }
+  },
+
   /** Push buttons (wired by settings: GPIO 4 and 13, free by default): held, the axis turns; released, it stops. */
   async 'buttons'() {
     const wired = { ...pins, btn_cw: 4, btn_ccw: 13 };

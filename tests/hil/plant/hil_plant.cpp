@@ -22,7 +22,8 @@
 //        and with --el: EL_THETA EL_POT EL_MA3_VALID EL_MA3_HIGH EL_MA3_LOW L_UP L_DOWN EL_STALLED
 //   set [az|el] THETA    -> ok     axis at rest at THETA
 //   jam [az|el] SECONDS  -> ok     mechanical jam (-1: for ever)
-//   limit cw|ccw 0|1 S   -> ok     an azimuth limit switch stuck open/closed for S seconds
+//   limit [az|el] cw|ccw 0|1 S -> ok  a limit switch stuck open/closed for S seconds
+//                                     (on the elevation cw is UP, ccw DOWN)
 //   clear [az|el]        -> ok     faults cleared
 //   settings [KEY=VALUE ...] -> the stored settings document for this profile
 //     (the user's layer over the table's defaults, as the firmware saves it),
@@ -349,12 +350,14 @@ int main(int argc, char** argv) {
       char which[8] = "";
       int state = 0;
       double s = 0;
-      if (std::sscanf(line + 6, "%7s %d %lf", which, &state, &s) != 3 ||
+      const char* args = line + 6;
+      const AxisId axis = parse_axis(args);
+      if (std::sscanf(args, "%7s %d %lf", which, &state, &s) != 3 ||
           (std::strcmp(which, "cw") != 0 && std::strcmp(which, "ccw") != 0)) {
-        std::printf("error: limit cw|ccw 0|1 SECONDS\n");
+        std::printf("error: limit [az|el] cw|ccw 0|1 SECONDS\n");
         continue;
       }
-      rotator.limit_switch_stuck(AxisId::kAz, std::strcmp(which, "cw") == 0, state != 0,
+      rotator.limit_switch_stuck(axis, std::strcmp(which, "cw") == 0, state != 0,
                                  s < 0 ? sim::kForever_s : s);
       std::printf("ok\n");
     } else if (std::strncmp(line, "clear", 5) == 0) {
