@@ -37,8 +37,10 @@ const TICK_MS = 10;
 
 // ---- a rig: plant, chip, pty ----
 
-async function rig({ profile = 'g5500', sensor, thetaDeg, speedScale, settings = {}, pinMap = pins }) {
-  const plant = new Plant({ binary: plantBinary, profile, sensor, thetaDeg, speedScale });
+async function rig({ profile = 'g5500', sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, settings = {}, pinMap = pins }) {
+  // With noise, every conversion of a tick's burst (az.pot_samples, 8) gets its own.
+  const potSamples = noise ? 8 : undefined;
+  const plant = new Plant({ binary: plantBinary, profile, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, potSamples });
   const settingsDocument = await plant.settingsDocument(settings);
   const board = new Board({ bootrom, image: imagePath, pins: pinMap, plant, settingsDocument, echoLog: verbose });
   const bridge = new PtyBridge({ endpoint: board.ports[1] });
@@ -161,10 +163,28 @@ class LineClient {
 // ---- checks ----
 
 const angle = (r) => r.board.sensors?.thetaDeg ?? NaN;
+const elAngle = (r) => r.board.sensors?.el?.thetaDeg ?? NaN;
 const driving = (r) => {
-  const u = r.board.plantInputs();
-  return u.cw || u.ccw || u.pwmCw > 0 || u.pwmCcw > 0;
+  const on = (u) => u && (u.cw || u.ccw || u.pwmCw > 0 || u.pwmCcw > 0);
+  return on(r.board.plantInputs()) || on(r.board.elPlantInputs());
 };
+
+/**
+ * A go-to on a noisy sensor must not hunt: one start per axis that had to
+ * move (none for one that did not), no reversal, and nothing more while it
+ * stands at the target for `holdMs`.
+ */
+async function checkNoHunting(r, moved, holdMs = 2000) {
+  for (const [axis, m] of Object.entries(r.board.motion)) {
+    if (moved[axis] === undefined) continue;
+    const want = moved[axis] ? 1 : 0;
+    check(m.starts === want && m.reversals === 0, `${axis}: ${m.starts} drive start(s), ${m.reversals} reversal(s) (want ${want} and 0)`);
+  }
+  const before = { az: r.board.motion.az.starts, el: r.board.motion.el.starts };
+  await r.board.run(holdMs);
+  check(r.board.motion.az.starts === before.az && r.board.motion.el.starts === before.el && !driving(r),
+    `at rest on the noisy sensor(s) for ${holdMs} ms more: no drive started`);
+}
 
 /** Waits until the axis has stood still (no drive) for 500 ms; false on timeout. */
 async function settle(r, timeoutMs) {
@@ -258,6 +278,15 @@ const scenarios = {
     await gotoScenario({ profile: 'spid', sensor: 'pot', model: 202, from: 30, to: 50, settings: { 'usb.personality': 'easycomm' } });
   },
 
+  /** Az/el: a G-5500 (relays and pots on both axes) with rotctl -m 603 (GS-232B W az el), noise on. */
+  async 'goto-azel-relay-pot-gs232'() {
+    await azelScenario({ profile: 'g5500', sensor: 'pot', model: 603, from: [100, 10], to: [130, 40] });
+  },
+  /** Az/el: a SPID (H-bridges and MA3s on both axes) with rotctl -m 202 (Easycomm AZ EL), noise on. */
+  async 'goto-azel-hbridge-ma3-easycomm'() {
+    await azelScenario({ profile: 'spid', sensor: 'ma3', model: 202, from: [100, 20], to: [80, 45], settings: { 'usb.personality': 'easycomm' } });
+  },
+
   /** The seed protocol as a jog panel: enable, run CW, stop when the target is passed. */
   async 'seed-jog'() {
     const r = await rig({ thetaDeg: 100, settings: { 'usb.personality': 'seed' } });
@@ -302,6 +331,31 @@ const scenarios = {
       check(again === '?>', `R refused while the CW limit is closed: "${again}"`);
       await r.board.run(200);
       check(!r.board.outputLevel(pins.az_cw), 'CW stays off');
+    } finally {
+      c.close();
+      await r.close();
+    }
+  },
+
+  /** The elevation's UP end switch (GPIO 19) closing while it turns up cuts UP on the first tick after it. */
+  async 'el-limit-switch'() {
+    const r = await rig({ elSensor: 'pot', thetaDeg: 200, elThetaDeg: 30 });
+    const c = new LineClient(r);
+    try {
+      check((await c.send('U')) !== null, 'U (turn up)');
+      check(await r.board.runUntil(() => r.board.outputLevel(pins.el_up), 2000, 1), `UP relay (GPIO ${pins.el_up}) on`);
+      await r.board.run(300);
+      await r.plant.command('limit el cw 1 -1');
+      await r.board.run(1); // the plant applies it at its next millisecond
+      const closedMs = r.board.nowMs;
+      check(!r.board.rp.gpio[pins.el_limit_up].inputValue, `the UP end switch (GPIO ${pins.el_limit_up}) reads low: closed`);
+      await r.board.runUntil(() => !r.board.outputLevel(pins.el_up), 100, 0.1);
+      const cut = r.board.edges.find((e) => e.gpio === pins.el_up && !e.value && e.ms >= closedMs - 1);
+      check(cut && cut.ms - closedMs <= TICK_MS + 0.5, `UP cut ${(cut?.ms - closedMs).toFixed(2)} ms after the switch closed (within a tick)`);
+      const again = await c.send('U');
+      await r.board.run(200);
+      check(again === '?>' && !r.board.outputLevel(pins.el_up), `U refused while the UP end switch is closed: "${again}", UP stays off`);
+      check(!r.board.outputLevel(pins.az_cw) && !r.board.outputLevel(pins.az_ccw), 'the azimuth never moved');
     } finally {
       c.close();
       await r.close();
@@ -477,10 +531,12 @@ const scenarios = {
 };
 
 async function gotoScenario({ profile, sensor, model, from, to, settings = {}, bench }) {
-  const r = await rig({ profile, sensor, thetaDeg: from, settings });
+  // The simulator's sensor noise on (seeded: every run sees the same noise).
+  const r = await rig({ profile, sensor, thetaDeg: from, settings, noise: true });
   try {
     const p0 = (await rotctl(r, model, 'p')).trim().split('\n').map(Number);
     check(Math.abs(p0[0] - from) < 0.6, `rotctl -m ${model} p: ${p0[0]} (plant ${from})`);
+    r.board.resetMotion();
     await rotctl(r, model, 'P', String(to), '0');
     // Timed from the drive's start: when rotctl's bytes reach the chip is a
     // matter of the wall clock.
@@ -493,11 +549,36 @@ async function gotoScenario({ profile, sensor, model, from, to, settings = {}, b
     check(reached && (await settle(r, 5000)), `reached ${angle(r).toFixed(2)} deg for a target of ${to}, the drive on for ${moveS.toFixed(2)} s`);
     const p = (await rotctl(r, model, 'p')).trim().split('\n').map(Number);
     check(Math.abs(p[0] - angle(r)) < 0.6 && Math.abs(p[0] - to) < 1.5, `rotctl -m ${model} p: ${p[0]} (plant ${angle(r).toFixed(2)})`);
+    await checkNoHunting(r, { az: true });
     if (bench) {
       const cyclesPerTick = Math.round(moveCycles / (moveS * 100));
       console.log(`    --  CPU while moving: ${cyclesPerTick} cycles per 10 ms tick period`);
       benchRows.push({ name: `hil/${boardName}_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { cycles_per_tick: cyclesPerTick } });
     }
+  } finally {
+    await r.close();
+  }
+}
+
+/** A go-to on both axes: both targets reached and read back, on noisy sensors, without hunting. */
+async function azelScenario({ profile, sensor, model, from, to, settings = {} }) {
+  const r = await rig({ profile, sensor, elSensor: sensor, thetaDeg: from[0], elThetaDeg: from[1], settings, noise: true });
+  try {
+    const p0 = (await rotctl(r, model, 'p')).trim().split('\n').map(Number);
+    check(Math.abs(p0[0] - from[0]) < 0.6 && Math.abs(p0[1] - from[1]) < 0.6, `rotctl -m ${model} p: ${p0[0]} ${p0[1]} (plant ${from[0]} ${from[1]})`);
+    r.board.resetMotion();
+    await rotctl(r, model, 'P', String(to[0]), String(to[1]));
+    check(await r.board.runUntil(() => driving(r), 3000, 1), 'the drive starts');
+    const t0 = r.board.nowMs;
+    const there = () => Math.abs(angle(r) - to[0]) < 1.5 && Math.abs(elAngle(r) - to[1]) < 1.5 && !driving(r);
+    const reached = await r.board.runUntil(there, 30000, 1);
+    const moveS = (r.board.nowMs - t0) / 1000;
+    check(reached && (await settle(r, 5000)) && there(),
+      `reached az ${angle(r).toFixed(2)} el ${elAngle(r).toFixed(2)} deg for ${to[0]} ${to[1]} in ${moveS.toFixed(2)} s`);
+    const p = (await rotctl(r, model, 'p')).trim().split('\n').map(Number);
+    check(Math.abs(p[0] - angle(r)) < 0.6 && Math.abs(p[1] - elAngle(r)) < 0.6,
+      `rotctl -m ${model} p: ${p[0]} ${p[1]} (plant ${angle(r).toFixed(2)} ${elAngle(r).toFixed(2)})`);
+    await checkNoHunting(r, { az: true, el: true });
   } finally {
     await r.close();
   }

@@ -16,7 +16,7 @@
 import { readFileSync } from 'node:fs';
 import { RP2040, ConsoleLogger, LogLevel } from 'rp2040js';
 import { installFlashModel, writeSettingsSlot } from './flash.mjs';
-import { adcChannel, ma3Frame, plantInputs, pwmDuty, switchLevels } from './pins.mjs';
+import { adcChannel, driveDirection, elPlantInputs, ma3Frame, plantInputs, pwmDuty, switchLevels } from './pins.mjs';
 import { UsbHost } from './usb_host.mjs';
 
 const NS_PER_CYCLE = 8; // 125 MHz
@@ -84,6 +84,11 @@ export class Board {
     this.pressed = new Set(); // buttons held down: 'btn_cw', 'btn_ccw'
     this.plantMs = 0;
     this.sensors = null;
+    this.playsEl = Boolean(this.plant.playsEl);
+    // The relay outputs whose edges are recorded (and dropped by a reset).
+    this.outputPins = [this.pins.az_cw, this.pins.az_ccw, this.pins.az_speed, this.pins.az_brake];
+    if (this.playsEl) this.outputPins.push(this.pins.el_up, this.pins.el_down, this.pins.el_speed);
+    this.resetMotion();
     this.ports = [makePort(), makePort()]; // log, protocol: stable across resets
     this.boot(0);
   }
@@ -138,7 +143,27 @@ export class Board {
     this.installPio(rp);
     this.installUsb(rp);
     this.installPins(rp);
-    this.startMa3(rp);
+    this.startMa3(rp, this.pins.az_ma3, () => this.sensors);
+    if (this.playsEl) this.startMa3(rp, this.pins.el_ma3, () => this.sensors?.el);
+  }
+
+  /**
+   * Drive starts and reversals per axis, sampled every emulated millisecond
+   * from the plant's inputs: a start is off -> on, a reversal a start (or a
+   * switch without a stop) in the other direction than the last run.
+   */
+  resetMotion() {
+    const axis = () => ({ dir: 0, lastRun: 0, starts: 0, reversals: 0 });
+    this.motion = { az: axis(), el: axis() };
+  }
+
+  trackMotion(m, dir) {
+    if (dir !== 0 && dir !== m.dir) {
+      m.starts++;
+      if (m.lastRun !== 0 && dir !== m.lastRun) m.reversals++;
+      m.lastRun = dir;
+    }
+    m.dir = dir;
   }
 
   installPio(rp) {
@@ -206,8 +231,7 @@ export class Board {
   }
 
   installPins(rp) {
-    const outputs = [this.pins.az_cw, this.pins.az_ccw, this.pins.az_speed, this.pins.az_brake];
-    for (const gpio of outputs) {
+    for (const gpio of this.outputPins) {
       if (gpio < 0) continue;
       rp.gpio[gpio].addListener(() => {
         this.edges.push({ ms: this.nowMs, gpio, value: this.outputLevel(gpio) });
@@ -215,8 +239,21 @@ export class Board {
     }
     const adc = rp.adc;
     const read = adc.onADCRead;
+    // A pot's conversions within one plant step take its samples in turn
+    // (each with its own noise when the plant gives several, --pot-samples).
+    const turn = new Map();
     adc.onADCRead = (channel) => {
       this.adcReads.push(this.nowMs);
+      const s = this.sensors;
+      const samples =
+        channel === adcChannel(this.pins.az_pot) ? s?.potSamples
+        : channel === adcChannel(this.pins.el_pot) ? s?.el?.potSamples
+        : undefined;
+      if (samples?.length > 1) {
+        const i = turn.get(channel) ?? 0;
+        adc.channelValues[channel] = samples[i % samples.length];
+        turn.set(channel, i + 1);
+      }
       read(channel);
     };
     if (this.sensors) this.applySensors(this.sensors);
@@ -236,14 +273,13 @@ export class Board {
     return pwmDuty(ch.csr, ch.cc, ch.top, gpio);
   }
 
-  /** The MA3 waveform on its pin, frame after frame, from the plant's latest reading. */
-  startMa3(rp) {
-    const gpio = this.pins.az_ma3;
+  /** An MA3's waveform on its pin, frame after frame, from the plant's latest reading of that axis. */
+  startMa3(rp, gpio, axisSensors) {
     if (gpio < 0) return;
     const pin = rp.gpio[gpio];
     let frame = null;
     const rise = rp.clock.createAlarm(() => {
-      const s = this.sensors;
+      const s = axisSensors();
       frame = s ? ma3Frame(s.ma3Valid && this.ma3Connected !== false, s.ma3HighUs, s.ma3LowUs) : null;
       if (!frame) {
         rise.schedule(1_000_000);
@@ -265,6 +301,8 @@ export class Board {
     const rp = this.rp;
     const ch = adcChannel(this.pins.az_pot);
     if (ch >= 0) rp.adc.channelValues[ch] = s.potCounts;
+    const elCh = s.el ? adcChannel(this.pins.el_pot) : -1;
+    if (elCh >= 0) rp.adc.channelValues[elCh] = s.el.potCounts;
     for (const [gpio, level] of switchLevels(this.pins, { ...s, buttons: this.pressed })) {
       if (rp.gpio[gpio].rawInputValue !== level) rp.gpio[gpio].setInputValue(level);
     }
@@ -272,6 +310,12 @@ export class Board {
 
   plantInputs() {
     return plantInputs(this.pins, (g) => this.outputLevel(g), (g) => this.duty(g));
+  }
+
+  /** The elevation's drive from its pins (null when the plant plays the azimuth only). */
+  elPlantInputs() {
+    if (!this.playsEl) return null;
+    return elPlantInputs(this.pins, (g) => this.outputLevel(g), (g) => this.duty(g));
   }
 
   /** Executes instructions until emulated time targetNs (or a reset). */
@@ -310,7 +354,11 @@ export class Board {
       }
       const plantMs = Math.floor(this.nowNs / 1e6);
       if (plantMs > this.plantMs) {
-        this.sensors = await this.plant.step(plantMs, this.plantInputs());
+        const u = this.plantInputs();
+        const uEl = this.elPlantInputs();
+        this.trackMotion(this.motion.az, driveDirection(u));
+        if (uEl) this.trackMotion(this.motion.el, driveDirection(uEl));
+        this.sensors = await this.plant.step(plantMs, u, uEl ?? undefined);
         this.plantMs = plantMs;
         this.applySensors(this.sensors);
       }
@@ -361,7 +409,7 @@ export class Board {
   /** A reset puts every pin back to an input: the outputs drop. A log line cut by it ends there. */
   resetAllOutputs() {
     if (this.partialLine) this.onLog(new TextEncoder().encode(' [cut by the reset]\n'));
-    for (const gpio of [this.pins.az_cw, this.pins.az_ccw, this.pins.az_speed, this.pins.az_brake]) {
+    for (const gpio of this.outputPins) {
       if (gpio >= 0 && this.outputLevel(gpio)) this.edges.push({ ms: this.nowMs, gpio, value: false });
     }
   }

@@ -80,7 +80,34 @@ export function plantInputs(pins, level, duty) {
   };
 }
 
-/** The switch pins' levels from the plant's reply and the pressed buttons (az only; unwired pins left out). */
+/**
+ * The elevation's plant inputs (played with the plant's --el): UP is the
+ * elevation's forward (the plant's CW), DOWN its reverse; it has no brake.
+ */
+export function elPlantInputs(pins, level, duty) {
+  const on = (gpio) => (gpio >= 0 && level(gpio) ? 1 : 0);
+  const pwm = (gpio) => (gpio >= 0 ? duty(gpio) : 0);
+  return {
+    cw: on(pins.el_up),
+    ccw: on(pins.el_down),
+    fast: on(pins.el_speed),
+    brake: 0,
+    pwmCw: pwm(pins.el_pwm_up),
+    pwmCcw: pwm(pins.el_pwm_down),
+  };
+}
+
+/**
+ * The direction a drive's inputs command: 1 forward (CW, up), -1 reverse,
+ * 0 off. What the harness counts starts and reversals from.
+ */
+export function driveDirection(u) {
+  const fwd = u.cw || u.pwmCw > 0;
+  const rev = u.ccw || u.pwmCcw > 0;
+  return fwd && !rev ? 1 : rev && !fwd ? -1 : 0;
+}
+
+/** The switch pins' levels from the plant's reply and the pressed buttons (unwired pins left out; the elevation's when the reply has one). */
 export function switchLevels(pins, sw) {
   const out = new Map();
   const put = (gpio, closed) => {
@@ -93,6 +120,10 @@ export function switchLevels(pins, sw) {
   // Push buttons to ground, as the switches (the harness presses them).
   put(pins.btn_cw, sw.buttons?.has('btn_cw') ?? false);
   put(pins.btn_ccw, sw.buttons?.has('btn_ccw') ?? false);
+  if (sw.el) {
+    put(pins.el_limit_up, sw.el.limitCw);
+    put(pins.el_limit_down, sw.el.limitCcw);
+  }
   return out;
 }
 

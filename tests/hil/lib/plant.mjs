@@ -4,14 +4,28 @@
 import { spawn } from 'node:child_process';
 import { createInterface } from 'node:readline';
 
+/** A POT field: one code, or several conversions comma-separated (--pot-samples). */
+function pot(field) {
+  const potSamples = field.split(',').map(Number);
+  return { potCounts: potSamples[0], potSamples };
+}
+
 export class Plant {
-  /** opts: { binary, profile, sensor, thetaDeg, speedScale, noise } */
+  /**
+   * opts: { binary, profile, sensor, thetaDeg, speedScale, noise,
+   *         elSensor (plays the elevation too: 'pot' or 'ma3'), elThetaDeg,
+   *         potSamples (conversions per pot per step, each with its own noise) }
+   */
   constructor(opts) {
     const args = ['--profile', opts.profile ?? 'g5500'];
     if (opts.sensor) args.push('--sensor', opts.sensor);
     if (opts.thetaDeg !== undefined) args.push('--theta', String(opts.thetaDeg));
     if (opts.speedScale !== undefined) args.push('--speed-scale', String(opts.speedScale));
     if (opts.noise) args.push('--noise', 'on');
+    if (opts.elSensor) args.push('--el', opts.elSensor);
+    if (opts.elThetaDeg !== undefined) args.push('--theta-el', String(opts.elThetaDeg));
+    if (opts.potSamples !== undefined) args.push('--pot-samples', String(opts.potSamples));
+    this.playsEl = Boolean(opts.elSensor);
     this.proc = spawn(opts.binary, args, { stdio: ['pipe', 'pipe', 'inherit'] });
     this.waiting = [];
     this.lines = createInterface({ input: this.proc.stdout });
@@ -44,16 +58,32 @@ export class Plant {
     if (reply !== 'ok') throw new Error(`plant: ${line}: ${reply}`);
   }
 
-  /** Outputs held from now, then advance to ms; the sensors at ms. */
-  async step(ms, u) {
-    const reply = await this.request(
-      `s ${ms} ${u.cw} ${u.ccw} ${u.fast} ${u.brake} ${u.pwmCw.toFixed(4)} ${u.pwmCcw.toFixed(4)}`,
-    );
+  /** Outputs held from now (the elevation's `uEl` when it plays one), then advance to ms; the sensors at ms. */
+  async step(ms, u, uEl) {
+    let line = `s ${ms} ${u.cw} ${u.ccw} ${u.fast} ${u.brake} ${u.pwmCw.toFixed(4)} ${u.pwmCcw.toFixed(4)}`;
+    if (this.playsEl) {
+      const e = uEl ?? { cw: 0, ccw: 0, fast: 0, pwmCw: 0, pwmCcw: 0 };
+      line += ` ${e.cw} ${e.ccw} ${e.fast} ${e.pwmCw.toFixed(4)} ${e.pwmCcw.toFixed(4)}`;
+    }
+    const reply = await this.request(line);
     const f = reply.split(' ');
-    if (f.length !== 10) throw new Error(`plant: ${reply}`);
+    if (f.length !== (this.playsEl ? 18 : 10)) throw new Error(`plant: ${reply}`);
+    const el = this.playsEl
+      ? {
+          thetaDeg: Number(f[10]),
+          ...pot(f[11]),
+          ma3Valid: f[12] === '1',
+          ma3HighUs: Number(f[13]),
+          ma3LowUs: Number(f[14]),
+          limitCw: f[15] === '1', // UP
+          limitCcw: f[16] === '1', // DOWN
+          stalled: f[17] === '1',
+        }
+      : undefined;
     return {
+      el,
       thetaDeg: Number(f[0]),
-      potCounts: Number(f[1]),
+      ...pot(f[1]),
       ma3Valid: f[2] === '1',
       ma3HighUs: Number(f[3]),
       ma3LowUs: Number(f[4]),

@@ -6,15 +6,25 @@
 // the plant to an absolute emulated millisecond.
 //
 //   rotord_hil_plant --profile g5500 [--sensor pot|ma3] [--theta DEG] [--noise on|off]
-//                    [--speed-scale K]
+//                    [--speed-scale K] [--el pot|ma3] [--theta-el DEG] [--pot-samples N]
+//
+// Without --el the harness plays the azimuth only (el.enabled = 0 in the
+// settings it prints); with it, the profile's elevation too, on its own pins.
+// --noise on: the simulator's sensor noise (seeded, so every run is the same).
+// --pot-samples N: each pot's POT field is N conversions, comma-separated,
+// each with its own noise (the firmware converts az.pot_samples times per
+// tick and takes the median: one value repeated would defeat that filter).
 //
 // Commands (stdin), replies (stdout):
-//   s MS CW CCW FAST BRAKE PWM_CW PWM_CCW   outputs held from now on, then advance to MS
+//   s MS CW CCW FAST BRAKE PWM_CW PWM_CCW [UP DOWN EL_FAST PWM_UP PWM_DOWN]
+//       outputs held from now on (the elevation's with --el), then advance to MS
 //     -> THETA POT_COUNTS MA3_VALID MA3_HIGH_US MA3_LOW_US L_CW L_CCW T1 T2 STALLED
-//   set THETA            -> ok     axis at rest at THETA
-//   jam SECONDS          -> ok     mechanical jam (-1: for ever)
-//   limit cw|ccw 0|1 S   -> ok     a limit switch stuck open/closed for S seconds
-//   clear                -> ok     faults cleared
+//        and with --el: EL_THETA EL_POT EL_MA3_VALID EL_MA3_HIGH EL_MA3_LOW L_UP L_DOWN EL_STALLED
+//   set [az|el] THETA    -> ok     axis at rest at THETA
+//   jam [az|el] SECONDS  -> ok     mechanical jam (-1: for ever)
+//   limit [az|el] cw|ccw 0|1 S -> ok  a limit switch stuck open/closed for S seconds
+//                                     (on the elevation cw is UP, ccw DOWN)
+//   clear [az|el]        -> ok     faults cleared
 //   settings [KEY=VALUE ...] -> the stored settings document for this profile
 //     (the user's layer over the table's defaults, as the firmware saves it),
 //     on one line (or "error: ..."), then "end"
@@ -63,6 +73,9 @@ struct Options {
   double theta_deg = NAN;        // the profile's start (mid-range)
   bool noise = false;
   double speed_scale = 1.0;
+  const char* el_sensor = nullptr;  // null: the elevation is switched off
+  double theta_el_deg = NAN;        // the profile's start (parked at its minimum)
+  int pot_samples = 1;              // conversions per pot per reply
 };
 
 bool parse_options(int argc, char** argv, Options& o) {
@@ -80,11 +93,17 @@ bool parse_options(int argc, char** argv, Options& o) {
       o.noise = std::string_view(value) == "on";
     } else if (arg == "--speed-scale") {
       o.speed_scale = std::atof(value);
+    } else if (arg == "--el") {
+      o.el_sensor = value;
+    } else if (arg == "--theta-el") {
+      o.theta_el_deg = std::atof(value);
+    } else if (arg == "--pot-samples") {
+      o.pot_samples = std::atoi(value);
     } else {
       return false;
     }
   }
-  return o.speed_scale > 0.0;
+  return o.speed_scale > 0.0 && o.pot_samples >= 1 && o.pot_samples <= 32;
 }
 
 /// Prints the user's layer of settings the firmware needs for this rotator:
@@ -131,6 +150,94 @@ void print_settings(const sim::Profile& profile, char* args) {
   std::printf("\n");
 }
 
+/// The sensor a --sensor / --el option names; false when it is neither.
+bool parse_sensor(const char* text, sim::SensorKind& kind) {
+  const std::string_view s = text;
+  if (s != "pot" && s != "ma3") return false;
+  kind = s == "ma3" ? sim::SensorKind::kMa3 : sim::SensorKind::kPot;
+  return true;
+}
+
+/// The sensor settings of one axis for the sensor fitted: the pot's
+/// two-point calibration at the range ends (unrounded codes, as `rotord
+/// --sim` applies them) or the MA3's zero.
+struct SensorKeys {
+  const char* sensor;
+  const char* cal_lo_counts;
+  const char* cal_lo_deg;
+  const char* cal_hi_counts;
+  const char* cal_hi_deg;
+  const char* ma3_zero;
+};
+constexpr SensorKeys kAzSensorKeys{"az.sensor",         "az.pot_cal_lo_counts",
+                                   "az.pot_cal_lo_deg", "az.pot_cal_hi_counts",
+                                   "az.pot_cal_hi_deg", "az.ma3_zero_deg"};
+constexpr SensorKeys kElSensorKeys{"el.sensor",         "el.pot_cal_lo_counts",
+                                   "el.pot_cal_lo_deg", "el.pot_cal_hi_counts",
+                                   "el.pot_cal_hi_deg", "el.ma3_zero_deg"};
+
+bool is_sensor_key(std::string_view key, const SensorKeys& k) {
+  return key == k.sensor || key == k.cal_lo_counts || key == k.cal_lo_deg ||
+         key == k.cal_hi_counts || key == k.cal_hi_deg || key == k.ma3_zero;
+}
+
+void add_sensor_overrides(const sim::AxisProfile& a, const SensorKeys& k, sim::SettingOverride* out,
+                          std::size_t& n) {
+  out[n++] = {k.sensor, static_cast<double>(a.sensor)};
+  if (a.sensor == sim::SensorKind::kPot) {
+    out[n++] = {k.cal_lo_counts, sim::adc_counts_exact(a.pot.v_at_min_v)};
+    out[n++] = {k.cal_lo_deg, a.min_deg};
+    out[n++] = {k.cal_hi_counts, sim::adc_counts_exact(a.pot.v_at_max_v)};
+    out[n++] = {k.cal_hi_deg, a.max_deg};
+  } else {
+    out[n++] = {k.ma3_zero, 0.0};
+  }
+}
+
+/// Both sensors of one axis, read whichever the controller uses (the
+/// rotator's own are only reachable through io when the profile fits them).
+struct AxisSensors {
+  AxisSensors(sim::AxisPlant& plant, const sim::AxisProfile& a, bool noise, std::uint64_t seed)
+      : pot(plant,
+            {.v0_v = a.pot.v0_v(a.min_deg, a.max_deg),
+             .k_v_per_deg = a.pot.k_v_per_deg(a.min_deg, a.max_deg),
+             .sigma_v = noise ? a.pot.sigma_v : 0.0},
+            seed),
+        ma3(plant, noise ? a.ma3_sigma_deg : 0.0, seed + 2) {}
+  sim::SimPot pot;
+  sim::SimMa3 ma3;
+};
+
+int closed(rotord::hal::DigitalIn* in) {
+  return in != nullptr && in->active() ? 1 : 0;
+}
+
+/// One axis's part of the `s` reply: angle, pot code, MA3 frame, its two end switches.
+void print_axis(sim::SimRotator& rotator, AxisId axis, AxisSensors& sensors, int pot_samples) {
+  const double now_s = rotator.plant(axis).time_s();
+  sensors.pot.update(now_s);
+  sensors.ma3.update(now_s);
+  const rotord::hal::PwmPeriod period = sensors.ma3.read();
+  const rotord::AxisIo io = rotator.io(axis);
+  std::printf("%.4f ", rotator.plant(axis).theta_deg());
+  for (int i = 0; i < pot_samples; ++i)
+    std::printf(i == 0 ? "%u" : ",%u", static_cast<unsigned>(sensors.pot.read_counts()));
+  std::printf(" %d %u %u %d %d", period.valid ? 1 : 0, static_cast<unsigned>(period.high_us),
+              static_cast<unsigned>(period.low_us), closed(io.limit_cw), closed(io.limit_ccw));
+}
+
+/// `az`/`el` at the start of a command's arguments (skipped); the azimuth when absent.
+AxisId parse_axis(const char*& args) {
+  while (*args == ' ') ++args;
+  if (std::strncmp(args, "el", 2) == 0 && (args[2] == ' ' || args[2] == '\n' || args[2] == '\0')) {
+    args += 2;
+    return AxisId::kEl;
+  }
+  if (std::strncmp(args, "az", 2) == 0 && (args[2] == ' ' || args[2] == '\n' || args[2] == '\0'))
+    args += 2;
+  return AxisId::kAz;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -138,7 +245,8 @@ int main(int argc, char** argv) {
   if (!parse_options(argc, argv, opt)) {
     std::fprintf(stderr,
                  "usage: rotord_hil_plant --profile NAME [--sensor pot|ma3] [--theta DEG] "
-                 "[--noise on|off] [--speed-scale K]\n");
+                 "[--noise on|off] [--speed-scale K] [--el pot|ma3] [--theta-el DEG] "
+                 "[--pot-samples N]\n");
     return 2;
   }
   const sim::Profile* base = sim::find_profile(opt.profile);
@@ -146,111 +254,115 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rotord_hil_plant: unknown profile %s\n", opt.profile);
     return 2;
   }
-  // A copy of the profile with the harness's variations: the sensor fitted
-  // and a faster motor (short emulated runs); the model itself is unchanged.
+  // A copy of the profile with the harness's variations: the sensors fitted
+  // and faster motors (short emulated runs); the model itself is unchanged.
   static sim::Profile profile = *base;
   profile.az.plant.v_max_deg_s *= opt.speed_scale;
-  if (opt.sensor != nullptr) {
-    const std::string_view s = opt.sensor;
-    if (s != "pot" && s != "ma3") {
-      std::fprintf(stderr, "rotord_hil_plant: --sensor pot or ma3\n");
-      return 2;
-    }
-    profile.az.sensor = s == "ma3" ? sim::SensorKind::kMa3 : sim::SensorKind::kPot;
+  profile.el.plant.v_max_deg_s *= opt.speed_scale;
+  if (opt.sensor != nullptr && !parse_sensor(opt.sensor, profile.az.sensor)) {
+    std::fprintf(stderr, "rotord_hil_plant: --sensor pot or ma3\n");
+    return 2;
   }
-  // The overrides follow the sensor and the drive: rebuilt from the axis.
-  static sim::SettingOverride overrides[32];
+  const bool play_el = opt.el_sensor != nullptr;
+  if (play_el && (!base->has_el || !parse_sensor(opt.el_sensor, profile.el.sensor))) {
+    std::fprintf(stderr, "rotord_hil_plant: --el pot or ma3, on a profile with an elevation\n");
+    return 2;
+  }
+  // The overrides follow the sensors and the drives: rebuilt from the axes.
+  static sim::SettingOverride overrides[48];
   std::size_t n = 0;
   for (const sim::SettingOverride& o : base->overrides) {
     const std::string_view key = o.key;
-    // The harness plays the azimuth only: the elevation is switched off.
-    if (key.starts_with("el.") || key.starts_with("az.pot_cal") || key == "az.ma3_zero_deg" ||
-        key == "az.sensor")
-      continue;
+    if (is_sensor_key(key, kAzSensorKeys) || is_sensor_key(key, kElSensorKeys)) continue;
+    // Without --el the harness plays the azimuth only: the elevation is switched off.
+    if (key.starts_with("el.") && !play_el) continue;
     overrides[n++] = o;
   }
-  overrides[n++] = {"el.enabled", 0.0};
-  overrides[n++] = {"az.sensor", static_cast<double>(profile.az.sensor)};
-  if (profile.az.sensor == sim::SensorKind::kPot) {
-    const sim::AxisProfile& a = profile.az;
-    overrides[n++] = {"az.pot_cal_lo_counts", sim::adc_counts_exact(a.pot.v_at_min_v)};
-    overrides[n++] = {"az.pot_cal_lo_deg", a.min_deg};
-    overrides[n++] = {"az.pot_cal_hi_counts", sim::adc_counts_exact(a.pot.v_at_max_v)};
-    overrides[n++] = {"az.pot_cal_hi_deg", a.max_deg};
-  } else {
-    overrides[n++] = {"az.ma3_zero_deg", 0.0};
-  }
+  if (!play_el) overrides[n++] = {"el.enabled", 0.0};
+  add_sensor_overrides(profile.az, kAzSensorKeys, overrides, n);
+  if (play_el) add_sensor_overrides(profile.el, kElSensorKeys, overrides, n);
   profile.overrides = {overrides, n};
 
   static sim::SimRotator rotator(profile, 1,
                                  opt.noise ? sim::SensorNoise::kOn : sim::SensorNoise::kOff);
   if (!std::isnan(opt.theta_deg)) rotator.set_theta_deg(AxisId::kAz, opt.theta_deg);
+  if (play_el && !std::isnan(opt.theta_el_deg))
+    rotator.set_theta_deg(AxisId::kEl, opt.theta_el_deg);
   rotord::AxisIo io = rotator.io(AxisId::kAz);
-  // Both sensors are read whichever the controller uses: the pot fake is
-  // only reachable through io when the profile fits a pot.
-  sim::SimPot pot(
-      rotator.plant(AxisId::kAz),
-      {.v0_v = profile.az.pot.v0_v(profile.az.min_deg, profile.az.max_deg),
-       .k_v_per_deg = profile.az.pot.k_v_per_deg(profile.az.min_deg, profile.az.max_deg),
-       .sigma_v = opt.noise ? profile.az.pot.sigma_v : 0.0},
-      7);
-  sim::SimMa3 ma3(rotator.plant(AxisId::kAz), opt.noise ? profile.az.ma3_sigma_deg : 0.0, 9);
+  rotord::AxisIo el_io = rotator.io(AxisId::kEl);
+  AxisSensors az_sensors(rotator.plant(AxisId::kAz), profile.az, opt.noise, 7);
+  AxisSensors el_sensors(rotator.plant(AxisId::kEl), profile.el, opt.noise, 11);
+  auto sensors = [&](AxisId axis) -> AxisSensors& {
+    return axis == AxisId::kEl ? el_sensors : az_sensors;
+  };
 
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   char line[2048];
   while (std::fgets(line, sizeof line, stdin) != nullptr) {
     if (line[0] == 's' && line[1] == ' ') {
       long ms = 0;
-      double cw = 0, ccw = 0, fast = 0, brake = 0, pwm_cw = 0, pwm_ccw = 0;
-      if (std::sscanf(line + 2, "%ld %lf %lf %lf %lf %lf %lf", &ms, &cw, &ccw, &fast, &brake,
-                      &pwm_cw, &pwm_ccw) != 7) {
-        std::printf("error: s MS CW CCW FAST BRAKE PWM_CW PWM_CCW\n");
+      double u[12] = {};
+      const int got =
+          std::sscanf(line + 2, "%ld %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf %lf", &ms, &u[0],
+                      &u[1], &u[2], &u[3], &u[4], &u[5], &u[6], &u[7], &u[8], &u[9], &u[10]);
+      if (got != 7 && !(got == 12 && play_el)) {
+        std::printf(
+            "error: s MS CW CCW FAST BRAKE PWM_CW PWM_CCW [UP DOWN FAST PWM_UP PWM_DOWN]\n");
         continue;
       }
-      DriveOutputs out;
-      out.set(OutputChannel::kRelayCw, static_cast<float>(cw));
-      out.set(OutputChannel::kRelayCcw, static_cast<float>(ccw));
-      out.set(OutputChannel::kSpeedFast, static_cast<float>(fast));
-      out.set(OutputChannel::kVoltageFast, static_cast<float>(fast));
-      out.set(OutputChannel::kBrake, static_cast<float>(brake));
-      out.set(OutputChannel::kPwmCw, static_cast<float>(pwm_cw));
-      out.set(OutputChannel::kPwmCcw, static_cast<float>(pwm_ccw));
-      io.drive->apply(out);
-      rotator.advance_to(Millis{ms});
-      const double now_s = rotator.plant(AxisId::kAz).time_s();
-      pot.update(now_s);
-      ma3.update(now_s);
-      const rotord::hal::PwmPeriod period = ma3.read();
-      auto closed = [](rotord::hal::DigitalIn* in) {
-        return in != nullptr && in->active() ? 1 : 0;
+      auto outputs = [](double cw, double ccw, double fast, double brake, double pwm_cw,
+                        double pwm_ccw) {
+        DriveOutputs out;
+        out.set(OutputChannel::kRelayCw, static_cast<float>(cw));
+        out.set(OutputChannel::kRelayCcw, static_cast<float>(ccw));
+        out.set(OutputChannel::kSpeedFast, static_cast<float>(fast));
+        out.set(OutputChannel::kVoltageFast, static_cast<float>(fast));
+        out.set(OutputChannel::kBrake, static_cast<float>(brake));
+        out.set(OutputChannel::kPwmCw, static_cast<float>(pwm_cw));
+        out.set(OutputChannel::kPwmCcw, static_cast<float>(pwm_ccw));
+        return out;
       };
-      std::printf("%.4f %u %d %u %u %d %d %d %d %d\n", rotator.plant(AxisId::kAz).theta_deg(),
-                  static_cast<unsigned>(pot.read_counts()), period.valid ? 1 : 0,
-                  static_cast<unsigned>(period.high_us), static_cast<unsigned>(period.low_us),
-                  closed(io.limit_cw), closed(io.limit_ccw), closed(io.t1), closed(io.t2),
+      io.drive->apply(outputs(u[0], u[1], u[2], u[3], u[4], u[5]));
+      if (got == 12) el_io.drive->apply(outputs(u[6], u[7], u[8], 0, u[9], u[10]));
+      rotator.advance_to(Millis{ms});
+      print_axis(rotator, AxisId::kAz, az_sensors, opt.pot_samples);
+      std::printf(" %d %d %d", closed(io.t1), closed(io.t2),
                   rotator.plant(AxisId::kAz).stalled() ? 1 : 0);
+      if (play_el) {
+        std::printf(" ");
+        print_axis(rotator, AxisId::kEl, el_sensors, opt.pot_samples);
+        std::printf(" %d", rotator.plant(AxisId::kEl).stalled() ? 1 : 0);
+      }
+      std::printf("\n");
     } else if (std::strncmp(line, "set ", 4) == 0) {
-      rotator.set_theta_deg(AxisId::kAz, std::atof(line + 4));
-      ma3.sample();
+      const char* args = line + 4;
+      const AxisId axis = parse_axis(args);
+      rotator.set_theta_deg(axis, std::atof(args));
+      sensors(axis).ma3.sample();
       std::printf("ok\n");
     } else if (std::strncmp(line, "jam ", 4) == 0) {
-      const double s = std::atof(line + 4);
-      rotator.jam(AxisId::kAz, s < 0 ? sim::kForever_s : s);
+      const char* args = line + 4;
+      const AxisId axis = parse_axis(args);
+      const double s = std::atof(args);
+      rotator.jam(axis, s < 0 ? sim::kForever_s : s);
       std::printf("ok\n");
     } else if (std::strncmp(line, "limit ", 6) == 0) {
       char which[8] = "";
       int state = 0;
       double s = 0;
-      if (std::sscanf(line + 6, "%7s %d %lf", which, &state, &s) != 3 ||
+      const char* args = line + 6;
+      const AxisId axis = parse_axis(args);
+      if (std::sscanf(args, "%7s %d %lf", which, &state, &s) != 3 ||
           (std::strcmp(which, "cw") != 0 && std::strcmp(which, "ccw") != 0)) {
-        std::printf("error: limit cw|ccw 0|1 SECONDS\n");
+        std::printf("error: limit [az|el] cw|ccw 0|1 SECONDS\n");
         continue;
       }
-      rotator.limit_switch_stuck(AxisId::kAz, std::strcmp(which, "cw") == 0, state != 0,
+      rotator.limit_switch_stuck(axis, std::strcmp(which, "cw") == 0, state != 0,
                                  s < 0 ? sim::kForever_s : s);
       std::printf("ok\n");
     } else if (std::strncmp(line, "clear", 5) == 0) {
-      rotator.clear_faults(AxisId::kAz);
+      const char* args = line + 5;
+      rotator.clear_faults(parse_axis(args));
       std::printf("ok\n");
     } else if (std::strncmp(line, "settings", 8) == 0) {
       print_settings(profile, line + 8);

@@ -9,6 +9,8 @@ import { fileURLToPath } from 'node:url';
 import { crc32, readSettings, writeSettingsSlot, FLASH_BYTES } from '../lib/flash.mjs';
 import {
   adcChannel,
+  driveDirection,
+  elPlantInputs,
   ma3DecodeDeg,
   ma3Frame,
   pinDefaults,
@@ -146,5 +148,51 @@ test('the settings document for a profile, in a flash slot the firmware reads', 
     assert.equal(readSettings(flash), null);
   } finally {
     plant.close();
+  }
+});
+
+test('the elevation pins: UP/DOWN relays and H-bridge into the plant, its end switches, its pot on ADC 1', async () => {
+  assert.deepEqual(
+    [pins.el_up, pins.el_down, pins.el_speed, pins.el_pwm_up, pins.el_pwm_down, pins.el_ma3, pins.el_pot],
+    [16, 17, 18, 20, 21, 3, 27],
+  );
+  const high = new Set([pins.el_down]);
+  const u = plantInputs(pins, (g) => high.has(g), () => 0);
+  const e = elPlantInputs(pins, (g) => high.has(g), (g) => (g === pins.el_pwm_up ? 0.5 : 0));
+  assert.deepEqual(u, off); // the azimuth's pins are untouched
+  assert.deepEqual(e, { cw: 0, ccw: 1, fast: 0, brake: 0, pwmCw: 0.5, pwmCcw: 0 });
+  assert.equal(driveDirection({ ...off, cw: 1 }), 1);
+  assert.equal(driveDirection({ ...off, pwmCcw: 0.3 }), -1);
+  assert.equal(driveDirection(off), 0);
+  const plant = new Plant({ binary, profile: 'g5500', thetaDeg: 200, elSensor: 'pot', elThetaDeg: 10 });
+  try {
+    const s = await plant.step(1000, off, { ...off, cw: 1 }); // UP for a second
+    assert.ok(s.el.thetaDeg > 11 && s.el.thetaDeg < 13, `${s.el.thetaDeg}`); // 2.7 deg/s
+    assert.equal(s.thetaDeg, 200);
+    assert.ok(Math.abs(potCountsToDeg(s.el.potCounts, { counts: 62, deg: 0 }, { counts: 3723, deg: 180 }) - s.el.thetaDeg) < 0.1);
+    const levels = switchLevels(pins, s);
+    assert.equal(levels.get(pins.el_limit_up), true); // open
+    assert.equal(levels.get(pins.el_limit_down), true);
+    const doc = JSON.parse(await plant.settingsDocument());
+    assert.equal(doc['el.enabled'], true);
+  } finally {
+    plant.close();
+  }
+});
+
+test('noise: seeded (two plants read the same), a fresh draw for every conversion of a step', async () => {
+  const opts = { binary, profile: 'g5500', thetaDeg: 200, noise: true, potSamples: 8 };
+  const a = new Plant(opts);
+  const b = new Plant(opts);
+  try {
+    const sa = await a.step(1, off);
+    const sb = await b.step(1, off);
+    assert.equal(sa.potSamples.length, 8);
+    assert.deepEqual(sa.potSamples, sb.potSamples);
+    assert.ok(new Set(sa.potSamples).size > 1, `${sa.potSamples}`);
+    assert.ok(sa.potSamples.every((c) => Math.abs(potCountsToDeg(c) - 200) < 2));
+  } finally {
+    a.close();
+    b.close();
   }
 });
