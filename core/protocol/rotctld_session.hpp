@@ -5,9 +5,10 @@
 #include "protocol/rotctld_commands.hpp"
 #include "protocol/rotctld_reply.hpp"
 #include "protocol/session.hpp"
+#include "tracking/track_plan.hpp"
 
 namespace rotord {
-struct Limits;
+using Limits = tracking::Travel;  // rotator/controller.hpp
 }
 
 namespace rotord::protocol {

@@ -7,6 +7,7 @@
 #include "input/manual_buttons.hpp"
 #include "rotator/tracker.hpp"
 #include "settings/settings.hpp"
+#include "tracking/track_plan.hpp"
 
 namespace rotord {
 
@@ -14,15 +15,9 @@ enum class Mode : std::uint8_t { kIdle, kGoto, kManual, kPark, kTrack };
 
 const char* mode_name(Mode mode);
 
-/// The travel the rotator may use, as every protocol must report it.
-struct Limits {
-  float az_min_deg = 0.0f;
-  float az_max_deg = 360.0f;
-  bool az_continuous = false;
-  bool has_el = false;
-  float el_min_deg = 0.0f;
-  float el_max_deg = 90.0f;
-};
+/// The travel the rotator may use, as every protocol must report it: the
+/// same record the pass planner plans within (one type, not two copies).
+using Limits = tracking::Travel;
 
 struct RotatorStatus {
   AxisStatus az;

@@ -6,7 +6,8 @@
 
 namespace rotord::tracking {
 
-/// The travel a rotator may use, as the planner needs it.
+/// The travel a rotator may use, as the planner needs it (and as the
+/// protocols report it: rotord::Limits in rotator/controller.hpp is this type).
 struct Travel {
   float az_min_deg = 0.0f;
   float az_max_deg = 360.0f;
