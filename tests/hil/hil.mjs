@@ -106,6 +106,10 @@ class LineClient {
   }
   /** Sends text, then runs the chip until parse(buffer) returns non-null; null after timeoutMs of emulated time. */
   async exchange(text, parse, timeoutMs) {
+    // Wall-clock waits here only let the event loop move bytes between the
+    // pty (socat, a real process) and the emulated CDC endpoint; the chip is
+    // held meanwhile, so no length decides a result: emulated time alone
+    // times the reply (timeoutMs).
     const wall = (ms) => new Promise((r) => setTimeout(r, ms));
     this.read(); // whatever is still on its way belongs to an earlier reply
     this.buf = '';

@@ -45,6 +45,7 @@ export class PtyBridge {
     this.proc = spawn(this.socat, [`PTY,link=${this.ptyPath},raw,echo=0`, `UNIX-CONNECT:${this.socketPath}`], {
       stdio: ['ignore', 'ignore', 'inherit'],
     });
+    // socat is a real process: poll until it has connected (bounded, liveness only).
     for (let i = 0; i < 200 && !(this.socket && existsSync(this.ptyPath)); i++)
       await new Promise((r) => setTimeout(r, 10));
     if (!this.socket || !existsSync(this.ptyPath)) throw new Error('socat did not connect the pty');

@@ -58,6 +58,7 @@ test('bytes cross the bridge unchanged both ways (raw pty, no echo, no CR/LF map
     writeSync(fd, 'hello\r');
     let got = '';
     const buf = Buffer.alloc(256);
+    // Polls for the echo through socat (a real process), bounded at 10 s: liveness only.
     const deadline = Date.now() + 10000;
     while (!got.endsWith('\r\n') && Date.now() < deadline) {
       await new Promise((r) => setTimeout(r, 10));
