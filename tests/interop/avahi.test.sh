@@ -45,8 +45,9 @@ start_rotord() {
     "$ROTORD" --bind 0.0.0.0 --web-port $web --rotctld-port $rotctld --wrc-port $wrc \
       --gs232-port $gs232 --easycomm-port 0 --seed-port 0 >"$dir/rotord.log" 2>&1 &
     rotord_pid=$!
-    wait_for "$dir/rotord.log" 'ready\|Address already in use'
-    grep -q 'ready' "$dir/rotord.log" && return 0
+    # The whole line: "already in use" holds the word "ready" too.
+    wait_for "$dir/rotord.log" '^rotord: ready$\|Address already in use'
+    grep -qx 'rotord: ready' "$dir/rotord.log" && return 0
     wait "$rotord_pid"; rotord_pid=
   done
   fail "rotord did not start"

@@ -26,7 +26,7 @@ JOURNAL_STREAM=$(stat -c '%d:%i' "$dir/out") "$ROTORD" "${no_ports[@]}" --log-le
   >>"$dir/out" 2>&1 &
 pid=$!
 # rotord works at its own pace: wait (at most 20 s) for it to say ready.
-for _ in $(seq 200); do grep -q 'ready' "$dir/out" && break; sleep 0.1; done
+for _ in $(seq 200); do grep -qx '<6>ready' "$dir/out" && break; sleep 0.1; done
 kill -TERM "$pid"
 wait "$pid"
 rc=$?
