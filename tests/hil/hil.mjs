@@ -387,6 +387,87 @@ const scenarios = {
     }
   },
 
+  /**
+   * A Ham IV (ham4: relays, brake solenoid, pot): the brake relay releases
+   * az.brake_release_ms (500) before the motor runs and engages
+   * az.brake_engage_ms (3000) after it stops, while the antenna coasts;
+   * braked, the axis holds where it stopped.
+   */
+  async 'brake-sequence'() {
+    const r = await rig({ profile: 'ham4', sensor: 'pot', thetaDeg: 100 });
+    const edge = (gpio, value, afterMs) => r.board.edges.find((e) => e.gpio === gpio && e.value === value && e.ms >= afterMs);
+    try {
+      await r.board.run(200);
+      check(!r.board.outputLevel(pins.az_brake), `at rest the brake holds: its relay (GPIO ${pins.az_brake}) is off`);
+      const sentMs = r.board.nowMs;
+      await rotctl(r, 603, 'P', '130', '0');
+      check(await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 3000, 1), 'the CW relay comes on');
+      const released = edge(pins.az_brake, true, sentMs);
+      const cwOn = edge(pins.az_cw, true, sentMs);
+      // Edges carry the instant of the GPIO write within its tick (sub-ms jitter).
+      check(released && cwOn.ms - released.ms >= 500 - 1 && cwOn.ms - released.ms <= 500 + TICK_MS + 0.5,
+        `brake released ${(cwOn.ms - released?.ms).toFixed(1)} ms before the motor (az.brake_release_ms 500)`);
+      check(await r.board.runUntil(() => !r.board.outputLevel(pins.az_cw), 15000, 1), 'the CW relay goes off');
+      const cwOff = edge(pins.az_cw, false, cwOn.ms);
+      check(r.board.outputLevel(pins.az_brake), 'the brake stays released while the antenna coasts');
+      check(await r.board.runUntil(() => !r.board.outputLevel(pins.az_brake), 5000, 1), 'the brake engages');
+      const engaged = edge(pins.az_brake, false, cwOff.ms);
+      check(engaged.ms - cwOff.ms >= 3000 - 1 && engaged.ms - cwOff.ms <= 3000 + TICK_MS + 0.5,
+        `brake engaged ${(engaged.ms - cwOff.ms).toFixed(1)} ms after the motor stopped (az.brake_engage_ms 3000)`);
+      const heldDeg = angle(r);
+      await r.board.run(2000);
+      check(Math.abs(heldDeg - 130) < 1.5 && Math.abs(angle(r) - heldDeg) < 0.05 && !r.board.outputLevel(pins.az_brake),
+        `braked at ${heldDeg.toFixed(2)} deg for a target of 130; 2 s later ${angle(r).toFixed(2)} deg`);
+      const p = (await rotctl(r, 603, 'p')).trim().split('\n').map(Number);
+      check(Math.abs(p[0] - angle(r)) < 0.6, `rotctl -m 603 p: ${p[0]} (plant ${angle(r).toFixed(2)})`);
+    } finally {
+      await r.close();
+    }
+  },
+
+  /**
+   * Soft reversal: CCW asked for while turning CW drops CW at once and
+   * energises CCW only after az.reverse_dead_ms (1000) at standstill, never
+   * both relays together.
+   */
+  async 'reversal-dead-time'() {
+    const r = await rig({ thetaDeg: 200 });
+    const c = new LineClient(r);
+    try {
+      check((await c.send('R')) !== null, 'R (turn CW)');
+      check(await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 2000, 1), 'CW relay on');
+      await r.board.run(1000);
+      const askedMs = r.board.nowMs;
+      check((await c.send('L')) !== null, 'L (turn CCW) while turning CW');
+      // When the antenna last turned faster than 0.1 deg/s (over 100 ms of
+      // the plant's angle: its coast decays exponentially, never to exactly
+      // zero, and the plant reports 0.0001 deg steps).
+      const history = [{ ms: r.board.nowMs, deg: angle(r) }];
+      let lastMovedMs = r.board.nowMs;
+      const ccwOnNow = () => {
+        history.push({ ms: r.board.nowMs, deg: angle(r) });
+        while (history.length > 1 && history[1].ms <= r.board.nowMs - 100) history.shift();
+        if (history[0].ms <= r.board.nowMs - 100 && Math.abs(angle(r) - history[0].deg) > 0.01) lastMovedMs = r.board.nowMs;
+        return r.board.outputLevel(pins.az_ccw);
+      };
+      check(await r.board.runUntil(ccwOnNow, 6000, 1), 'CCW relay on');
+      const cwOff = r.board.edges.find((e) => e.gpio === pins.az_cw && !e.value && e.ms >= askedMs);
+      const ccwOn = r.board.edges.find((e) => e.gpio === pins.az_ccw && e.value && e.ms >= askedMs);
+      check(cwOff && cwOff.ms - askedMs <= TICK_MS + 0.5, `CW dropped ${(cwOff?.ms - askedMs).toFixed(1)} ms after L reached the chip`);
+      // The dead time counts from the end of the coast (the stop is judged
+      // at rest: 4 x the learnt coast + 0.2 s, at most 3 s).
+      const stillMs = ccwOn.ms - lastMovedMs;
+      check(stillMs >= 1000 - 1 && ccwOn.ms - cwOff.ms <= 3000 + 1000 + 2 * TICK_MS,
+        `CCW on ${(ccwOn.ms - cwOff.ms).toFixed(1)} ms after CW off, the antenna at rest for the last ${stillMs.toFixed(1)} ms of it (az.reverse_dead_ms 1000)`);
+      check(!r.board.edges.some((e) => e.gpio === pins.az_ccw && e.value && e.ms < cwOff.ms && e.ms >= askedMs), 'never CW and CCW together');
+      await c.send('S');
+      check(await settle(r, 3000), 'S stops');
+    } finally {
+      c.close();
+      await r.close();
+    }
+  },
+
   /** A jammed rotator: the stall rule cuts the drive after az.stall_ms and latches the fault. */
   async 'stall'() {
     const r = await rig({ thetaDeg: 200, settings: { 'usb.personality': 'seed' } });
@@ -408,6 +489,50 @@ const scenarios = {
       check(refused === '$ERR,FAULT', `$R,cw refused: ${refused}`);
       await r.board.run(500);
       check(!r.board.outputLevel(pins.az_cw), 'CW stays off');
+    } finally {
+      c.close();
+      await r.close();
+    }
+  },
+
+  /**
+   * The position sensor fails while turning, on the pins: an open pot wiper
+   * (0 counts) or an MA3 that stops pulsing. The drive is cut and a sensor
+   * fault latched once the readings have been bad for the grace time
+   * (250 ms; the MA3's decoder first waits out its 100 ms edge timeout), not
+   * on a single bad reading; the drive stays off.
+   */
+  async 'sensor-loss-pot'() {
+    await sensorLossScenario({ profile: 'g5500', sensor: 'pot', fault: 'SENSOR_RANGE', graceMs: 250 });
+  },
+  async 'sensor-loss-ma3'() {
+    await sensorLossScenario({ profile: 'spid', sensor: 'ma3', fault: 'SENSOR_LOST', graceMs: 100 + 250 });
+  },
+
+  /**
+   * A pot whose reading freezes (a corroded wiper) while the motor turns the
+   * antenna: the controller sees no motion, so the stall rule cuts the drive
+   * az.stall_ms (3000) after the last az.stall_deg (2) of movement it saw.
+   */
+  async 'sensor-stuck-pot'() {
+    const r = await rig({ thetaDeg: 200, settings: { 'usb.personality': 'seed' } });
+    const c = new LineClient(r);
+    try {
+      await c.send('$E');
+      check((await c.send('$R,cw')) === '$OK,R,CW', '$R,cw');
+      check(await r.board.runUntil(() => driving(r), 2000, 1), 'the drive is on');
+      await r.board.run(1500); // well past the first 2 deg (the motor's start)
+      await r.plant.command('sensor stuck -1');
+      await r.board.run(1);
+      const frozenMs = r.board.nowMs;
+      const frozenDeg = angle(r);
+      check(await r.board.runUntil(() => !driving(r), 5000, 1), 'the drive is cut');
+      const afterMs = r.board.nowMs - frozenMs;
+      // The last 2 deg seen took at most 2 / 6 deg/s before the freeze.
+      check(afterMs >= 3000 - 334 - TICK_MS && afterMs <= 3000 + 2 * TICK_MS,
+        `cut ${afterMs.toFixed(0)} ms after the pot froze (az.stall_ms 3000), the antenna having turned ${(angle(r) - frozenDeg).toFixed(1)} deg meanwhile`);
+      const q = await c.send('$Q');
+      check(q?.endsWith(',STALL'), `fault latched: ${q}`);
     } finally {
       c.close();
       await r.close();
@@ -560,6 +685,34 @@ async function gotoScenario({ profile, sensor, model, from, to, settings = {}, b
       benchRows.push({ name: `hil/${boardName}_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { cycles_per_tick: cyclesPerTick } });
     }
   } finally {
+    await r.close();
+  }
+}
+
+/** A jog on the seed protocol, the sensor lost under it: the cut, its delay and the fault latched. */
+async function sensorLossScenario({ profile, sensor, fault, graceMs }) {
+  const r = await rig({ profile, sensor, thetaDeg: 200, settings: { 'usb.personality': 'seed' } });
+  const c = new LineClient(r);
+  try {
+    await c.send('$E');
+    check((await c.send('$R,cw')) === '$OK,R,CW', '$R,cw');
+    check(await r.board.runUntil(() => driving(r), 2000, 1), 'the drive is on');
+    await r.board.run(500);
+    await r.plant.command('sensor loss -1');
+    await r.board.run(1); // the plant applies it at its next millisecond
+    const lostMs = r.board.nowMs;
+    check(await r.board.runUntil(() => !driving(r), 2000, 1), 'the drive is cut');
+    const afterMs = r.board.nowMs - lostMs;
+    check(afterMs >= graceMs - 1 && afterMs <= graceMs + 2 * TICK_MS + 5,
+      `cut ${afterMs.toFixed(0)} ms after the ${sensor} was lost (grace ${graceMs} ms)`);
+    const q = await c.send('$Q');
+    check(q?.endsWith(`,${fault}`), `fault latched: ${q}`);
+    const refused = await c.send('$R,cw');
+    check(refused === '$ERR,FAULT', `$R,cw refused: ${refused}`);
+    await r.board.run(500);
+    check(!driving(r), 'the drive stays off');
+  } finally {
+    c.close();
     await r.close();
   }
 }

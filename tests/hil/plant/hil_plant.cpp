@@ -24,7 +24,11 @@
 //   jam [az|el] SECONDS  -> ok     mechanical jam (-1: for ever)
 //   limit [az|el] cw|ccw 0|1 S -> ok  a limit switch stuck open/closed for S seconds
 //                                     (on the elevation cw is UP, ccw DOWN)
-//   clear [az|el]        -> ok     faults cleared
+//   sensor [az|el] loss|stuck S -> ok  the position sensor fails for S seconds
+//                                     (-1: for ever): loss is an open pot wiper
+//                                     (0 counts) and an MA3 without pulses, stuck
+//                                     freezes both at their present reading
+//   clear [az|el]        -> ok     faults cleared (the sensors' too)
 //   settings [KEY=VALUE ...] -> the stored settings document for this profile
 //     (the user's layer over the table's defaults, as the firmware saves it),
 //     on one line (or "error: ..."), then "end"
@@ -360,9 +364,31 @@ int main(int argc, char** argv) {
       rotator.limit_switch_stuck(axis, std::strcmp(which, "cw") == 0, state != 0,
                                  s < 0 ? sim::kForever_s : s);
       std::printf("ok\n");
+    } else if (std::strncmp(line, "sensor ", 7) == 0) {
+      char which[8] = "";
+      double s = 0;
+      const char* args = line + 7;
+      AxisSensors& axis_sensors = sensors(parse_axis(args));
+      if (std::sscanf(args, "%7s %lf", which, &s) != 2 ||
+          (std::strcmp(which, "loss") != 0 && std::strcmp(which, "stuck") != 0)) {
+        std::printf("error: sensor [az|el] loss|stuck SECONDS\n");
+        continue;
+      }
+      const double duration_s = s < 0 ? sim::kForever_s : s;
+      if (std::strcmp(which, "loss") == 0) {
+        axis_sensors.pot.inject_loss(duration_s);
+        axis_sensors.ma3.inject_loss(duration_s);
+      } else {
+        axis_sensors.pot.inject_stuck(duration_s);
+        axis_sensors.ma3.inject_stuck(duration_s);
+      }
+      std::printf("ok\n");
     } else if (std::strncmp(line, "clear", 5) == 0) {
       const char* args = line + 5;
-      rotator.clear_faults(parse_axis(args));
+      const AxisId axis = parse_axis(args);
+      rotator.clear_faults(axis);
+      sensors(axis).pot.clear_faults();
+      sensors(axis).ma3.clear_faults();
       std::printf("ok\n");
     } else if (std::strncmp(line, "settings", 8) == 0) {
       print_settings(profile, line + 8);

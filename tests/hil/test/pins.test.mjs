@@ -131,6 +131,30 @@ test('the plant turns from the pins: CW relay, then H-bridge duty, and stalls on
   }
 });
 
+test('a failed sensor: lost, the pot reads 0 and the MA3 sends no frame; stuck, both hold while the plant turns', async () => {
+  const plant = new Plant({ binary, profile: 'g5500', thetaDeg: 100 });
+  try {
+    const before = await plant.step(10, off);
+    assert.ok(before.potCounts > 0 && before.ma3Valid);
+    await plant.command('sensor loss -1');
+    const lost = await plant.step(20, off);
+    assert.equal(lost.potCounts, 0);
+    assert.equal(ma3Frame(lost.ma3Valid, lost.ma3HighUs, lost.ma3LowUs), null);
+    await plant.command('clear');
+    await plant.command('sensor stuck -1');
+    const stuck = await plant.step(2000, { ...off, cw: 1 });
+    assert.ok(stuck.thetaDeg > 105, `${stuck.thetaDeg}`); // the rotator turned
+    assert.equal(stuck.potCounts, before.potCounts);
+    assert.equal(stuck.ma3HighUs, before.ma3HighUs);
+    await plant.command('clear');
+    const cleared = await plant.step(2010, off);
+    assert.ok(Math.abs(potCountsToDeg(cleared.potCounts) - cleared.thetaDeg) < 0.2, `${cleared.potCounts} at ${cleared.thetaDeg}`);
+    await assert.rejects(plant.command('sensor melted 1'), /error: sensor/);
+  } finally {
+    plant.close();
+  }
+});
+
 test('the settings document for a profile, in a flash slot the firmware reads', async () => {
   const plant = new Plant({ binary, profile: 'spid', sensor: 'ma3' });
   try {
