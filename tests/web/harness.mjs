@@ -43,17 +43,33 @@ export class Rotord {
   }
 
   async start() {
-    this.port = this.port ?? (await freePort());
+    // A port found free can be taken by another test before rotord binds
+    // it: then try other ports (a restart keeps the port it had).
+    const chosen = this.port === undefined;
+    for (let attempt = 1; ; attempt++) {
+      if (chosen) this.port = await freePort();
+      const from = this.output.length;
+      try {
+        await this.spawn();
+        return this;
+      } catch (e) {
+        if (!chosen || attempt >= 5 || !this.output.slice(from).includes('Address already in use')) throw e;
+      }
+    }
+  }
+
+  async spawn() {
     const timing = this.clock === 'manual' ? ['--clock', 'manual'] : ['--speedup', String(this.speedup)];
     const args = ['--sim', this.profile, ...timing, '--bind', '127.0.0.1',
       '--web-port', String(this.port), '--wrc-port', '0', '--rotctld-port', '0',
       '--gs232-port', '0', '--easycomm-port', '0', '--config', this.configPath, ...this.extraArgs];
     this.proc = spawn(ROTORD, args, { stdio: ['pipe', 'pipe', 'pipe'] });
     this.clockSeen = 0;
+    const from = this.output.length; // a restart's own 'ready', not the last run's
     const ready = new Promise((resolve, reject) => {
       const onData = (d) => {
         this.output += d;
-        if (this.output.includes('rotord: ready')) resolve();
+        if (this.output.slice(from).includes('rotord: ready')) resolve();
       };
       this.proc.stdout.on('data', onData);
       this.proc.stderr.on('data', onData);
@@ -62,7 +78,6 @@ export class Rotord {
     });
     await ready;
     this.url = `http://127.0.0.1:${this.port}`;
-    return this;
   }
 
   async stop() {
