@@ -134,9 +134,37 @@ void Axis::latch_fault(AxisFault fault) {
 }
 
 float Axis::stop_distance_deg() const {
-  // Distance the antenna travels after the drive is cut: the learned coast
-  // plus one tick of latency.
-  return std::fabs(status_.speed_deg_s) * (coast_s_ + 0.01f);
+  // Distance the antenna travels once a stop begins: a soft stop's run-on at
+  // the slow speed, then the learned coast plus one tick of latency.
+  const float speed_deg_s = std::fabs(status_.speed_deg_s);
+  return speed_deg_s * (coast_s_ + 0.01f) + run_on_deg(speed_deg_s);
+}
+
+// How long a soft stop keeps the motor powered before the drive is cut
+// (make_stop_sequence): a voltage-select drive also holds the creep supply
+// for the direction relay's settle time, so its contacts break no current.
+Millis Axis::soft_stop_run_on_ms() const {
+  switch (cfg_.drive) {
+    case DriveType::kRelay:
+      return 0;
+    case DriveType::kRelayTwoSpeed:
+    case DriveType::kHBridge:
+      return cfg_.soft_ms;
+    case DriveType::kRelayVoltageSelect:
+      return cfg_.soft_ms + cfg_.dir_settle_ms;
+  }
+  return 0;
+}
+
+// The run-on turns at the slow speed: the speed measured once the drive has
+// run slow long enough for the motor to settle (the slow zone before a
+// target), the configured slow rate (az.slow_speed_ratio) before that.
+float Axis::run_on_deg(float speed_deg_s) const {
+  constexpr Millis kSlowSettledMs = 1000;  // several motor time constants
+  const bool settled_slow = now_ - fast_at_ >= kSlowSettledMs;
+  const float slow_deg_s = expected_rate_deg_s(true);
+  const float run_deg_s = settled_slow || speed_deg_s < slow_deg_s ? speed_deg_s : slow_deg_s;
+  return run_deg_s * static_cast<float>(soft_stop_run_on_ms()) / 1000.0f;
 }
 
 float Axis::commanded_duty(bool slow_zone) const {
@@ -272,6 +300,7 @@ void Axis::begin_start(Direction dir, Millis now) {
   ++moves_;
   stall_ref_t_ = now;
   stall_ref_deg_ = pos_deg();
+  fast_at_ = now;  // the motor's speed is not settled yet
   seq_.start(make_start_sequence(cfg_), dir, now);
   seq_.run(now, out_);
 }
@@ -279,11 +308,13 @@ void Axis::begin_start(Direction dir, Millis now) {
 void Axis::begin_stop(bool hard, bool reversing, Millis now) {
   cut_deg_ = pos_deg();
   cut_speed_deg_s_ = status_.speed_deg_s;
+  cut_run_on_deg_ = hard ? 0.0f : run_on_deg(std::fabs(cut_speed_deg_s_));
   reversing_ = reversing;
   state_ = reversing ? AxisState::kReversing : AxisState::kStopping;
   seq_.start(make_stop_sequence(cfg_, hard), dir_, now);
   seq_.run(now, out_);
-  drive_off_at_ = now;
+  // The coast begins when a soft stop's run-on ends (a hard stop has none).
+  drive_off_at_ = now + (hard ? 0 : soft_stop_run_on_ms());
 }
 
 void Axis::drive_moving(Millis now) {
@@ -323,10 +354,13 @@ void Axis::drive_moving(Millis now) {
       break;
     }
   }
+  const bool fast = cfg_.drive == DriveType::kHBridge ? duty_ > commanded_duty(true) + 0.01f : !slow;
+  if (fast) fast_at_ = now;
 }
 
 void Axis::finish_stop(Millis now) {
-  const float travelled = (pos_deg() - cut_deg_) * sign_of(dir_);
+  // The coast learnt is what the travel shows beyond the modelled run-on.
+  const float travelled = (pos_deg() - cut_deg_) * sign_of(dir_) - cut_run_on_deg_;
   const float speed = std::fabs(cut_speed_deg_s_);
   if (cfg_.coast_learn && speed > 0.5f && travelled > -0.5f) {
     float measured = travelled / speed - 0.01f;

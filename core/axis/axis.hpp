@@ -66,6 +66,8 @@ class Axis {
   void update_position(Millis now);
   float pos_deg() const { return tracker_.position_deg(); }
   float stop_distance_deg() const;
+  Millis soft_stop_run_on_ms() const;
+  float run_on_deg(float speed_deg_s) const;
   float commanded_duty(bool slow_zone) const;
   float expected_rate_deg_s(bool slow_zone) const;
   Millis move_allowance_ms(float distance_deg) const;
@@ -104,6 +106,8 @@ class Axis {
   float stall_ref_deg_ = 0.0f;
   float cut_deg_ = 0.0f;
   float cut_speed_deg_s_ = 0.0f;
+  float cut_run_on_deg_ = 0.0f;
+  Millis fast_at_ = 0;  // the drive last ran faster than its slow speed (or started) then  // of that stop's travel, the modelled soft-stop run-on
   float coast_s_ = 0.15f;
   bool reversing_ = false;
   bool arrived_ = false;

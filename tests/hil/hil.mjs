@@ -37,10 +37,10 @@ const TICK_MS = 10;
 
 // ---- a rig: plant, chip, pty ----
 
-async function rig({ profile = 'g5500', sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, settings = {}, pinMap = pins }) {
+async function rig({ profile = 'g5500', drive, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, settings = {}, pinMap = pins }) {
   // With noise, every conversion of a tick's burst (az.pot_samples, 8) gets its own.
   const potSamples = noise ? 8 : undefined;
-  const plant = new Plant({ binary: plantBinary, profile, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, potSamples });
+  const plant = new Plant({ binary: plantBinary, profile, drive, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, potSamples });
   const settingsDocument = await plant.settingsDocument(settings);
   const board = new Board({ bootrom, image: imagePath, pins: pinMap, plant, settingsDocument, echoLog: verbose });
   const bridge = new PtyBridge({ endpoint: board.ports[1] });
@@ -280,6 +280,26 @@ const scenarios = {
   },
   async 'goto-hbridge-pot-easycomm'() {
     await gotoScenario({ profile: 'spid', sensor: 'pot', model: 202, from: 30, to: 50, settings: { 'usb.personality': 'easycomm' } });
+  },
+
+  /**
+   * A two-speed G-5500 (az.drive relay_two_speed: the FAST relay on GPIO 7
+   * selects the fast winding): it starts slow, runs fast, and is slow again
+   * within az.slow_zone_deg (10) of the target; the FAST relay only switches
+   * while the direction relay holds.
+   */
+  async 'goto-two-speed'() {
+    await speedRelayScenario({ drive: 'relay_two_speed', startMs: 50, stopMs: 0 });
+  },
+  /**
+   * A voltage-select G-5500 with soft start and stop (az.drive
+   * relay_voltage_select, az.soft_ms 500): the direction relay makes and
+   * breaks on the creep supply only; the fast supply comes on 500 ms after
+   * it and goes off at least az.soft_ms + az.dir_settle_ms (550) before it
+   * breaks.
+   */
+  async 'goto-voltage-select-soft'() {
+    await speedRelayScenario({ drive: 'relay_voltage_select', settings: { 'az.soft_ms': 500 }, startMs: 500, stopMs: 550 });
   },
 
   /** Az/el: a G-5500 (relays and pots on both axes) with rotctl -m 603 (GS-232B W az el), noise on. */
@@ -684,6 +704,63 @@ async function gotoScenario({ profile, sensor, model, from, to, settings = {}, b
       console.log(`    --  CPU while moving: ${cyclesPerTick} cycles per 10 ms tick period`);
       benchRows.push({ name: `hil/${boardName}_goto_${bench}`, inputs: { move_deg: Math.abs(to - from) }, metrics: { cycles_per_tick: cyclesPerTick } });
     }
+  } finally {
+    await r.close();
+  }
+}
+
+/**
+ * A go-to from 100 to 160 deg on a relay drive with a speed relay (GPIO 7):
+ * the speed relay comes on `startMs` or more after the direction relay,
+ * goes off `stopMs` or more before it, and goes off within the slow zone
+ * (10 deg) of the target; the target is reached with one start, no hunting.
+ */
+async function speedRelayScenario({ drive, settings = {}, startMs, stopMs }) {
+  const r = await rig({ profile: 'g5500', drive, sensor: 'pot', thetaDeg: 100, settings, noise: true });
+  const to = 160;
+  try {
+    r.board.resetMotion();
+    const sentMs = r.board.nowMs;
+    await rotctl(r, 603, 'P', String(to), '0');
+    // The plant's angle when the speed relay last dropped, and the fastest
+    // speed seen with it on and with it off (over 500 ms).
+    let fastOffDeg = NaN;
+    let wasFast = false;
+    const history = [];
+    const topDegS = { fast: 0, slow: 0 };
+    const there = () => {
+      const fast = r.board.outputLevel(pins.az_speed);
+      if (wasFast && !fast) fastOffDeg = angle(r);
+      wasFast = fast;
+      history.push({ ms: r.board.nowMs, deg: angle(r), fast });
+      while (history.length > 1 && history[1].ms <= r.board.nowMs - 500) history.shift();
+      const h = history[0];
+      if (h.ms <= r.board.nowMs - 500 && history.every((x) => x.fast === fast)) {
+        const degS = ((angle(r) - h.deg) * 1000) / (r.board.nowMs - h.ms);
+        const k = fast ? 'fast' : 'slow';
+        topDegS[k] = Math.max(topDegS[k], degS);
+      }
+      return Math.abs(angle(r) - to) < 1.5 && !driving(r) && r.board.nowMs - sentMs > 1000;
+    };
+    check(await r.board.runUntil(() => driving(r), 3000, 1), 'the drive starts');
+    check((await r.board.runUntil(there, 30000, 1)) && (await settle(r, 5000)), `reached ${angle(r).toFixed(2)} deg for a target of ${to}`);
+    const edges = r.board.edges.filter((e) => e.ms >= sentMs);
+    const cwOn = edges.find((e) => e.gpio === pins.az_cw && e.value);
+    const cwOff = edges.find((e) => e.gpio === pins.az_cw && !e.value);
+    const speed = edges.filter((e) => e.gpio === pins.az_speed);
+    const firstOn = speed.find((e) => e.value);
+    const lastOff = speed.findLast((e) => !e.value);
+    check(firstOn && lastOff && speed.every((e) => e.ms > cwOn.ms && e.ms < cwOff.ms),
+      `the speed relay (GPIO ${pins.az_speed}) switched ${speed.length} times, each while CW held`);
+    check(firstOn.ms - cwOn.ms >= startMs - 1,
+      `fast ${(firstOn.ms - cwOn.ms).toFixed(1)} ms after CW made (${startMs} ms or more)`);
+    check(cwOff.ms - lastOff.ms >= stopMs - 1,
+      `fast off ${(cwOff.ms - lastOff.ms).toFixed(1)} ms before CW broke (${stopMs} ms or more)`);
+    check(to - fastOffDeg > 0 && to - fastOffDeg <= 10 + 1,
+      `slow from ${fastOffDeg.toFixed(2)} deg on, ${(to - fastOffDeg).toFixed(2)} deg before the target (az.slow_zone_deg 10)`);
+    check(topDegS.fast > 5.5 && topDegS.slow < 3.2,
+      `${topDegS.fast.toFixed(2)} deg/s at the most on the fast winding or supply, ${topDegS.slow.toFixed(2)} on the slow one (the plant: 6 and 3)`);
+    await checkNoHunting(r, { az: true });
   } finally {
     await r.close();
   }

@@ -17,7 +17,9 @@ namespace {
 class Scenario {
  public:
   Scenario(const char* profile_name, double az0_deg, double el0_deg = 0.0)
-      : profile_(*sim::find_profile(profile_name)) {
+      : Scenario(*sim::find_profile(profile_name), az0_deg, el0_deg) {}
+  /// A variation of a built-in profile (another drive, say), kept by the scenario.
+  Scenario(const sim::Profile& profile, double az0_deg, double el0_deg = 0.0) : profile_(profile) {
     for (const auto& o : profile_.overrides) settings_.set(*settings::find(o.key), o.value);
     sim_ = std::make_unique<sim::SimRotator>(profile_, 11);
     sim_->set_theta_deg(AxisId::kAz, az0_deg);
@@ -68,7 +70,7 @@ class Scenario {
   double min_az() const { return min_az_; }
 
  private:
-  const sim::Profile& profile_;
+  const sim::Profile profile_;
   settings::Settings settings_;
   std::unique_ptr<sim::SimRotator> sim_;
   std::unique_ptr<Controller> controller_;
@@ -258,6 +260,60 @@ TEST(Scenario, SmallMovesDoNotHunt) {
   }
   // Ten 3 deg steps: at most one correction each.
   EXPECT_LE(s.status().az.moves, 20u);
+}
+
+// A G-5500 wired with a speed relay: two-speed windings or a voltage-select
+// supply, the slow one at half speed.
+sim::Profile g5500_with_drive(sim::DriveKind drive) {
+  sim::Profile p = *sim::find_profile("g5500");
+  p.az.plant.drive = drive;
+  return p;
+}
+
+// A soft stop runs the motor on for az.soft_ms (plus the direction relay's
+// settle time on a voltage-select drive) before the coast: the stop is cut
+// that much earlier, so the antenna still ends on the target, in one move.
+TEST(Scenario, SoftStopsEndOnTheTargetWithoutACorrection) {
+  struct Case {
+    sim::Profile profile;
+    int drive;
+    int soft_ms;
+  };
+  const Case cases[] = {
+      {g5500_with_drive(sim::DriveKind::kRelayTwoSpeed), 1, 500},
+      {g5500_with_drive(sim::DriveKind::kRelayVoltageSelect), 2, 500},
+      {g5500_with_drive(sim::DriveKind::kRelayVoltageSelect), 2, 2000},
+      {*sim::find_profile("spid"), 3, 1000},
+  };
+  for (const Case& c : cases) {
+    Scenario s(c.profile, 100.0, 10.0);
+    s.settings().set(settings::Id::kAzDrive, c.drive);
+    s.settings().set(settings::Id::kAzSoftMs, c.soft_ms);
+    s.power_on();
+    ASSERT_EQ(s.controller().go_to(160.0f, std::nullopt), Error::kOk);
+    ASSERT_TRUE(s.run_until_settled(120000));
+    EXPECT_NEAR(s.theta(AxisId::kAz), 160.0, 1.0) << "drive " << c.drive << ", soft " << c.soft_ms;
+    EXPECT_EQ(s.status().az.moves, 1u) << "drive " << c.drive << ", soft " << c.soft_ms;
+    EXPECT_LE(s.max_az(), 161.0) << "drive " << c.drive << ", soft " << c.soft_ms;
+  }
+}
+
+// A jog to the end of the travel with a long soft stop: the run-on (at the
+// slow speed az.slow_speed_ratio says) is part of the stopping distance, so
+// the antenna stops inside az.max_deg.
+TEST(Scenario, ASoftStopNeverRunsPastTheEndOfTheTravel) {
+  Scenario s(g5500_with_drive(sim::DriveKind::kRelayVoltageSelect), 400.0, 10.0);
+  s.settings().set(settings::Id::kAzDrive, 2);
+  s.settings().set(settings::Id::kAzSoftMs, 3000);
+  s.settings().set(settings::Id::kAzSlowSpeedRatio, 0.5f);  // the creep supply's, as measured
+  s.power_on();
+  ASSERT_EQ(s.controller().move(AxisId::kAz, Direction::kCw), Error::kOk);
+  s.run_ms(30000);
+  EXPECT_FALSE(s.sim().plant(AxisId::kAz).powered());
+  EXPECT_LE(s.max_az(), 450.5);  // as a jog without a soft stop (ham4 above)
+  EXPECT_GT(s.theta(AxisId::kAz), 440.0);
+  EXPECT_FALSE(s.status().az.switch_cw);
+  EXPECT_EQ(s.stalled_ticks(), 0);
 }
 
 TEST(Scenario, SpidCrossesItsWholeTravelAtEveryAllowedSpeed) {

@@ -12,7 +12,7 @@ function pot(field) {
 
 export class Plant {
   /**
-   * opts: { binary, profile, sensor, thetaDeg, speedScale, noise,
+   * opts: { binary, profile, sensor, thetaDeg, speedScale, noise, drive,
    *         elSensor (plays the elevation too: 'pot' or 'ma3'), elThetaDeg,
    *         potSamples (conversions per pot per step, each with its own noise) }
    */
@@ -25,6 +25,7 @@ export class Plant {
     if (opts.elSensor) args.push('--el', opts.elSensor);
     if (opts.elThetaDeg !== undefined) args.push('--theta-el', String(opts.elThetaDeg));
     if (opts.potSamples !== undefined) args.push('--pot-samples', String(opts.potSamples));
+    if (opts.drive) args.push('--drive', opts.drive);
     this.playsEl = Boolean(opts.elSensor);
     this.proc = spawn(opts.binary, args, { stdio: ['pipe', 'pipe', 'inherit'] });
     this.waiting = [];

@@ -7,10 +7,14 @@
 //
 //   rotord_hil_plant --profile g5500 [--sensor pot|ma3] [--theta DEG] [--noise on|off]
 //                    [--speed-scale K] [--el pot|ma3] [--theta-el DEG] [--pot-samples N]
+//                    [--drive relay|relay_two_speed|relay_voltage_select|hbridge]
 //
 // Without --el the harness plays the azimuth only (el.enabled = 0 in the
 // settings it prints); with it, the profile's elevation too, on its own pins.
 // --noise on: the simulator's sensor noise (seeded, so every run is the same).
+// --drive: the azimuth's drive instead of the profile's (the motor model
+// and az.drive together: a two-speed or voltage-select G-5500, say, where
+// FAST selects the fast winding or supply and the slow one runs at half speed).
 // --pot-samples N: each pot's POT field is N conversions, comma-separated,
 // each with its own noise (the firmware converts az.pot_samples times per
 // tick and takes the median: one value repeated would defeat that filter).
@@ -34,6 +38,7 @@
 //     on one line (or "error: ..."), then "end"
 //   q                    -> (exits)
 // Bad input answers "error: <why>".
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -80,7 +85,15 @@ struct Options {
   const char* el_sensor = nullptr;  // null: the elevation is switched off
   double theta_el_deg = NAN;        // the profile's start (parked at its minimum)
   int pot_samples = 1;              // conversions per pot per reply
+  int drive = -1;                   // az.drive's index; -1: the profile's
 };
+
+// az.drive's values, in the settings table's order (core/settings/settings_table.def).
+constexpr std::array<std::string_view, 4> kDriveNames{"relay", "relay_two_speed",
+                                                      "relay_voltage_select", "hbridge"};
+constexpr std::array<sim::DriveKind, 4> kDriveKinds{
+    sim::DriveKind::kRelay, sim::DriveKind::kRelayTwoSpeed, sim::DriveKind::kRelayVoltageSelect,
+    sim::DriveKind::kHBridge};
 
 bool parse_options(int argc, char** argv, Options& o) {
   for (int n = 1; n < argc; ++n) {
@@ -103,6 +116,10 @@ bool parse_options(int argc, char** argv, Options& o) {
       o.theta_el_deg = std::atof(value);
     } else if (arg == "--pot-samples") {
       o.pot_samples = std::atoi(value);
+    } else if (arg == "--drive") {
+      for (std::size_t i = 0; i < kDriveNames.size(); ++i)
+        if (kDriveNames[i] == value) o.drive = static_cast<int>(i);
+      if (o.drive < 0) return false;
     } else {
       return false;
     }
@@ -250,7 +267,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: rotord_hil_plant --profile NAME [--sensor pot|ma3] [--theta DEG] "
                  "[--noise on|off] [--speed-scale K] [--el pot|ma3] [--theta-el DEG] "
-                 "[--pot-samples N]\n");
+                 "[--pot-samples N] [--drive relay|relay_two_speed|relay_voltage_select|hbridge]\n");
     return 2;
   }
   const sim::Profile* base = sim::find_profile(opt.profile);
@@ -278,11 +295,16 @@ int main(int argc, char** argv) {
   for (const sim::SettingOverride& o : base->overrides) {
     const std::string_view key = o.key;
     if (is_sensor_key(key, kAzSensorKeys) || is_sensor_key(key, kElSensorKeys)) continue;
+    if (key == "az.drive" && opt.drive >= 0) continue;
     // Without --el the harness plays the azimuth only: the elevation is switched off.
     if (key.starts_with("el.") && !play_el) continue;
     overrides[n++] = o;
   }
   if (!play_el) overrides[n++] = {"el.enabled", 0.0};
+  if (opt.drive >= 0) {
+    profile.az.plant.drive = kDriveKinds[static_cast<std::size_t>(opt.drive)];
+    overrides[n++] = {"az.drive", static_cast<double>(opt.drive)};
+  }
   add_sensor_overrides(profile.az, kAzSensorKeys, overrides, n);
   if (play_el) add_sensor_overrides(profile.el, kElSensorKeys, overrides, n);
   profile.overrides = {overrides, n};

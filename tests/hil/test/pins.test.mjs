@@ -131,6 +131,24 @@ test('the plant turns from the pins: CW relay, then H-bridge duty, and stalls on
   }
 });
 
+test('a two-speed or voltage-select drive (--drive): FAST turns at full speed, without it at half', async () => {
+  for (const drive of ['relay_two_speed', 'relay_voltage_select']) {
+    const plant = new Plant({ binary, profile: 'g5500', thetaDeg: 100, drive });
+    try {
+      assert.match(await plant.settingsDocument({}), new RegExp(`"az.drive": "${drive}"`));
+      const slow0 = await plant.step(1000, { ...off, cw: 1 });
+      const slow1 = await plant.step(2000, { ...off, cw: 1 });
+      const fast1 = await plant.step(3000, { ...off, cw: 1, fast: 1 });
+      const fast2 = await plant.step(4000, { ...off, cw: 1, fast: 1 });
+      const slowDegS = slow1.thetaDeg - slow0.thetaDeg;
+      const fastDegS = fast2.thetaDeg - fast1.thetaDeg;
+      assert.ok(Math.abs(slowDegS - 3) < 0.1 && Math.abs(fastDegS - 6) < 0.1, `${drive}: ${slowDegS} then ${fastDegS} deg/s`);
+    } finally {
+      plant.close();
+    }
+  }
+});
+
 test('a failed sensor: lost, the pot reads 0 and the MA3 sends no frame; stuck, both hold while the plant turns', async () => {
   const plant = new Plant({ binary, profile: 'g5500', thetaDeg: 100 });
   try {
