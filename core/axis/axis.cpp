@@ -354,7 +354,8 @@ void Axis::drive_moving(Millis now) {
       break;
     }
   }
-  const bool fast = cfg_.drive == DriveType::kHBridge ? duty_ > commanded_duty(true) + 0.01f : !slow;
+  const bool fast =
+      cfg_.drive == DriveType::kHBridge ? duty_ > commanded_duty(true) + 0.01f : !slow;
   if (fast) fast_at_ = now;
 }
 
