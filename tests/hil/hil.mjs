@@ -284,12 +284,12 @@ const scenarios = {
 
   /**
    * A two-speed G-5500 (az.drive relay_two_speed: the FAST relay on GPIO 7
-   * selects the fast winding): it starts slow, runs fast, and is slow again
-   * within az.slow_zone_deg (10) of the target; the FAST relay only switches
-   * while the direction relay holds.
+   * selects the fast winding) with a 300 ms soft start and stop: it starts
+   * slow, runs fast, and is slow again within az.slow_zone_deg (10) of the
+   * target and for 300 ms or more before the direction relay breaks.
    */
   async 'goto-two-speed'() {
-    await speedRelayScenario({ drive: 'relay_two_speed', startMs: 50, stopMs: 0 });
+    await speedRelayScenario({ drive: 'relay_two_speed', settings: { 'az.soft_ms': 300 }, startMs: 300, stopMs: 300 });
   },
   /**
    * A voltage-select G-5500 with soft start and stop (az.drive
@@ -723,19 +723,22 @@ async function speedRelayScenario({ drive, settings = {}, startMs, stopMs }) {
     const sentMs = r.board.nowMs;
     await rotctl(r, 603, 'P', String(to), '0');
     // The plant's angle when the speed relay last dropped, and the fastest
-    // speed seen with it on and with it off (over 500 ms).
+    // speed seen with it on and with it off (over 500 ms, once the relay has
+    // held for 1 s: the motor's speed has settled).
     let fastOffDeg = NaN;
     let wasFast = false;
+    let switchedMs = r.board.nowMs;
     const history = [];
     const topDegS = { fast: 0, slow: 0 };
     const there = () => {
       const fast = r.board.outputLevel(pins.az_speed);
       if (wasFast && !fast) fastOffDeg = angle(r);
+      if (fast !== wasFast) switchedMs = r.board.nowMs;
       wasFast = fast;
-      history.push({ ms: r.board.nowMs, deg: angle(r), fast });
+      history.push({ ms: r.board.nowMs, deg: angle(r) });
       while (history.length > 1 && history[1].ms <= r.board.nowMs - 500) history.shift();
       const h = history[0];
-      if (h.ms <= r.board.nowMs - 500 && history.every((x) => x.fast === fast)) {
+      if (h.ms <= r.board.nowMs - 500 && h.ms >= switchedMs + 1000 && driving(r)) {
         const degS = ((angle(r) - h.deg) * 1000) / (r.board.nowMs - h.ms);
         const k = fast ? 'fast' : 'slow';
         topDegS[k] = Math.max(topDegS[k], degS);
