@@ -311,6 +311,36 @@ const scenarios = {
     await azelScenario({ profile: 'spid', sensor: 'ma3', model: 202, from: [100, 20], to: [80, 45], settings: { 'usb.personality': 'easycomm' } });
   },
 
+  /**
+   * A 450 deg G-5500 with a single-turn MA3 that powers up in the overlap at
+   * 400 deg: the encoder reads 40, the overlap switch T1 (GPIO 9) is closed,
+   * so the firmware takes the second turn. rotctl -m 603 (GS-232B, 450 deg
+   * scale) reads 400, and P 420 turns 20 deg on into the overlap (had it
+   * taken 40, that would be 380 deg the other way).
+   */
+  async 'overlap-power-up'() {
+    const r = await rig({ sensor: 'ma3', thetaDeg: 400 });
+    try {
+      check(!r.board.rp.gpio[pins.az_t1].inputValue, `T1 (GPIO ${pins.az_t1}) reads low: closed above 360 deg`);
+      const p0 = (await rotctl(r, 603, 'p')).trim().split('\n').map(Number);
+      check(Math.abs(p0[0] - 400) < 0.6, `rotctl -m 603 p at power-up: ${p0[0]} (plant 400, the MA3 reads 40)`);
+      let lowest = angle(r);
+      r.board.resetMotion();
+      await rotctl(r, 603, 'P', '420', '0');
+      const there = () => {
+        lowest = Math.min(lowest, angle(r));
+        return Math.abs(angle(r) - 420) < 1.5 && !driving(r) && r.board.motion.az.starts > 0;
+      };
+      check((await r.board.runUntil(there, 15000, 1)) && (await settle(r, 5000)),
+        `reached ${angle(r).toFixed(2)} deg for 420, never below ${lowest.toFixed(2)} deg`);
+      check(r.board.motion.az.starts === 1 && r.board.motion.az.reversals === 0 && lowest > 399.5, 'one start, clockwise only');
+      const p = (await rotctl(r, 603, 'p')).trim().split('\n').map(Number);
+      check(Math.abs(p[0] - angle(r)) < 0.6, `rotctl -m 603 p: ${p[0]} (plant ${angle(r).toFixed(2)})`);
+    } finally {
+      await r.close();
+    }
+  },
+
   /** The seed protocol as a jog panel: enable, run CW, stop when the target is passed. */
   async 'seed-jog'() {
     const r = await rig({ thetaDeg: 100, settings: { 'usb.personality': 'seed' } });
