@@ -316,6 +316,39 @@ TEST(Scenario, ASoftStopNeverRunsPastTheEndOfTheTravel) {
   EXPECT_EQ(s.stalled_ticks(), 0);
 }
 
+// A reversal on a voltage-select drive with a 2 s soft stop: the motor runs
+// on at creep, then coasts; the other direction comes only at rest, after
+// the dead time, and the target behind is reached.
+TEST(Scenario, ASoftReversalWaitsForTheRunOnTheCoastAndTheDeadTime) {
+  Scenario s(g5500_with_drive(sim::DriveKind::kRelayVoltageSelect), 100.0, 10.0);
+  s.settings().set(settings::Id::kAzDrive, 2);
+  s.settings().set(settings::Id::kAzSoftMs, 2000);
+  s.settings().set(settings::Id::kAzSlowSpeedRatio, 0.5f);
+  s.power_on();
+  ASSERT_EQ(s.controller().go_to(300.0f, std::nullopt), Error::kOk);
+  s.run_ms(8000);
+  ASSERT_GT(s.theta(AxisId::kAz), 120.0);
+  ASSERT_EQ(s.controller().go_to(80.0f, std::nullopt), Error::kOk);
+  Millis unpowered_ms = 0;
+  bool reversed = false;
+  for (int n = 0; n < 2000 && !reversed; ++n) {
+    s.run_ms(10);
+    const DriveOutputs& out = s.sim().outputs(AxisId::kAz);
+    if (out.on(OutputChannel::kRelayCcw)) {
+      reversed = true;
+      EXPECT_NEAR(s.sim().plant(AxisId::kAz).w_deg_s(), 0.0, 0.05);
+    } else if (!out.on(OutputChannel::kRelayCw)) {
+      unpowered_ms += 10;
+    }
+  }
+  ASSERT_TRUE(reversed);
+  EXPECT_GE(unpowered_ms, 1000);  // az.reverse_dead_ms, at rest
+  ASSERT_TRUE(s.run_until_settled(120000));
+  EXPECT_NEAR(s.theta(AxisId::kAz), 80.0, 1.0);
+  EXPECT_EQ(s.status().az.moves, 2u);
+  EXPECT_EQ(s.both_relays_ticks(), 0);
+}
+
 TEST(Scenario, SpidCrossesItsWholeTravelAtEveryAllowedSpeed) {
   // Issue 10: at speed 50 a 720 deg move took longer than the fixed 180 s
   // timeout and latched TIMEOUT part way. The allowance now follows from the
