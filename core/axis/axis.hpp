@@ -106,9 +106,8 @@ class Axis {
   float stall_ref_deg_ = 0.0f;
   float cut_deg_ = 0.0f;
   float cut_speed_deg_s_ = 0.0f;
-  float cut_run_on_deg_ = 0.0f;
-  Millis fast_at_ = 0;  // the drive last ran faster than its slow speed (or started) then  // of
-                        // that stop's travel, the modelled soft-stop run-on
+  float cut_run_on_deg_ = 0.0f;  // of that stop's travel, the modelled soft-stop run-on
+  Millis fast_at_ = 0;           // the drive last ran faster than its slow speed (or started) then
   float coast_s_ = 0.15f;
   bool reversing_ = false;
   bool arrived_ = false;
