@@ -59,6 +59,27 @@ class Scenario {
     return false;
   }
 
+  struct Reversal {
+    bool reversed = false;
+    Millis unpowered_ms = 0;  // neither direction relay on, before CCW came on
+    double speed_at_reversal_deg_s = 0.0;
+  };
+  /// Runs until the azimuth's CCW relay comes on (at most limit_ms).
+  Reversal run_until_ccw(Millis limit_ms) {
+    Reversal r;
+    for (Millis t = 0; t < limit_ms && !r.reversed; t += 10) {
+      run_ms(10);
+      const DriveOutputs& out = sim_->outputs(AxisId::kAz);
+      if (out.on(OutputChannel::kRelayCcw)) {
+        r.reversed = true;
+        r.speed_at_reversal_deg_s = sim_->plant(AxisId::kAz).w_deg_s();
+      } else if (!out.on(OutputChannel::kRelayCw)) {
+        r.unpowered_ms += 10;
+      }
+    }
+    return r;
+  }
+
   double theta(AxisId axis) const { return sim_->plant(axis).theta_deg(); }
   RotatorStatus status() const { return controller_->status(); }
   Controller& controller() { return *controller_; }
@@ -119,20 +140,10 @@ TEST(Scenario, ReversalDuringAMoveStopsWaitsAndTurnsBack) {
   ASSERT_GT(s.theta(AxisId::kAz), 110.0);
   ASSERT_EQ(s.controller().go_to(80.0f, std::nullopt), Error::kOk);
   // The motor must be unpowered and at rest before it is driven the other way.
-  Millis unpowered_ms = 0;
-  bool reversed = false;
-  for (int n = 0; n < 1000 && !reversed; ++n) {
-    s.run_ms(10);
-    const DriveOutputs& out = s.sim().outputs(AxisId::kAz);
-    if (out.on(OutputChannel::kRelayCcw)) {
-      reversed = true;
-      EXPECT_NEAR(s.sim().plant(AxisId::kAz).w_deg_s(), 0.0, 0.05);
-    } else if (!out.on(OutputChannel::kRelayCw)) {
-      unpowered_ms += 10;
-    }
-  }
-  ASSERT_TRUE(reversed);
-  EXPECT_GE(unpowered_ms, 1500);
+  const Scenario::Reversal r = s.run_until_ccw(10000);
+  ASSERT_TRUE(r.reversed);
+  EXPECT_NEAR(r.speed_at_reversal_deg_s, 0.0, 0.05);
+  EXPECT_GE(r.unpowered_ms, 1500);
   ASSERT_TRUE(s.run_until_settled(120000));
   EXPECT_NEAR(s.theta(AxisId::kAz), 80.0, 1.0);
   EXPECT_EQ(s.both_relays_ticks(), 0);
@@ -329,20 +340,10 @@ TEST(Scenario, ASoftReversalWaitsForTheRunOnTheCoastAndTheDeadTime) {
   s.run_ms(8000);
   ASSERT_GT(s.theta(AxisId::kAz), 120.0);
   ASSERT_EQ(s.controller().go_to(80.0f, std::nullopt), Error::kOk);
-  Millis unpowered_ms = 0;
-  bool reversed = false;
-  for (int n = 0; n < 2000 && !reversed; ++n) {
-    s.run_ms(10);
-    const DriveOutputs& out = s.sim().outputs(AxisId::kAz);
-    if (out.on(OutputChannel::kRelayCcw)) {
-      reversed = true;
-      EXPECT_NEAR(s.sim().plant(AxisId::kAz).w_deg_s(), 0.0, 0.05);
-    } else if (!out.on(OutputChannel::kRelayCw)) {
-      unpowered_ms += 10;
-    }
-  }
-  ASSERT_TRUE(reversed);
-  EXPECT_GE(unpowered_ms, 1000);  // az.reverse_dead_ms, at rest
+  const Scenario::Reversal r = s.run_until_ccw(20000);
+  ASSERT_TRUE(r.reversed);
+  EXPECT_NEAR(r.speed_at_reversal_deg_s, 0.0, 0.05);
+  EXPECT_GE(r.unpowered_ms, 1000);  // az.reverse_dead_ms, at rest
   ASSERT_TRUE(s.run_until_settled(120000));
   EXPECT_NEAR(s.theta(AxisId::kAz), 80.0, 1.0);
   EXPECT_EQ(s.status().az.moves, 2u);
