@@ -137,7 +137,8 @@ float Axis::stop_distance_deg() const {
   // Distance the antenna travels once a stop begins: a soft stop's run-on at
   // the slow speed, then the learned coast plus one tick of latency.
   const float speed_deg_s = std::fabs(status_.speed_deg_s);
-  return speed_deg_s * (coast_s_ + 0.01f) + run_on_deg(speed_deg_s);
+  const float coast_deg = speed_deg_s * (coast_s_ + 0.01f);
+  return soft_stop_run_on_ms() == 0 ? coast_deg : coast_deg + run_on_deg(speed_deg_s);
 }
 
 // How long a soft stop keeps the motor powered before the drive is cut
@@ -160,11 +161,15 @@ Millis Axis::soft_stop_run_on_ms() const {
 // run slow long enough for the motor to settle (the slow zone before a
 // target), the configured slow rate (az.slow_speed_ratio) before that.
 float Axis::run_on_deg(float speed_deg_s) const {
+  // Called every tick while driving: no float work (soft float on the M0+)
+  // for the usual drive without a soft stop.
+  const Millis run_on_ms = soft_stop_run_on_ms();
+  if (run_on_ms == 0) return 0.0f;
   constexpr Millis kSlowSettledMs = 1000;  // several motor time constants
   const bool settled_slow = now_ - fast_at_ >= kSlowSettledMs;
   const float slow_deg_s = expected_rate_deg_s(true);
   const float run_deg_s = settled_slow || speed_deg_s < slow_deg_s ? speed_deg_s : slow_deg_s;
-  return run_deg_s * static_cast<float>(soft_stop_run_on_ms()) / 1000.0f;
+  return run_deg_s * static_cast<float>(run_on_ms) / 1000.0f;
 }
 
 float Axis::commanded_duty(bool slow_zone) const {
@@ -354,9 +359,12 @@ void Axis::drive_moving(Millis now) {
       break;
     }
   }
-  const bool fast =
-      cfg_.drive == DriveType::kHBridge ? duty_ > commanded_duty(true) + 0.01f : !slow;
-  if (fast) fast_at_ = now;
+  // When the drive last ran fast: what a soft stop's run-on speed follows.
+  if (soft_stop_run_on_ms() > 0) {
+    const bool fast =
+        cfg_.drive == DriveType::kHBridge ? duty_ > commanded_duty(true) + 0.01f : !slow;
+    if (fast) fast_at_ = now;
+  }
 }
 
 void Axis::finish_stop(Millis now) {
