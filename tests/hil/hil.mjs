@@ -393,27 +393,11 @@ const scenarios = {
 
   /** The elevation's UP end switch (GPIO 19) closing while it turns up cuts UP on the first tick after it. */
   async 'el-limit-switch'() {
-    const r = await rig({ elSensor: 'pot', thetaDeg: 200, elThetaDeg: 30 });
-    const c = new LineClient(r);
-    try {
-      check((await c.send('U')) !== null, 'U (turn up)');
-      check(await r.board.runUntil(() => r.board.outputLevel(pins.el_up), 2000, 1), `UP relay (GPIO ${pins.el_up}) on`);
-      await r.board.run(300);
-      await r.plant.command('limit el cw 1 -1');
-      await r.board.run(1); // the plant applies it at its next millisecond
-      const closedMs = r.board.nowMs;
-      check(!r.board.rp.gpio[pins.el_limit_up].inputValue, `the UP end switch (GPIO ${pins.el_limit_up}) reads low: closed`);
-      await r.board.runUntil(() => !r.board.outputLevel(pins.el_up), 100, 0.1);
-      const cut = r.board.edges.find((e) => e.gpio === pins.el_up && !e.value && e.ms >= closedMs - 1);
-      check(cut && cut.ms - closedMs <= TICK_MS + 0.5, `UP cut ${(cut?.ms - closedMs).toFixed(2)} ms after the switch closed (within a tick)`);
-      const again = await c.send('U');
-      await r.board.run(200);
-      check(again === '?>' && !r.board.outputLevel(pins.el_up), `U refused while the UP end switch is closed: "${again}", UP stays off`);
-      check(!r.board.outputLevel(pins.az_cw) && !r.board.outputLevel(pins.az_ccw), 'the azimuth never moved');
-    } finally {
-      c.close();
-      await r.close();
-    }
+    await elLimitScenario({ command: 'U', relay: 'el_up', endSwitch: 'el_limit_up', plantSide: 'cw', fromDeg: 30 });
+  },
+  /** The DOWN end switch (GPIO 22) likewise, turning down. */
+  async 'el-down-limit-switch'() {
+    await elLimitScenario({ command: 'D', relay: 'el_down', endSwitch: 'el_limit_down', plantSide: 'ccw', fromDeg: 60 });
   },
 
   /** Push buttons (wired by settings: GPIO 4 and 13, free by default): held, the axis turns; released, it stops. */
@@ -557,6 +541,37 @@ const scenarios = {
   },
   async 'sensor-loss-ma3'() {
     await sensorLossScenario({ profile: 'spid', sensor: 'ma3', fault: 'SENSOR_LOST', graceMs: 100 + 250 });
+  },
+
+  /**
+   * A noise burst on the MA3 (60 deg rms, a loose connector, interference):
+   * readings more than az.jump_deg (15) from the last good one are rejected,
+   * and five in a row latch SENSOR_JUMP and cut the drive.
+   */
+  async 'sensor-burst-ma3'() {
+    const r = await rig({ profile: 'spid', sensor: 'ma3', thetaDeg: 200, settings: { 'usb.personality': 'seed' } });
+    const c = new LineClient(r);
+    try {
+      await c.send('$E');
+      check((await c.send('$R,cw')) === '$OK,R,CW', '$R,cw');
+      check(await r.board.runUntil(() => driving(r), 2000, 1), 'the drive is on');
+      await r.board.run(500);
+      await r.plant.command('sensor burst 60 -1');
+      await r.board.run(1);
+      const burstMs = r.board.nowMs;
+      check(await r.board.runUntil(() => !driving(r), 2000, 1), 'the drive is cut');
+      const afterMs = r.board.nowMs - burstMs;
+      check(afterMs >= 5 * TICK_MS - 1, `cut ${afterMs.toFixed(0)} ms into the burst (not before five readings in a row were rejected)`);
+      const q = await c.send('$Q');
+      check(q?.endsWith(',SENSOR_JUMP'), `fault latched: ${q}`);
+      const az = Number(q?.split(',')[1]);
+      // Readings within az.jump_deg of the last good one are still taken
+      // during the burst: the position held is off by up to that much.
+      check(Math.abs(az - angle(r)) < 15, `the position held: ${az}, ${Math.abs(az - angle(r)).toFixed(1)} deg off the plant's ${angle(r).toFixed(2)} (az.jump_deg 15)`);
+    } finally {
+      c.close();
+      await r.close();
+    }
   },
 
   /**
@@ -795,6 +810,36 @@ async function speedRelayScenario({ drive, settings = {}, startMs, stopMs }) {
       `${topDegS.fast.toFixed(2)} deg/s at the most on the fast winding or supply, ${topDegS.slow.toFixed(2)} on the slow one (the plant: 6 and 3)`);
     await checkNoHunting(r, { az: true });
   } finally {
+    await r.close();
+  }
+}
+
+/**
+ * An elevation end switch closing while GS-232 `command` (U or D) turns that
+ * way: the relay is cut within a tick, the command is then refused, and the
+ * azimuth never moves.
+ */
+async function elLimitScenario({ command, relay, endSwitch, plantSide, fromDeg }) {
+  const r = await rig({ elSensor: 'pot', thetaDeg: 200, elThetaDeg: fromDeg });
+  const c = new LineClient(r);
+  const name = relay.slice(3).toUpperCase();
+  try {
+    check((await c.send(command)) !== null, `${command} (turn ${name.toLowerCase()})`);
+    check(await r.board.runUntil(() => r.board.outputLevel(pins[relay]), 2000, 1), `${name} relay (GPIO ${pins[relay]}) on`);
+    await r.board.run(300);
+    await r.plant.command(`limit el ${plantSide} 1 -1`);
+    await r.board.run(1); // the plant applies it at its next millisecond
+    const closedMs = r.board.nowMs;
+    check(!r.board.rp.gpio[pins[endSwitch]].inputValue, `the ${name} end switch (GPIO ${pins[endSwitch]}) reads low: closed`);
+    await r.board.runUntil(() => !r.board.outputLevel(pins[relay]), 100, 0.1);
+    const cut = r.board.edges.find((e) => e.gpio === pins[relay] && !e.value && e.ms >= closedMs - 1);
+    check(cut && cut.ms - closedMs <= TICK_MS + 0.5, `${name} cut ${(cut?.ms - closedMs).toFixed(2)} ms after the switch closed (within a tick)`);
+    const again = await c.send(command);
+    await r.board.run(200);
+    check(again === '?>' && !r.board.outputLevel(pins[relay]), `${command} refused while the ${name} end switch is closed: "${again}", ${name} stays off`);
+    check(!r.board.outputLevel(pins.az_cw) && !r.board.outputLevel(pins.az_ccw), 'the azimuth never moved');
+  } finally {
+    c.close();
     await r.close();
   }
 }

@@ -32,6 +32,7 @@
 //                                     (-1: for ever): loss is an open pot wiper
 //                                     (0 counts) and an MA3 without pulses, stuck
 //                                     freezes both at their present reading
+//   sensor [az|el] burst SIGMA_DEG S -> ok  sensor noise raised to SIGMA_DEG
 //   clear [az|el]        -> ok     faults cleared (the sensors' too)
 //   settings [KEY=VALUE ...] -> the stored settings document for this profile
 //     (the user's layer over the table's defaults, as the firmware saves it),
@@ -392,13 +393,20 @@ int main(int argc, char** argv) {
       double s = 0;
       const char* args = line + 7;
       AxisSensors& axis_sensors = sensors(parse_axis(args));
-      if (std::sscanf(args, "%7s %lf", which, &s) != 2 ||
-          (std::strcmp(which, "loss") != 0 && std::strcmp(which, "stuck") != 0)) {
-        std::printf("error: sensor [az|el] loss|stuck SECONDS\n");
+      double sigma_deg = 0;
+      const bool burst = std::sscanf(args, "%7s %lf %lf", which, &sigma_deg, &s) == 3 &&
+                         std::strcmp(which, "burst") == 0 && sigma_deg > 0;
+      if (!burst && (std::sscanf(args, "%7s %lf", which, &s) != 2 ||
+                     (std::strcmp(which, "loss") != 0 && std::strcmp(which, "stuck") != 0))) {
+        std::printf("error: sensor [az|el] loss|stuck SECONDS or burst SIGMA_DEG SECONDS\n");
         continue;
       }
       const double duration_s = s < 0 ? sim::kForever_s : s;
-      if (std::strcmp(which, "loss") == 0) {
+      if (burst) {
+        axis_sensors.pot.inject_noise_burst(
+            sigma_deg * std::fabs(axis_sensors.pot.config().k_v_per_deg), duration_s);
+        axis_sensors.ma3.inject_noise_burst(sigma_deg, duration_s);
+      } else if (std::strcmp(which, "loss") == 0) {
         axis_sensors.pot.inject_loss(duration_s);
         axis_sensors.ma3.inject_loss(duration_s);
       } else {

@@ -149,7 +149,7 @@ test('a two-speed or voltage-select drive (--drive): FAST turns at full speed, w
   }
 });
 
-test('a failed sensor: lost, the pot reads 0 and the MA3 sends no frame; stuck, both hold while the plant turns', async () => {
+test('a failed sensor: lost, the pot reads 0 and the MA3 sends no frame; stuck, both hold while the plant turns; a noise burst', async () => {
   const plant = new Plant({ binary, profile: 'g5500', thetaDeg: 100 });
   try {
     const before = await plant.step(10, off);
@@ -167,7 +167,17 @@ test('a failed sensor: lost, the pot reads 0 and the MA3 sends no frame; stuck, 
     await plant.command('clear');
     const cleared = await plant.step(2010, off);
     assert.ok(Math.abs(potCountsToDeg(cleared.potCounts) - cleared.thetaDeg) < 0.2, `${cleared.potCounts} at ${cleared.thetaDeg}`);
+    // A noise burst: 60 deg rms on the MA3 (a code per 4.1 ms frame) for 1 s.
+    await plant.command('sensor burst 60 1');
+    let widest = 0;
+    for (let ms = 2020; ms < 2200; ms += 10) {
+      const b = await plant.step(ms, off);
+      const deg = ma3DecodeDeg(b.ma3HighUs, b.ma3LowUs);
+      widest = Math.max(widest, Math.abs(((deg - b.thetaDeg + 540) % 360) - 180));
+    }
+    assert.ok(widest > 30, `${widest}`);
     await assert.rejects(plant.command('sensor melted 1'), /error: sensor/);
+    await assert.rejects(plant.command('sensor burst -5 1'), /error: sensor/);
   } finally {
     plant.close();
   }
