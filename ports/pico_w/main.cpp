@@ -30,6 +30,7 @@
 #include "protocol/console_session.hpp"
 #include "protocol/protocol_registry.hpp"
 #include "rotator/controller.hpp"
+#include "sensors/magnetometer.hpp"
 #include "settings/pin_rules.hpp"
 #include "settings/settings.hpp"
 #include "storage/flash_slots.hpp"
@@ -297,6 +298,40 @@ void fit_drive(const settings::Settings& s, const AxisPins& k, AxisParts& parts)
                                  pin(s, k.brake), s.i(k.pwm_fwd), s.i(k.pwm_rev)));
 }
 
+/// Says in the log whether the magnetometer answers: a board reached only
+/// over USB has no other way to tell a wiring fault from a calibration one
+/// (the azimuth reads SENSOR_LOST until the chip answers). Linux refuses to
+/// start instead (ports/linux/gpiod_io.cpp); a Pico must stay reachable.
+/// Seen missing on the emulated RP2040 (make hil, mag-absent).
+void log_magnetometer(PicoI2c& bus, const settings::Settings& s) {
+  Magnetometer probe(bus);
+  const auto chip = static_cast<MagChip>(s.i(Id::kMagChip));
+  probe.set_chip(chip);
+  const bool qmc = chip == MagChip::kQmc5883l;
+  const char* name = qmc ? "QMC5883L" : "HMC5883L";
+  const unsigned address = qmc ? Magnetometer::kQmcAddress : Magnetometer::kHmcAddress;
+  const int sda = s.i(Id::kPinI2cSda);
+  const int scl = s.i(Id::kPinI2cScl);
+  switch (probe.begin()) {
+    case Magnetometer::Status::kOk:
+      std::printf("rotord: az magnetometer %s at 0x%02X (I2C on GPIO %d SDA, %d SCL)\n", name,
+                  address, sda, scl);
+      break;
+    case Magnetometer::Status::kWrongChip:
+      std::printf(
+          "rotord: az magnetometer: the chip at 0x%02X (GPIO %d SDA, %d SCL) is not a %s "
+          "(is mag.chip right?); the azimuth reads SENSOR_LOST\n",
+          address, sda, scl, name);
+      break;
+    default:
+      std::printf(
+          "rotord: az magnetometer: no %s answers at 0x%02X on GPIO %d SDA, %d SCL "
+          "(wiring, power, pull-ups?); the azimuth reads SENSOR_LOST\n",
+          name, address, sda, scl);
+      break;
+  }
+}
+
 /// Step 2 for one axis: its inputs, from the pins.* settings.
 AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& parts) {
   AxisIo io;
@@ -314,6 +349,7 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
   if (k.may_use_magnetometer && s.i(k.sensor) == static_cast<int>(SensorType::kMag)) {
     if (PicoI2c* bus = fit(g_i2c, s.i(Id::kPinI2cSda), s.i(Id::kPinI2cScl))) {
       bus->begin();
+      log_magnetometer(*bus, s);
       io.i2c = bus;
     }
   }

@@ -37,10 +37,10 @@ const TICK_MS = 10;
 
 // ---- a rig: plant, chip, pty ----
 
-async function rig({ profile = 'g5500', drive, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, settings = {}, pinMap = pins }) {
+async function rig({ profile = 'g5500', drive, mag, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, settings = {}, pinMap = pins }) {
   // With noise, every conversion of a tick's burst (az.pot_samples, 8) gets its own.
   const potSamples = noise ? 8 : undefined;
-  const plant = new Plant({ binary: plantBinary, profile, drive, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, potSamples });
+  const plant = new Plant({ binary: plantBinary, profile, drive, mag, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, potSamples });
   const settingsDocument = await plant.settingsDocument(settings);
   const board = new Board({ bootrom, image: imagePath, pins: pinMap, plant, settingsDocument, echoLog: verbose });
   const bridge = new PtyBridge({ endpoint: board.ports[1] });
@@ -300,6 +300,56 @@ const scenarios = {
    */
   async 'goto-voltage-select-soft'() {
     await speedRelayScenario({ drive: 'relay_voltage_select', settings: { 'az.soft_ms': 500 }, startMs: 500, stopMs: 550 });
+  },
+
+  /**
+   * A magnetometer for the azimuth (az.sensor mag: a QMC5883L at 0x0D on
+   * I2C0, GPIO 0/1), calibrated for the mast's hard-iron field (the
+   * simulator's x = 300 + 1200 cos, y = -150 + 900 sin): the firmware starts
+   * the chip (SET/RESET period, continuous 50 Hz), reads its heading through
+   * the I2C block, and a go-to reaches its target without hunting.
+   */
+  async 'goto-mag'() {
+    const cal = { 'az.sensor': 'mag', 'mag.x_min': -900, 'mag.x_max': 1500, 'mag.y_min': -1050, 'mag.y_max': 750 };
+    const r = await rig({ thetaDeg: 100, mag: true, noise: true, settings: cal });
+    try {
+      const found = r.board.logLines.find((l) => /magnetometer/.test(l.text));
+      check(/QMC5883L at 0x0D/.test(found?.text ?? ''), `log: "${found?.text}"`);
+      const wrote = (reg, value) => r.board.i2cLog.some((w) => w.register === reg && w.value === value);
+      check(wrote(0x0b, 0x01) && wrote(0x09, 0x15), `the chip started: ${r.board.i2cLog.map((w) => `0x${w.register.toString(16)}=0x${w.value.toString(16)}`).join(', ')} (SET/RESET period, then continuous 50 Hz, 8 G, 512x)`);
+      const p0 = (await rotctl(r, 603, 'p')).trim().split('\n').map(Number);
+      check(Math.abs(p0[0] - 100) < 1, `rotctl -m 603 p: ${p0[0]} (plant 100)`);
+      r.board.resetMotion();
+      await rotctl(r, 603, 'P', '160', '0');
+      check(await r.board.runUntil(() => driving(r), 3000, 1), 'the drive starts');
+      const reached = await r.board.runUntil(() => Math.abs(angle(r) - 160) < 1.5 && !driving(r), 20000, 1);
+      check(reached && (await settle(r, 5000)), `reached ${angle(r).toFixed(2)} deg for a target of 160`);
+      const p = (await rotctl(r, 603, 'p')).trim().split('\n').map(Number);
+      check(Math.abs(p[0] - angle(r)) < 1, `rotctl -m 603 p: ${p[0]} (plant ${angle(r).toFixed(2)})`);
+      await checkNoHunting(r, { az: true });
+    } finally {
+      await r.close();
+    }
+  },
+
+  /** az.sensor mag with no chip answering on the bus: the azimuth latches a sensor fault and never drives. */
+  async 'mag-absent'() {
+    const r = await rig({ thetaDeg: 100, settings: { 'az.sensor': 'mag', 'usb.personality': 'seed' } });
+    const c = new LineClient(r);
+    try {
+      await r.board.run(1000);
+      const q = await c.send('$Q');
+      check(/,SENSOR_LOST$|,NO_SENSOR$/.test(q ?? ''), `$Q with no magnetometer: ${q}`);
+      await c.send('$E');
+      const refused = await c.send('$R,cw');
+      await r.board.run(500);
+      check(refused === '$ERR,FAULT' && !driving(r), `$R,cw refused: ${refused}; no drive`);
+      const line = r.board.logLines.find((l) => /magnetometer/.test(l.text));
+      check(/no QMC5883L answers at 0x0D on GPIO 0 SDA, 1 SCL/.test(line?.text ?? ''), `log: "${line?.text}"`);
+    } finally {
+      c.close();
+      await r.close();
+    }
   },
 
   /** Az/el: a G-5500 (relays and pots on both axes) with rotctl -m 603 (GS-232B W az el), noise on. */

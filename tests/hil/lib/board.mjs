@@ -85,6 +85,7 @@ export class Board {
     this.plantMs = 0;
     this.sensors = null;
     this.playsEl = Boolean(this.plant.playsEl);
+    this.i2cLog = []; // register writes the magnetometer received
     // The relay outputs whose edges are recorded (and dropped by a reset).
     this.outputPins = [this.pins.az_cw, this.pins.az_ccw, this.pins.az_speed, this.pins.az_brake];
     if (this.playsEl) this.outputPins.push(this.pins.el_up, this.pins.el_down, this.pins.el_speed);
@@ -145,6 +146,7 @@ export class Board {
     this.installPins(rp);
     this.startMa3(rp, this.pins.az_ma3, () => this.sensors);
     if (this.playsEl) this.startMa3(rp, this.pins.el_ma3, () => this.sensors?.el);
+    if (this.plant.hasMag) for (const i2c of rp.i2c) installQmc5883l(i2c, () => this.sensors?.magRegisters, this.i2cLog);
   }
 
   /**
@@ -448,4 +450,38 @@ function makePort() {
     },
   };
   return port;
+}
+
+/**
+ * A QMC5883L (address 0x0D) on an emulated I2C block, answering from the
+ * plant's latest registers (`registers()`, 14 bytes from 0x00): a write sets
+ * the register pointer with its first byte, the bytes after it are register
+ * writes (noted in `log`); a read returns registers from the pointer on.
+ * Other addresses are not acknowledged.
+ */
+export function installQmc5883l(i2c, registers, log = []) {
+  const kAddress = 0x0d;
+  let pointer = 0;
+  let pointerNext = false;
+  i2c.onStart = () => i2c.completeStart();
+  i2c.onConnect = (address, mode) => {
+    pointerNext = mode === 0; // a write begins with the register pointer
+    i2c.completeConnect(address === kAddress);
+  };
+  i2c.onWriteByte = (value) => {
+    if (pointerNext) {
+      pointer = value;
+      pointerNext = false;
+    } else {
+      log.push({ register: pointer, value });
+      pointer++;
+    }
+    i2c.completeWrite(true);
+  };
+  i2c.onReadByte = () => {
+    const regs = registers();
+    i2c.completeRead(regs && pointer < regs.length ? regs[pointer] : 0);
+    pointer++;
+  };
+  i2c.onStop = () => i2c.completeStop();
 }

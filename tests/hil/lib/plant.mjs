@@ -14,7 +14,8 @@ export class Plant {
   /**
    * opts: { binary, profile, sensor, thetaDeg, speedScale, noise, drive,
    *         elSensor (plays the elevation too: 'pot' or 'ma3'), elThetaDeg,
-   *         potSamples (conversions per pot per step, each with its own noise) }
+   *         potSamples (conversions per pot per step, each with its own noise),
+   *         mag (a QMC5883L on the azimuth: each step carries its registers) }
    */
   constructor(opts) {
     const args = ['--profile', opts.profile ?? 'g5500'];
@@ -26,7 +27,9 @@ export class Plant {
     if (opts.elThetaDeg !== undefined) args.push('--theta-el', String(opts.elThetaDeg));
     if (opts.potSamples !== undefined) args.push('--pot-samples', String(opts.potSamples));
     if (opts.drive) args.push('--drive', opts.drive);
+    if (opts.mag) args.push('--mag', 'on');
     this.playsEl = Boolean(opts.elSensor);
+    this.hasMag = Boolean(opts.mag);
     this.proc = spawn(opts.binary, args, { stdio: ['pipe', 'pipe', 'inherit'] });
     this.waiting = [];
     this.lines = createInterface({ input: this.proc.stdout });
@@ -68,7 +71,9 @@ export class Plant {
     }
     const reply = await this.request(line);
     const f = reply.split(' ');
-    if (f.length !== (this.playsEl ? 18 : 10)) throw new Error(`plant: ${reply}`);
+    // The magnetometer's registers 0x00..0x0D, last (with --mag).
+    const mag = this.hasMag && f.at(-1).startsWith('MAG=') ? Buffer.from(f.pop().slice(4), 'hex') : undefined;
+    if (f.length !== (this.playsEl ? 18 : 10) || (this.hasMag && mag?.length !== 14)) throw new Error(`plant: ${reply}`);
     const el = this.playsEl
       ? {
           thetaDeg: Number(f[10]),
@@ -93,6 +98,7 @@ export class Plant {
       t1: f[7] === '1',
       t2: f[8] === '1',
       stalled: f[9] === '1',
+      magRegisters: mag,
     };
   }
 

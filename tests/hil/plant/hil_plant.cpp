@@ -7,7 +7,7 @@
 //
 //   rotord_hil_plant --profile g5500 [--sensor pot|ma3] [--theta DEG] [--noise on|off]
 //                    [--speed-scale K] [--el pot|ma3] [--theta-el DEG] [--pot-samples N]
-//                    [--drive relay|relay_two_speed|relay_voltage_select|hbridge]
+//                    [--drive relay|relay_two_speed|relay_voltage_select|hbridge] [--mag on]
 //
 // Without --el the harness plays the azimuth only (el.enabled = 0 in the
 // settings it prints); with it, the profile's elevation too, on its own pins.
@@ -15,6 +15,9 @@
 // --drive: the azimuth's drive instead of the profile's (the motor model
 // and az.drive together: a two-speed or voltage-select G-5500, say, where
 // FAST selects the fast winding or supply and the slow one runs at half speed).
+// --mag on: a QMC5883L on the azimuth (sim::SimMag, its noise with --noise):
+// each `s` reply ends in MAG=<its 14 registers 0x00..0x0D, hex>, which the
+// harness serves to the firmware over the emulated I2C.
 // --pot-samples N: each pot's POT field is N conversions, comma-separated,
 // each with its own noise (the firmware converts az.pot_samples times per
 // tick and takes the median: one value repeated would defeat that filter).
@@ -24,6 +27,7 @@
 //       outputs held from now on (the elevation's with --el), then advance to MS
 //     -> THETA POT_COUNTS MA3_VALID MA3_HIGH_US MA3_LOW_US L_CW L_CCW T1 T2 STALLED
 //        and with --el: EL_THETA EL_POT EL_MA3_VALID EL_MA3_HIGH EL_MA3_LOW L_UP L_DOWN EL_STALLED
+//        and with --mag: MAG=<28 hex digits>
 //   set [az|el] THETA    -> ok     axis at rest at THETA
 //   jam [az|el] SECONDS  -> ok     mechanical jam (-1: for ever)
 //   limit [az|el] cw|ccw 0|1 S -> ok  a limit switch stuck open/closed for S seconds
@@ -51,6 +55,7 @@
 #include "sim/adc_scale.hpp"
 #include "sim/fault_window.hpp"
 #include "sim/profiles.hpp"
+#include "sim/sensors.hpp"
 #include "sim/sim_rotator.hpp"
 
 namespace {
@@ -87,6 +92,7 @@ struct Options {
   double theta_el_deg = NAN;        // the profile's start (parked at its minimum)
   int pot_samples = 1;              // conversions per pot per reply
   int drive = -1;                   // az.drive's index; -1: the profile's
+  bool mag = false;                 // a QMC5883L on the azimuth
 };
 
 // az.drive's values, in the settings table's order (core/settings/settings_table.def).
@@ -117,6 +123,8 @@ bool parse_options(int argc, char** argv, Options& o) {
       o.theta_el_deg = std::atof(value);
     } else if (arg == "--pot-samples") {
       o.pot_samples = std::atoi(value);
+    } else if (arg == "--mag") {
+      o.mag = std::string_view(value) == "on";
     } else if (arg == "--drive") {
       for (std::size_t i = 0; i < kDriveNames.size(); ++i)
         if (kDriveNames[i] == value) o.drive = static_cast<int>(i);
@@ -269,7 +277,7 @@ int main(int argc, char** argv) {
         stderr,
         "usage: rotord_hil_plant --profile NAME [--sensor pot|ma3] [--theta DEG] "
         "[--noise on|off] [--speed-scale K] [--el pot|ma3] [--theta-el DEG] "
-        "[--pot-samples N] [--drive relay|relay_two_speed|relay_voltage_select|hbridge]\n");
+        "[--pot-samples N] [--drive relay|relay_two_speed|relay_voltage_select|hbridge] [--mag on]\n");
     return 2;
   }
   const sim::Profile* base = sim::find_profile(opt.profile);
@@ -320,6 +328,8 @@ int main(int argc, char** argv) {
   rotord::AxisIo el_io = rotator.io(AxisId::kEl);
   AxisSensors az_sensors(rotator.plant(AxisId::kAz), profile.az, opt.noise, 7);
   AxisSensors el_sensors(rotator.plant(AxisId::kEl), profile.el, opt.noise, 11);
+  // The QMC5883L's noise, when on: a few counts, as the simulator's own.
+  sim::SimMag mag(rotator.plant(AxisId::kAz), opt.noise ? 3.0 : 0.0, 13);
   auto sensors = [&](AxisId axis) -> AxisSensors& {
     return axis == AxisId::kEl ? el_sensors : az_sensors;
   };
@@ -360,6 +370,13 @@ int main(int argc, char** argv) {
         std::printf(" ");
         print_axis(rotator, AxisId::kEl, el_sensors, opt.pot_samples);
         std::printf(" %d", rotator.plant(AxisId::kEl).stalled() ? 1 : 0);
+      }
+      if (opt.mag) {
+        const std::uint8_t first = 0x00;
+        std::uint8_t regs[14] = {};
+        mag.write_read(sim::SimMag::kAddress, &first, 1, regs, sizeof regs);
+        std::printf(" MAG=");
+        for (const std::uint8_t r : regs) std::printf("%02x", r);
       }
       std::printf("\n");
     } else if (std::strncmp(line, "set ", 4) == 0) {
