@@ -273,11 +273,11 @@ AxisId parse_axis(const char*& args) {
 int main(int argc, char** argv) {
   Options opt;
   if (!parse_options(argc, argv, opt)) {
-    std::fprintf(
-        stderr,
-        "usage: rotord_hil_plant --profile NAME [--sensor pot|ma3] [--theta DEG] "
-        "[--noise on|off] [--speed-scale K] [--el pot|ma3] [--theta-el DEG] "
-        "[--pot-samples N] [--drive relay|relay_two_speed|relay_voltage_select|hbridge] [--mag on]\n");
+    std::fprintf(stderr,
+                 "usage: rotord_hil_plant --profile NAME [--sensor pot|ma3] [--theta DEG] "
+                 "[--noise on|off] [--speed-scale K] [--el pot|ma3] [--theta-el DEG] "
+                 "[--pot-samples N] [--drive relay|relay_two_speed|relay_voltage_select|hbridge] "
+                 "[--mag on]\n");
     return 2;
   }
   const sim::Profile* base = sim::find_profile(opt.profile);
