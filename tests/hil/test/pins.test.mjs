@@ -19,6 +19,7 @@ import {
   pwmDuty,
   switchLevels,
 } from '../lib/pins.mjs';
+import { installQmc5883l } from '../lib/board.mjs';
 import { Plant } from '../lib/plant.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
@@ -178,6 +179,47 @@ test('a failed sensor: lost, the pot reads 0 and the MA3 sends no frame; stuck, 
     assert.ok(widest > 30, `${widest}`);
     await assert.rejects(plant.command('sensor melted 1'), /error: sensor/);
     await assert.rejects(plant.command('sensor burst -5 1'), /error: sensor/);
+  } finally {
+    plant.close();
+  }
+});
+
+test('the magnetometer (--mag): the QMC5883L registers for the angle, served over an I2C block', async () => {
+  const plant = new Plant({ binary, profile: 'g5500', thetaDeg: 90, mag: true });
+  try {
+    const s = await plant.step(10, off);
+    const regs = s.magRegisters;
+    // x = 300 + 1200 cos 90, y = -150 + 900 sin 90, z = 400; DRDY; chip id 0xFF.
+    assert.deepEqual([regs.readInt16LE(0), regs.readInt16LE(2), regs.readInt16LE(4), regs[6], regs[13]], [300, 750, 400, 1, 0xff]);
+    // An I2C block's callbacks, as rp2040js calls them for the firmware's
+    // transfers: a register write, then a burst read from 0x00.
+    const done = [];
+    const i2c = {
+      completeStart: () => done.push('start'),
+      completeConnect: (ack) => done.push(ack ? 'ack' : 'nack'),
+      completeWrite: (ack) => done.push(ack ? 'w' : 'wnack'),
+      completeRead: (v) => done.push(v),
+      completeStop: () => done.push('stop'),
+    };
+    const log = [];
+    installQmc5883l(i2c, () => regs, log);
+    i2c.onStart(false);
+    i2c.onConnect(0x1e, 0); // another address: not acknowledged
+    i2c.onStop();
+    i2c.onStart(false);
+    i2c.onConnect(0x0d, 0);
+    i2c.onWriteByte(0x09);
+    i2c.onWriteByte(0x15);
+    i2c.onStop();
+    i2c.onStart(false);
+    i2c.onConnect(0x0d, 0);
+    i2c.onWriteByte(0x00);
+    i2c.onStart(true);
+    i2c.onConnect(0x0d, 1);
+    for (let n = 0; n < 7; n++) i2c.onReadByte(n < 6);
+    i2c.onStop();
+    assert.deepEqual(log, [{ register: 0x09, value: 0x15 }]);
+    assert.deepEqual(done, ['start', 'nack', 'stop', 'start', 'ack', 'w', 'w', 'stop', 'start', 'ack', 'w', 'start', 'ack', ...regs.subarray(0, 7), 'stop']);
   } finally {
     plant.close();
   }
