@@ -602,18 +602,8 @@ const scenarios = {
     const r = await rig({ profile: 'spid', sensor: 'ma3', thetaDeg: 200, settings: { 'usb.personality': 'seed' } });
     const c = new LineClient(r);
     try {
-      await c.send('$E');
-      check((await c.send('$R,cw')) === '$OK,R,CW', '$R,cw');
-      check(await r.board.runUntil(() => driving(r), 2000, 1), 'the drive is on');
-      await r.board.run(500);
-      await r.plant.command('sensor burst 60 -1');
-      await r.board.run(1);
-      const burstMs = r.board.nowMs;
-      check(await r.board.runUntil(() => !driving(r), 2000, 1), 'the drive is cut');
-      const afterMs = r.board.nowMs - burstMs;
+      const { afterMs, q } = await sensorFaultDuringAJog(r, c, { runMs: 500, fault: 'SENSOR_JUMP', plantCommand: 'sensor burst 60 -1', timeoutMs: 2000 });
       check(afterMs >= 5 * TICK_MS - 1, `cut ${afterMs.toFixed(0)} ms into the burst (not before five readings in a row were rejected)`);
-      const q = await c.send('$Q');
-      check(q?.endsWith(',SENSOR_JUMP'), `fault latched: ${q}`);
       const az = Number(q?.split(',')[1]);
       // Readings within az.jump_deg of the last good one are still taken
       // during the burst: the position held is off by up to that much.
@@ -633,21 +623,11 @@ const scenarios = {
     const r = await rig({ thetaDeg: 200, settings: { 'usb.personality': 'seed' } });
     const c = new LineClient(r);
     try {
-      await c.send('$E');
-      check((await c.send('$R,cw')) === '$OK,R,CW', '$R,cw');
-      check(await r.board.runUntil(() => driving(r), 2000, 1), 'the drive is on');
-      await r.board.run(1500); // well past the first 2 deg (the motor's start)
-      await r.plant.command('sensor stuck -1');
-      await r.board.run(1);
-      const frozenMs = r.board.nowMs;
-      const frozenDeg = angle(r);
-      check(await r.board.runUntil(() => !driving(r), 5000, 1), 'the drive is cut');
-      const afterMs = r.board.nowMs - frozenMs;
+      // Well past the first 2 deg (the motor's start) when the pot freezes.
+      const { afterMs, faultDeg } = await sensorFaultDuringAJog(r, c, { runMs: 1500, fault: 'STALL', plantCommand: 'sensor stuck -1', timeoutMs: 5000 });
       // The last 2 deg seen took at most 2 / 6 deg/s before the freeze.
       check(afterMs >= 3000 - 334 - TICK_MS && afterMs <= 3000 + 2 * TICK_MS,
-        `cut ${afterMs.toFixed(0)} ms after the pot froze (az.stall_ms 3000), the antenna having turned ${(angle(r) - frozenDeg).toFixed(1)} deg meanwhile`);
-      const q = await c.send('$Q');
-      check(q?.endsWith(',STALL'), `fault latched: ${q}`);
+        `cut ${afterMs.toFixed(0)} ms after the pot froze (az.stall_ms 3000), the antenna having turned ${(angle(r) - faultDeg).toFixed(1)} deg meanwhile`);
     } finally {
       c.close();
       await r.close();
@@ -894,24 +874,36 @@ async function elLimitScenario({ command, relay, endSwitch, plantSide, fromDeg }
   }
 }
 
-/** A jog on the seed protocol, the sensor lost under it: the cut, its delay and the fault latched. */
+/**
+ * A CW jog on the seed protocol, `runMs` under way when the plant's
+ * `sensor ...` fault is injected: checks that the drive is then cut and the
+ * fault latched; returns how long after the fault the cut came, the plant's
+ * angle at the fault and the $Q reply.
+ */
+async function sensorFaultDuringAJog(r, c, { runMs, fault, plantCommand, timeoutMs }) {
+  await c.send('$E');
+  check((await c.send('$R,cw')) === '$OK,R,CW', '$R,cw');
+  check(await r.board.runUntil(() => driving(r), 2000, 1), 'the drive is on');
+  await r.board.run(runMs);
+  await r.plant.command(plantCommand);
+  await r.board.run(1); // the plant applies it at its next millisecond
+  const faultMs = r.board.nowMs;
+  const faultDeg = angle(r);
+  check(await r.board.runUntil(() => !driving(r), timeoutMs, 1), 'the drive is cut');
+  const afterMs = r.board.nowMs - faultMs;
+  const q = await c.send('$Q');
+  check(q?.endsWith(`,${fault}`), `fault latched: ${q}`);
+  return { afterMs, faultDeg, q };
+}
+
+/** The sensor lost under a jog: the cut, its delay, the fault latched and the drive refused. */
 async function sensorLossScenario({ profile, sensor, fault, graceMs }) {
   const r = await rig({ profile, sensor, thetaDeg: 200, settings: { 'usb.personality': 'seed' } });
   const c = new LineClient(r);
   try {
-    await c.send('$E');
-    check((await c.send('$R,cw')) === '$OK,R,CW', '$R,cw');
-    check(await r.board.runUntil(() => driving(r), 2000, 1), 'the drive is on');
-    await r.board.run(500);
-    await r.plant.command('sensor loss -1');
-    await r.board.run(1); // the plant applies it at its next millisecond
-    const lostMs = r.board.nowMs;
-    check(await r.board.runUntil(() => !driving(r), 2000, 1), 'the drive is cut');
-    const afterMs = r.board.nowMs - lostMs;
+    const { afterMs } = await sensorFaultDuringAJog(r, c, { runMs: 500, fault, plantCommand: 'sensor loss -1', timeoutMs: 2000 });
     check(afterMs >= graceMs - 1 && afterMs <= graceMs + 2 * TICK_MS + 5,
       `cut ${afterMs.toFixed(0)} ms after the ${sensor} was lost (grace ${graceMs} ms)`);
-    const q = await c.send('$Q');
-    check(q?.endsWith(`,${fault}`), `fault latched: ${q}`);
     const refused = await c.send('$R,cw');
     check(refused === '$ERR,FAULT', `$R,cw refused: ${refused}`);
     await r.board.run(500);
