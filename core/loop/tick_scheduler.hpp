@@ -1,7 +1,7 @@
 #pragma once
 #include <cstdint>
 
-#include "metrics/histogram.hpp"
+#include "metrics/tick_source.hpp"
 
 namespace rotord {
 
@@ -17,20 +17,13 @@ namespace rotord {
 /// skipped and counted as overruns; the schedule keeps its phase. After a
 /// stall of rebase_after_us or more (a suspended host, a debugger, a stepped
 /// clock) the schedule starts again from that moment, and that is counted too.
-class TickScheduler {
+class TickScheduler final : public metrics::TickSource {
  public:
   static constexpr std::int64_t kDefaultRebaseAfterUs = 1'000'000;
 
-  struct Stats {
-    std::uint64_t ticks = 0;     ///< ticks run
-    std::uint64_t overruns = 0;  ///< deadlines skipped: the loop was a period or more late
-    std::uint64_t rebases = 0;   ///< restarts of the schedule after a long stall
-    std::int64_t last_tick_us = 0;
-    /// How late each tick ran after its deadline: the loop's jitter.
-    metrics::Histogram lateness;
-    /// Time from one tick to the next: the period as it ran.
-    metrics::Histogram interval;
-  };
+  /// Declared in the metrics layer, which reports them (the scheduler is
+  /// the metrics' TickSource, so they never name this layer).
+  using Stats = metrics::TickStats;
 
   /// Bucket bounds of Stats::lateness and Stats::interval (microseconds).
   static const std::int64_t kLatenessBoundsUs[10];
@@ -47,8 +40,8 @@ class TickScheduler {
   /// next deadline has been set. False: woke early, sleep until deadline_us().
   bool poll(std::int64_t now_us);
 
-  std::int64_t period_us() const { return period_us_; }
-  const Stats& stats() const { return stats_; }
+  std::int64_t period_us() const override { return period_us_; }
+  const Stats& stats() const override { return stats_; }
 
  private:
   std::int64_t period_us_;

@@ -5,13 +5,9 @@
 #include <string_view>
 
 #include "hal/monotonic_clock.hpp"
+#include "metrics/tick_source.hpp"
 #include "protocol/datagram_registry.hpp"
-#include "util/metrics_protocol.hpp"
-
-namespace rotord {
-class SettingsSaver;
-class TickScheduler;
-}  // namespace rotord
+#include "protocol/metrics_protocol.hpp"
 
 namespace rotord::metrics {
 
@@ -69,10 +65,15 @@ class Registry {
     return datagrams_[static_cast<std::size_t>(p)][static_cast<std::size_t>(outcome)];
   }
 
-  /// The loop's tick schedule (period, jitter, overruns); nullptr: not reported.
-  const TickScheduler* ticks = nullptr;
-  /// Settings saves and failures; nullptr: not reported.
-  const SettingsSaver* saver = nullptr;
+  /// The loop's tick schedule (period, jitter, overruns): the port's
+  /// TickScheduler; nullptr: not reported.
+  const TickSource* ticks = nullptr;
+  /// Settings documents written and writes that failed, as the settings
+  /// saver counts them: the port points these at SettingsSaver::writes() and
+  /// failures() (the saver is in storage, which this layer does not reach);
+  /// nullptr: not reported.
+  const std::uint32_t* settings_writes = nullptr;
+  const std::uint32_t* settings_failures = nullptr;
   /// The scheduler's clock, for the age of the last tick (GET /healthz).
   const hal::MonotonicClock* clock = nullptr;
   /// The clock's reading when the port started, for rotord_uptime_seconds.

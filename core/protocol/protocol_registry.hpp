@@ -13,10 +13,10 @@
 #include "protocol/console_session.hpp"
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
+#include "protocol/metrics_protocol.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "protocol/seed_session.hpp"
 #include "protocol/wrc_session.hpp"
-#include "util/metrics_protocol.hpp"
 
 namespace rotord::protocol {
 

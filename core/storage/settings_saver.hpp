@@ -67,9 +67,9 @@ class SettingsSaver final : public hal::Storage {
   /// Pause before the next attempt after a failure (0: none failed).
   Millis retry_delay_ms() const { return retry_delay_ms_; }
   /// Documents written since start (the REST API's saves and this saver's).
-  std::uint32_t writes() const { return writes_; }
+  const std::uint32_t& writes() const { return writes_; }
   /// Writes that failed since start (each retry counts again).
-  std::uint32_t failures() const { return failures_; }
+  const std::uint32_t& failures() const { return failures_; }
 
  private:
   Result write(Millis now);

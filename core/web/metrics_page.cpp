@@ -4,9 +4,6 @@
 #include <cstdio>
 #include <utility>
 
-#include "loop/tick_scheduler.hpp"
-#include "storage/settings_saver.hpp"
-
 namespace rotord::web {
 namespace {
 
@@ -152,8 +149,8 @@ void write_protocols(PrometheusWriter& w, const metrics::Registry& r) {
   }
 }
 
-void write_ticks(PrometheusWriter& w, const TickScheduler& t) {
-  const TickScheduler::Stats& s = t.stats();
+void write_ticks(PrometheusWriter& w, const metrics::TickSource& t) {
+  const metrics::TickStats& s = t.stats();
   w.family("rotord_tick_period_seconds", "gauge", "Period the control loop is scheduled at.");
   w.value({}, static_cast<double>(t.period_us()) / 1e6);
   w.family("rotord_ticks_total", "counter", "Control loop ticks run.");
@@ -192,13 +189,13 @@ void write_metrics(PrometheusWriter& w, const Controller& controller,
   if (registry == nullptr) return;
   write_protocols(w, *registry);
   if (registry->ticks != nullptr) write_ticks(w, *registry->ticks);
-  if (registry->saver != nullptr) {
+  if (registry->settings_writes != nullptr && registry->settings_failures != nullptr) {
     w.family("rotord_settings_saves_total", "counter",
              "Settings documents written to the file (Linux) or flash (Pico W).");
-    w.integer({}, registry->saver->writes());
+    w.integer({}, *registry->settings_writes);
     w.family("rotord_settings_save_failures_total", "counter",
              "Settings writes that failed (each retry counts).");
-    w.integer({}, registry->saver->failures());
+    w.integer({}, *registry->settings_failures);
   }
 }
 
@@ -206,7 +203,7 @@ Health check_health(const Controller& controller, const metrics::Registry* regis
                     std::int64_t now_us) {
   Health h;
   if (registry != nullptr && registry->ticks != nullptr && registry->clock != nullptr) {
-    const TickScheduler::Stats& t = registry->ticks->stats();
+    const metrics::TickStats& t = registry->ticks->stats();
     // Before the first tick, the time since the loop started.
     const std::int64_t age_us = now_us - (t.ticks > 0 ? t.last_tick_us : registry->start_us);
     if (age_us > Health::kMaxTickAgeUs) {

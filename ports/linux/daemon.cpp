@@ -22,7 +22,7 @@ namespace {
 /// one stops the motors before rotord exits. Left out are the ones the CPU
 /// raises for a fault in rotord itself (SIGSEGV, SIGBUS, SIGFPE, SIGILL,
 /// SIGTRAP, SIGSYS, SIGABRT): running on after those is undefined, so they
-/// end the process like `kill -9` (README, "Signals"). SIGPIPE is ignored.
+/// end the process like `kill -9` (docs/running.md, "Signals"). SIGPIPE is ignored.
 std::vector<int> terminating_signals() {
   std::vector<int> signals = {SIGHUP,  SIGINT,  SIGQUIT,   SIGTERM, SIGUSR1, SIGUSR2,
                               SIGALRM, SIGPOLL, SIGVTALRM, SIGPROF, SIGXCPU, SIGXFSZ};
@@ -210,7 +210,10 @@ bool Daemon::start_controller() {
   }
   if (gpio_ && gpio_->estop() != nullptr) controller_->attach_estop(gpio_->estop());
   metrics_.ticks = &ticks_;
-  metrics_.saver = saver_.get();
+  if (saver_) {
+    metrics_.settings_writes = &saver_->writes();
+    metrics_.settings_failures = &saver_->failures();
+  }
   metrics_.clock = &steady_clock_;
   web::ApiContext api_context{*controller_,   saver_.get(), &defaults_,         this,
                               ROTORD_VERSION, &wall_clock_, host_name_.c_str(), &metrics_};

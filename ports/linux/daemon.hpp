@@ -18,7 +18,7 @@
 #include "serial_transport.hpp"
 #include "service_notify.hpp"
 #include "settings/settings.hpp"
-#include "sim/sim_rotator.hpp"
+#include "simulator.hpp"
 #include "storage/settings_saver.hpp"
 #include "system_wall_clock.hpp"
 #include "tcp_server.hpp"

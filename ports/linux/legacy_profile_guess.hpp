@@ -1,6 +1,6 @@
 #pragma once
 #include "json/settings_json.hpp"
-#include "sim/profiles.hpp"
+#include "simulator.hpp"
 
 namespace rotord::linux_port {
 

@@ -12,7 +12,7 @@
 #include "json/settings_json.hpp"
 #include "options.hpp"
 #include "settings/settings.hpp"
-#include "sim/profiles.hpp"
+#include "simulator.hpp"
 
 namespace rotord::linux_port {
 

@@ -449,7 +449,10 @@ const char* restart_reason() {
   // slots (RAM only when the program image would overlap them).
   hal::Storage* const storage = g_flash.region_free() ? &g_saver : nullptr;
   g_saver.begin();  // what was loaded (or deliberately not overwritten) counts as saved
-  if (storage != nullptr) registry.saver = &g_saver;
+  if (storage != nullptr) {
+    registry.settings_writes = &g_saver.writes();
+    registry.settings_failures = &g_saver.failures();
+  }
 
 #if ROTORD_PICO_NETWORK
   // 4. Network (network_services.hpp). Without the Wi-Fi chip the controller

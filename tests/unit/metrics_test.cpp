@@ -216,7 +216,8 @@ class MetricsPages : public ::testing::Test {
   MetricsPages() {
     registry.ticks = &ticks;
     registry.clock = &clock;
-    registry.saver = &saver;
+    registry.settings_writes = &saver.writes();
+    registry.settings_failures = &saver.failures();
     registry.start_us = clock.us;
     ticks.start(clock.us);
     saver.begin();
