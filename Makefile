@@ -1,4 +1,4 @@
-# Thin wrapper around CMake presets; see README.md.
+# Thin wrapper around CMake presets; see README.md and docs/installation.md.
 BUILD_DIR ?= build
 PRESET    ?= default
 JOBS      ?= $(shell nproc)
@@ -73,8 +73,8 @@ endif
 
 # The Debian package for this machine's architecture (arm64/armhf on a Pi),
 # built from a copy of the tree in $(DEB_BUILD_DIR) so debhelper's files
-# stay out of the source; the .deb lands in the top directory. README.md,
-# "Install on a Raspberry Pi".
+# stay out of the source; the .deb lands in the top directory.
+# docs/installation.md, "Install on a Raspberry Pi".
 DEB_BUILD_DIR ?= build-deb
 deb:
 	@./scripts/install-deps.sh --deb

@@ -40,7 +40,7 @@ bool parse_float(std::string_view s, float& out) {
 }  // namespace
 
 // The command table: one row per command. Names are matched
-// case-insensitively; docs/protocols list and README's WRC table are checked
+// case-insensitively; docs/protocols/wrc.md's table is checked
 // against these rows (tests/docs/command_docs_test.cpp).
 const WrcSession::Command WrcSession::kCommands[] = {
     {"AZ", WrcSession::Arg::kRequired, &WrcSession::go_az,

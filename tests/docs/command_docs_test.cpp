@@ -101,9 +101,9 @@ Names names_of(const Table& table) {
   return names;
 }
 
-TEST(CommandDocs, WrcTableInTheReadmeListsExactlyTheWrcCommands) {
+TEST(CommandDocs, WrcPageListsExactlyTheWrcCommands) {
   Names documented;
-  for (const std::string& cell : column(read_doc("README.md"), "### WRC text protocol", 0))
+  for (const std::string& cell : column(read_doc("docs/protocols/wrc.md"), "## Commands", 0))
     for (const std::string& code : codes(cell)) documented.insert(words(code).at(0));
   EXPECT_EQ(documented, names_of(protocol::WrcSession::commands()));
 }

@@ -44,7 +44,7 @@ TEST_P(SignalWhileMoving, StopsTheMotorsThenExitsCleanly) {
 }
 
 // Every catchable signal whose default action ends the process, but the
-// CPU's own fault signals (README, "Signals"); two real-time ones stand for
+// CPU's own fault signals (docs/running.md, "Signals"); two real-time ones stand for
 // the whole SIGRTMIN..SIGRTMAX range.
 INSTANTIATE_TEST_SUITE_P(EveryTerminatingSignal, SignalWhileMoving,
                          ::testing::Values(SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2,

@@ -417,7 +417,8 @@ TEST_F(LwipMqttTest, AFloodIsBoundedAndAStopStillGetsThrough) {
 }
 
 TEST(LwipMqttBudget, TheGlueFitsItsStatedRam) {
-  // README and docs/mqtt.md give this number: keep them in step.
+  // docs/mqtt.md, docs/pico_w.md and ports/pico_w/README.md give this number:
+  // keep them in step.
   EXPECT_LE(sizeof(lwip_port::LwipMqtt), 10u * 1024u) << sizeof(lwip_port::LwipMqtt);
   RecordProperty("bytes", static_cast<int>(sizeof(lwip_port::LwipMqtt)));
 }
