@@ -7,7 +7,7 @@
 namespace rotord::bench {
 namespace {
 
-// Distance covered by running t1 then coasting out (physics.md 5.1).
+// Distance covered by running t1 then coasting out.
 double relay_distance_deg(const BoundPlant& p, double t1_s) {
   const double lag = 1.0 - std::exp(-t1_s / p.tau_m_s);
   const double x_on = p.v_max_deg_s * (t1_s - p.tau_m_s * lag);

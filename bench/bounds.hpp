@@ -2,7 +2,7 @@
 
 namespace rotord::bench {
 
-/// Plant parameters the time-optimal bounds depend on (physics.md 5.1).
+/// Plant parameters the time-optimal bounds depend on.
 struct BoundPlant {
   double v_max_deg_s;
   double tau_m_s;  ///< powered speed lag; the trapezoid's acceleration is v / tau_m

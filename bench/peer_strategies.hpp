@@ -5,7 +5,7 @@
 namespace rotord::bench {
 
 /// Stop/approach logic of a controller other than rotord, re-implemented from
-/// its published description (../shared/reference/physics.md section 5) so it
+/// its published description so it
 /// can drive the same simulated plant. Each one reads the true output angle
 /// (no sensor noise, no quantisation: an advantage over rotord, which reads
 /// the simulated pot or encoder) and writes the plant's output channels.

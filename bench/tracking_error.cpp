@@ -35,7 +35,9 @@ class Pass {
   explicit Pass(double max_el_deg) : r_km_(kEarthRadiusKm + kAltitudeKm) {
     omega_rad_s_ = std::sqrt(kMuKm3S2 / (r_km_ * r_km_ * r_km_));
     const double e = max_el_deg * kDeg;
-    beta_rad_ = std::acos(kEarthRadiusKm * std::cos(e) / r_km_) - e;  // physics.md 2
+    // Earth-central angle from the observer to the ground track, for a pass
+    // culminating at max_el_deg.
+    beta_rad_ = std::acos(kEarthRadiusKm * std::cos(e) / r_km_) - e;
     half_s_ = std::acos(kEarthRadiusKm / r_km_ / std::cos(beta_rad_)) / omega_rad_s_;
   }
   double duration_s() const { return 2.0 * half_s_; }

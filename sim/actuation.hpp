@@ -14,7 +14,7 @@ struct Actuation {
   bool operator==(const Actuation&) const = default;
 };
 
-/// Decodes one set of outputs (physics.md section 6, step 1).
+/// Decodes one set of outputs (the plant model's first step, plant.hpp).
 Actuation actuation_from(const AxisPlantParams& params, const DriveOutputs& outputs);
 
 /// H-bridge dead band: w*/v_max = sign(d) max(0, (|d| - d0) / (1 - d0)).

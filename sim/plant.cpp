@@ -133,7 +133,7 @@ void AxisPlant::integrate_brake(double h_s) {
   follow_backlash();
 }
 
-// physics.md 6.3: the output only moves when the motor side pushes it from
+// Backlash: the output only moves when the motor side pushes it from
 // one flank of the gap.
 void AxisPlant::follow_backlash() {
   const double half_deg = 0.5 * params_.backlash_deg;

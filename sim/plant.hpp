@@ -9,7 +9,7 @@
 
 namespace rotord::sim {
 
-/// One rotator axis as physics.md section 6 describes it: relay delay line,
+/// One rotator axis as the simulator models it: relay delay line,
 /// first-order motor (powered) or coast (unpowered), brake, gear backlash
 /// between the motor side phi and the output theta, hard end stops, and jam /
 /// slip faults. Deterministic: no noise in the plant itself.

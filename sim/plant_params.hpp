@@ -13,7 +13,7 @@ enum class DriveKind : std::uint8_t {
   kHBridge = 3,             ///< H-bridge PWM duty (kPwmCw / kPwmCcw)
 };
 
-/// One axis of the plant model of physics.md section 6. Angles are output
+/// One axis of the plant model (plant.hpp). Angles are output
 /// degrees (the motor-side angle is scaled to the output too).
 struct AxisPlantParams {
   double v_max_deg_s = 6.0;       ///< full speed at load factor 1

@@ -13,7 +13,7 @@ namespace {
 constexpr double kLimitSwitchMarginDeg = 1.0;
 constexpr double kEndStopMarginDeg = 3.0;
 
-// ADC noise: ENOB ~8.7 on the RP2040 is ~2.8 LSB RMS (physics.md 1.3).
+// ADC noise: ENOB ~8.7 on the RP2040 is ~2.8 LSB RMS.
 constexpr double kPotSigma_v = 2.8 * kAdcLsb_v;
 
 // G-5500 pot outputs 0.05..4.11 V over 450 deg, divided to ~3.0 V full scale.
@@ -42,7 +42,7 @@ constexpr AxisProfile with_overlap_sensors(AxisProfile a) {
   return a;
 }
 
-// ---- physics.md section 6 presets ----
+// ---- the rotator presets ----
 
 // G5500_AZ_LIKE: 6 deg/s, tau_m 0.20 s, tau_c 0.15 s, backlash 1.0, relay 10 ms.
 constexpr AxisPlantParams kG5500AzPlant{.v_max_deg_s = 6.0,

@@ -191,8 +191,8 @@ float Axis::expected_rate_deg_s(bool slow_zone) const {
       if (slow) ratio = cfg_.slow_speed_ratio;
       break;
     case DriveType::kHBridge: {
-      // A DC motor's speed grows with the duty above its dead band
-      // (physics.md, H-bridge actuation).
+      // A DC motor's speed grows with the duty above its dead band (H-bridge
+      // actuation).
       const float dead_band = cfg_.pwm_dead_band;
       ratio = (commanded_duty(slow_zone) - dead_band) / (1.0f - dead_band);
       break;

@@ -2,7 +2,7 @@
 #include <cstddef>
 #include <string_view>
 
-// The JSON codec layer (core/json, DESIGN: layers): below web and storage,
+// The JSON codec layer (core/json, docs/architecture.md): below web and storage,
 // which both read and write JSON. Its names stayed in rotord::web, where the
 // codec began, so the web API, the ports and the tests spell them as before.
 namespace rotord::web {

@@ -5,7 +5,7 @@
 
 #include "util/byte_sink.hpp"
 
-// The JSON codec layer (core/json, DESIGN: layers): below web and storage,
+// The JSON codec layer (core/json, docs/architecture.md): below web and storage,
 // which both read and write JSON. Its names stayed in rotord::web, where the
 // codec began, so the web API, the ports and the tests spell them as before.
 namespace rotord::web {

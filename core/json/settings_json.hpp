@@ -9,7 +9,7 @@
 #include "settings/settings.hpp"
 #include "settings/settings_layers.hpp"
 
-// The JSON codec layer (core/json, DESIGN: layers): below web and storage,
+// The JSON codec layer (core/json, docs/architecture.md): below web and storage,
 // which both read and write JSON. Its names stayed in rotord::web, where the
 // codec began, so the web API, the ports and the tests spell them as before.
 namespace rotord::web {

@@ -27,7 +27,7 @@ struct tcp_pcb;
 namespace rotord::lwip_port {
 
 /// Makes and destroys the sessions of one server in caller-owned storage, so a
-/// connection never allocates (DESIGN.md: no heap after start-up).
+/// connection never allocates (no heap after start-up).
 class SessionPool {
  public:
   virtual ~SessionPool() = default;

@@ -1,4 +1,4 @@
-// Plant dynamics (physics.md section 6) against the shared step reference and
+// Plant dynamics (sim/plant.hpp) against the shared step reference and
 // closed-form results.
 #include "sim/plant.hpp"
 

@@ -183,7 +183,7 @@ class TrackScenario {
 };
 
 TEST(TrackingScenario, NearOverheadIssPassOnG5500IsFollowedFlipped) {
-  // Max el 87.8 deg (physics.md's keyhole set, 15 km off the track). The dish
+  // Max el 87.8 deg (the keyhole set of tests/data/tracking, 15 km off the track). The dish
   // was stowed at the zenith facing 50 deg, nearly where the pass ends: the
   // flipped plan (az 52..232 read as 232..412, el 180..92..180) needs no
   // azimuth slew before AOS; the plain one needs 180 deg of it.
@@ -199,7 +199,7 @@ TEST(TrackingScenario, NearOverheadIssPassOnG5500IsFollowedFlipped) {
   EXPECT_EQ(s.limit_ticks(), 0);
   s.report("g5500, ISS max el 87.8 deg, flipped");
   EXPECT_GT(s.samples(), 600);
-  // The ideal speed-limited follower (physics.md) reaches 10 deg at 88 deg;
+  // The ideal speed-limited follower reaches 10 deg at 88 deg;
   // the planned path halves that by starting the azimuth swing early.
   EXPECT_LT(s.max_error(), 8.0);
   EXPECT_LT(s.rms(), 2.5);

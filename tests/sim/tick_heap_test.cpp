@@ -1,4 +1,4 @@
-// "No heap in the control tick" (DESIGN.md), checked rather than promised: this
+// "No heap in the control tick" (docs/architecture.md), checked rather than promised: this
 // binary replaces the global allocator with one that counts, and the count is
 // taken only inside Controller::tick while the controller runs every kind of
 // work on the simulator: go-tos through the overlap, reversals, jogs, stops,

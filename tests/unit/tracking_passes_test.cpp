@@ -1,7 +1,8 @@
 // The pass finder against tests/data/tracking/passes.csv (skyfield's
 // find_events for the ISS, PyEphem's rising/transit/setting for the Sun and
 // the Moon) and keyhole_iss.csv (near-overhead ISS passes with their maximum
-// rates, from the project's shared reference data, physics.md section 2).
+// rates computed with python-sgp4 for observers under the ISS's track; see
+// tests/data/tracking/README.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -208,7 +209,7 @@ TEST(TrackingPassesTest, ADecayedSatelliteIsAnError) {
 }
 
 TEST(TrackingPassesTest, NearOverheadIssPassesAndTheirRates) {
-  // Observers under the ISS's track at 19:31:38 UTC (physics.md's keyhole check).
+  // Observers under the ISS's track at 19:31:38 UTC (keyhole_iss.csv's check).
   for (unsigned long line = 1; line < kKeyholeIssCsv_count; ++line) {
     std::string_view f[8];
     ASSERT_EQ(csv_fields(kKeyholeIssCsv[line], f, 8), 8u);

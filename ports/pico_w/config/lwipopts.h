@@ -9,7 +9,7 @@
 #define LWIP_SOCKET 0
 #define LWIP_NETCONN 0
 
-// Static memory: no malloc after start-up (DESIGN.md).
+// Static memory: no malloc after start-up.
 #define MEM_LIBC_MALLOC 0
 #define MEM_ALIGNMENT 4
 #define MEM_SIZE 16000
