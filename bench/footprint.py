@@ -56,8 +56,44 @@ def m0_rows():
     return [{"name": "footprint/core_m0plus", "inputs": {"minsizerel": 1}, "metrics": metrics}]
 
 
+# The map page (issue 26): what a browser loads for /map.html, and what the
+# map adds to the embedded assets (the Pico W's flash holds these same gzip
+# -9 bytes, core/web/embed_assets.cmake).
+MAP_PAGE = ["map.html", "style.css", "common.js", "access.js", "world.js", "map_draw.js",
+            "places.js", "map.js"]
+MAP_ADDED = ["world.js", "map_draw.js", "places.js", "map.js", "map.html"]
+
+
+def web_rows(build_dir):
+    src = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    generated = os.path.join(build_dir, "core", "web_generated")
+
+    def sizes(name):
+        path = os.path.join(src, "web", name)
+        if not os.path.exists(path):
+            path = os.path.join(generated, name)
+        with open(path, "rb") as f:
+            raw = f.read()
+        packed = subprocess.run(["gzip", "-9", "-n", "-c"], input=raw, capture_output=True,
+                                check=True).stdout
+        return len(raw), len(packed)
+
+    world_raw, world_gz = sizes("world.js")
+    page = [sizes(n) for n in MAP_PAGE]
+    added = [sizes(n) for n in MAP_ADDED]
+    everything = [sizes(n) for n in sorted(os.listdir(os.path.join(src, "web")))
+                  if n.rsplit(".", 1)[-1] in ("html", "css", "js", "svg")] + [(world_raw, world_gz)]
+    return [{"name": "footprint/web_map", "inputs": {"natural_earth_110m": 1},
+             "metrics": {"world_js_raw_bytes": world_raw, "world_js_gzip_bytes": world_gz,
+                         "map_page_raw_bytes": sum(r for r, _ in page),
+                         "map_page_gzip_bytes": sum(g for _, g in page),
+                         "map_added_flash_bytes": sum(g for _, g in added),
+                         "web_assets_flash_bytes": sum(g for _, g in everything)}}]
+
+
 def run(build_dir):
     rows = tick_rows(build_dir)
+    rows += web_rows(build_dir)
     try:
         rows += m0_rows()
     except (OSError, subprocess.CalledProcessError, RuntimeError) as e:

@@ -8,7 +8,7 @@ set -euo pipefail
 
 # What `make deb` needs: debian/control's Build-Depends, dpkg-buildpackage, git.
 deb_packages=(
-  build-essential dpkg-dev debhelper cmake ninja-build pkg-config gzip git
+  build-essential dpkg-dev debhelper cmake ninja-build pkg-config gzip git nodejs npm
   libasio-dev libcli11-dev libgpiod-dev libsystemd-dev libavahi-client-dev libmbedtls-dev
   libcurl4-openssl-dev
 )
@@ -49,6 +49,13 @@ if [ ${#missing[@]} -gt 0 ]; then
   export DEBIAN_FRONTEND=noninteractive
   "${sudo_cmd[@]}" apt-get update -q
   "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# The map page's coastlines and borders (world-atlas, pinned in
+# web/map/package-lock.json): converted into the web assets at build time
+# (core/web/world_map.cmake), for the daemon and the Pico W image alike.
+if [ -f web/map/package.json ] && [ ! -f web/map/node_modules/world-atlas/countries-110m.json ]; then
+  (cd web/map && npm ci --no-audit --no-fund --loglevel=error)
 fi
 
 # Browser tests drive Debian's chromium with playwright-core (no browser download).

@@ -69,18 +69,23 @@
       $(id).setAttribute('visibility', l.az_continuous ? 'hidden' : 'visible');
     }
     const az = s.az.position_deg;
-    $('needle').setAttribute('transform', `rotate(${wrap(az)})`);
-    $('beam').setAttribute('d', sector(wrap(az) - 15, wrap(az) + 15, 0, 98));
+    // Where the beam points (after a flip over the zenith) is the main figure.
+    const beamAz = s.beam ? s.beam.az_deg : az;
+    $('needle').setAttribute('transform', `rotate(${wrap(beamAz)})`);
+    $('beam').setAttribute('d', sector(wrap(beamAz) - 15, wrap(beamAz) + 15, 0, 98));
     const t = s.az.target_deg;
+    const beamTarget = s.beam && s.beam.target_az_deg !== null ? s.beam.target_az_deg : t;
     $('target').setAttribute('visibility', t === null ? 'hidden' : 'visible');
-    if (t !== null) $('target').setAttribute('transform', `rotate(${wrap(t)})`);
+    if (t !== null) $('target').setAttribute('transform', `rotate(${wrap(beamTarget)})`);
 
-    $('az').textContent = rotord.fmt(az) + '°';
-    $('az').title = `unwrapped ${rotord.fmt(az)}°, raw ${rotord.fmt(s.az.raw, 0)} ${s.az.raw_unit}`;
+    $('az').textContent = rotord.fmt(wrap(beamAz)) + '°';
+    $('az-mech').textContent = `mechanism ${rotord.fmt(az)}°`;
+    $('az-mech').title = `unwrapped ${rotord.fmt(az)}°, raw ${rotord.fmt(s.az.raw, 0)} ${s.az.raw_unit}`;
     const targets = [];
     if (t !== null) targets.push('az ' + rotord.fmt(t));
     if (s.el) {
-      $('el').textContent = rotord.fmt(s.el.position_deg) + '°';
+      $('el').textContent = rotord.fmt(s.beam && s.beam.el_deg !== null ? s.beam.el_deg : s.el.position_deg) + '°';
+      $('el-mech').textContent = `mechanism ${rotord.fmt(s.el.position_deg)}°`;
       $('el-needle').setAttribute('transform', `rotate(${-s.el.position_deg} 100 0)`);
       const et = s.el.target_deg;
       $('el-target').setAttribute('visibility', et === null ? 'hidden' : 'visible');
@@ -207,9 +212,28 @@
     command('/api/goto', { az }, `going to ${az}°`);
   });
 
+  rotordPlaces.wirePlace(msg);
+  rotordPlaces.wirePresets(msg);
+  // The map beside the controls on a desktop (its coastlines are loaded
+  // only there: a phone has the map page).
+  let updateMap = null;
+  if (window.matchMedia('(min-width: 1000px)').matches) {
+    const load = (src) => new Promise((resolve) => {
+      const script = document.createElement('script');
+      script.src = src;
+      script.onload = resolve;
+      document.body.appendChild(script);
+    });
+    load('/world.js').then(() => load('/map_draw.js')).then(() => {
+      updateMap = rotordPlaces.wireMap($('map'), msg);
+      if (last) updateMap(last);
+    });
+  }
+
   rotordAccess.wire(msg);
   rotord.live((s) => {
     last = s;
+    if (updateMap) updateMap(s);
     rotordAccess.update(s);
     if (!drawQueued) { drawQueued = true; requestAnimationFrame(draw); }
   });

@@ -55,7 +55,14 @@ function render(rotators) {
     }
     row.appendChild(name);
     cell(row, r.prefix);
-    cell(row, `${r.az_deg.toFixed(1)}°`);
+    // Where the beam points; the mechanism's azimuth beside it.
+    const az = cell(row, `${r.az_deg.toFixed(1)}°`);
+    if (typeof r.mech_az_deg === 'number') {
+      const mech = document.createElement('span');
+      mech.className = 'mech';
+      mech.textContent = ` mech ${r.mech_az_deg.toFixed(1)}°`;
+      az.appendChild(mech);
+    }
     cell(row, r.el_deg === null ? '–' : `${r.el_deg.toFixed(1)}°`);
     cell(row, r.mode);
     cell(row, !r.online ? 'offline' : r.fault ? 'fault' : 'online');

@@ -17,7 +17,8 @@ using settings::Id;
 
 /// The commands the broker may send: the REST API's POST endpoints of the
 /// same names. STOP is obeyed whatever mqtt.control says.
-constexpr std::string_view kCommands[] = {"goto", "move", "stop", "park", "reset", "speed"};
+constexpr std::string_view kCommands[] = {"goto",  "move",  "stop",  "park",
+                                          "reset", "speed", "place", "preset"};
 
 bool known_command(std::string_view name) {
   for (std::string_view c : kCommands)
@@ -110,6 +111,7 @@ void Bridge::poll(Millis now_ms) {
   }
   // In order, each once; a refused one waits for a later pass (the Pico's
   // lwIP client has room for a few messages at a time).
+  if (presets_changed()) announce_step_ = 0;  // new preset buttons for Home Assistant
   while (announce_step_ < kAnnouncements) {
     if (!announce(announce_step_)) return;
     ++announce_step_;
@@ -165,8 +167,9 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
   const std::string_view command(name_copy,
                                  copy_text(text::slice(name, 0, 15), name_copy, sizeof name_copy));
   if (!known_command(name)) {
-    publish_result(command, 404,
-                   R"({"error":"unknown command: use goto, move, stop, park, reset or speed"})");
+    publish_result(
+        command, 404,
+        R"({"error":"unknown command: use goto, move, stop, park, reset, speed, place or preset"})");
     return;
   }
   if (oversized || payload.size() > kMaxCommandBytes) {
@@ -231,7 +234,9 @@ void Bridge::set_web_url(std::string_view url) {
 }
 
 bool Bridge::announce(int step) {
-  if (step < kAnnouncements - 1)
+  if (step >= kEntityCount && step < kEntityCount + static_cast<int>(settings::kPresetCount))
+    return !api_->settings().b(Id::kMqttDiscovery) || publish_preset_button(step - kEntityCount);
+  if (step < kEntityCount)
     return !api_->settings().b(Id::kMqttDiscovery) || publish_discovery(step);
   return publish_info();
 }
@@ -263,7 +268,15 @@ bool Bridge::publish_discovery(int entity) {
   char park_topic[kMaxTopicBytes];
   join_topic(prefix(), "cmd/park", park_topic, sizeof park_topic);
 
-  enum class Kind : unsigned char { kSensorAz, kSensorEl, kNumberAz, kStop, kPark, kFault };
+  enum class Kind : unsigned char {
+    kSensorAz,
+    kSensorEl,
+    kNumberAz,
+    kStop,
+    kPark,
+    kFault,
+    kSensorMechAz
+  };
   struct Entity {
     Kind kind;
     const char* component;
@@ -277,8 +290,9 @@ bool Bridge::publish_discovery(int entity) {
       {Kind::kStop, "button", "stop", "Stop"},
       {Kind::kPark, "button", "park", "Park"},
       {Kind::kFault, "binary_sensor", "fault", "Fault"},
+      {Kind::kSensorMechAz, "sensor", "mechanical_azimuth", "Mechanical azimuth"},
   };
-  static_assert(std::size(kEntities) == kAnnouncements - 1, "one announcement per entity");
+  static_assert(std::size(kEntities) == kEntityCount, "one announcement per entity");
   if (entity < 0 || static_cast<std::size_t>(entity) >= std::size(kEntities)) return true;
   const Entity& e = kEntities[entity];
   {
@@ -296,30 +310,18 @@ bool Bridge::publish_discovery(int entity) {
     FixedSink sink(message_, sizeof message_);
     {
       web::JsonWriter w(sink);
-      w.begin_object()
-          .member("name", e.name)
-          .member("unique_id", unique_id)
-          .member("availability_topic", availability_topic())
-          .member("payload_available", "online")
-          .member("payload_not_available", "offline");
-      w.key("device")
-          .begin_object()
-          .key("identifiers")
-          .begin_array()
-          .string(node_id_)
-          .end_array()
-          .member("name", device_name_)
-          .member("manufacturer", "rotord")
-          .member("model", "rotord antenna rotator controller")
-          .member("sw_version", version_)
-          .end_object();
+      write_entity_head(w, e.name, unique_id);
       switch (e.kind) {
         case Kind::kSensorAz:
         case Kind::kSensorEl:
+        case Kind::kSensorMechAz:
+          // Where the beam points (after a flip over the zenith); the
+          // mechanism's azimuth beside it.
           w.member("state_topic", state_topic)
-              .member("value_template", e.kind == Kind::kSensorAz
-                                            ? "{{ value_json.az.position_deg | round(1) }}"
-                                            : "{{ value_json.el.position_deg | round(1) }}")
+              .member("value_template",
+                      e.kind == Kind::kSensorAz   ? "{{ value_json.beam.az_deg | round(1) }}"
+                      : e.kind == Kind::kSensorEl ? "{{ value_json.beam.el_deg | round(1) }}"
+                                                  : "{{ value_json.az.position_deg | round(1) }}")
               .member("unit_of_measurement", "\xc2\xb0")
               .member("state_class", "measurement")
               .member("icon", "mdi:compass");

@@ -6,6 +6,7 @@
 #include "access/peer.hpp"
 #include "mqtt/station.hpp"
 #include "mqtt/topics.hpp"
+#include "settings/preset.hpp"
 #include "util/time.hpp"
 #include "web/web_api.hpp"
 
@@ -100,13 +101,22 @@ class Bridge {
   /// Whether a position moved by kPositionStepDeg since the last publish.
   bool position_changed() const;
   bool publish_state();
-  /// Discovery's entities, then <prefix>/info.
-  static constexpr int kAnnouncements = 7;
+  /// Discovery's entities, a button per preset slot, then <prefix>/info.
+  static constexpr int kEntityCount = 7;
+  static constexpr int kAnnouncements = kEntityCount + static_cast<int>(settings::kPresetCount) + 1;
   /// Publishes announcement `step` (0..kAnnouncements-1); false: the
   /// transport refused it (tried again later).
   bool announce(int step);
   bool publish_discovery(int entity);
   bool publish_info();
+  /// Home Assistant's button for preset slot `slot` (an empty config
+  /// removes the button of an unused slot); presets.cpp.
+  bool publish_preset_button(int slot);
+  /// The device, availability, name and unique id every entity has.
+  void write_entity_head(web::JsonWriter& w, const char* name, const char* unique_id) const;
+  /// Whether the presets changed since the last call (their buttons are
+  /// announced again).
+  bool presets_changed();
   void publish_result(std::string_view command, int status, std::string_view body);
 
   web::Api* api_;
@@ -127,6 +137,7 @@ class Bridge {
   int announce_step_ = kAnnouncements;  ///< the next announcement to publish
   bool have_published_ = false;
   Fingerprint last_;
+  std::uint32_t presets_crc_ = 0;
   float last_az_deg_ = 0.0f;
   float last_el_deg_ = 0.0f;
   Millis last_publish_ms_ = 0;

@@ -84,8 +84,13 @@ bool Station::on_message(std::string_view topic, std::string_view payload) {
     Entry* e = find(prefix, true);
     if (e == nullptr) return false;
     e->seen_state = true;
-    e->az_deg = az;
+    // Where the beam points (issue 26), the mechanism beside it; an older
+    // rotord's state has no beam: its mechanism's position is shown then.
+    e->mech_az_deg = az;
+    if (!number_after(payload, R"("beam":{"az_deg":)", e->az_deg)) e->az_deg = az;
     e->has_el = number_after(payload, R"("el":{"position_deg":)", e->el_deg);
+    float beam_el = 0.0f;
+    if (e->has_el && number_after(payload, R"(,"el_deg":)", beam_el)) e->el_deg = beam_el;
     if (!string_after(payload, R"("mode":")", e->mode, sizeof e->mode)) e->mode[0] = '\0';
     e->fault = payload.find(R"("fault":true)") != std::string_view::npos;
     return true;
@@ -132,7 +137,8 @@ void Station::write_station(web::JsonWriter& w) const {
         .member("web", e.web)
         .member("online", e.online)
         .member("mode", e.mode)
-        .member("az_deg", e.az_deg);
+        .member("az_deg", e.az_deg)
+        .member("mech_az_deg", e.mech_az_deg);
     w.key("el_deg");
     if (e.has_el) {
       w.number(e.el_deg);

@@ -22,7 +22,9 @@ class Station final : public web::StationSource {
 
   /// A message on a two-level prefix; false when it is not a rotord's.
   bool on_message(std::string_view topic, std::string_view payload);
-  /// {"rotators":[{"prefix","name","web","online","mode","az_deg","el_deg","fault"}...]}
+  /// {"rotators":[{"prefix","name","web","online","mode","az_deg","mech_az_deg","el_deg",
+  /// "fault"}...]}: az_deg and el_deg where the beam points, mech_az_deg the
+  /// mechanism's azimuth.
   void write_station(web::JsonWriter& w) const override;
   std::size_t size() const;
 
@@ -35,8 +37,9 @@ class Station final : public web::StationSource {
     char web[kMaxUrlBytes] = {};
     bool online = false;
     char mode[12] = {};
-    float az_deg = 0.0f;
-    float el_deg = 0.0f;
+    float az_deg = 0.0f;       ///< the beam's
+    float mech_az_deg = 0.0f;  ///< the mechanism's (unwrapped)
+    float el_deg = 0.0f;       ///< the beam's
     bool has_el = false;
     bool fault = false;
   };

@@ -108,6 +108,11 @@ class ConsoleSession final : public Session {
   void reset(std::string_view args, ByteSink& out);
   void reboot(std::string_view args, ByteSink& out);
   void bootsel(std::string_view args, ByteSink& out);
+  // Where the beam points (console_places.cpp).
+  void bearing(std::string_view args, ByteSink& out);
+  void turn(std::string_view args, ByteSink& out);
+  void presets(std::string_view args, ByteSink& out);
+  void preset(std::string_view args, ByteSink& out);
 
   void start_listing(Listing listing, std::string_view prefix, ByteSink& out);
   /// Writes the whole listing into `out` (which drops what lies outside the

@@ -11,6 +11,7 @@
 #include "settings/network_list.hpp"
 #include "settings/pin_rules.hpp"
 #include "settings/pot_table.hpp"
+#include "settings/preset.hpp"
 #include "util/slice.hpp"
 #include "util/text.hpp"
 
@@ -58,6 +59,7 @@ TextFormat text_format(Id id) {
   if (unit == "networks") return TextFormat::kNetworks;
   if (unit == "pwhash") return TextFormat::kPasswordHash;
   if (unit == "token") return TextFormat::kTokenRecord;
+  if (unit == "preset") return TextFormat::kPreset;
   return TextFormat::kText;
 }
 
@@ -195,6 +197,11 @@ Rejection validate_text(Id id, std::string_view value) {
         return {Error::kInvalidArgument,
                 "not a stored password hash: set the password with POST /api/password (or "
                 "on the settings page), or \"\" to turn access control off"};
+      break;
+    }
+    case TextFormat::kPreset: {
+      Preset ignored;
+      if (const char* why = parse_preset(value, ignored)) return {Error::kInvalidArgument, why};
       break;
     }
     case TextFormat::kTokenRecord: {

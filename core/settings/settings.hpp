@@ -78,6 +78,7 @@ enum class TextFormat : std::uint8_t {
   kNetworks,      ///< "networks": IPv4 networks (a.b.c.d/n) or addresses, comma or space separated
   kPasswordHash,  ///< "pwhash": a stored web password hash (access/password_hash.hpp)
   kTokenRecord,   ///< "token": a stored REST token record (access/api_token.hpp)
+  kPreset,        ///< "preset": a named heading, <az_deg>[L]:<name> (settings/preset.hpp)
 };
 
 /// One row of the settings table.

@@ -6,12 +6,14 @@ find_program(ROTORD_GZIP gzip REQUIRED)
 set(ROTORD_WEB_DIR ${CMAKE_CURRENT_LIST_DIR}/../../web)  # the repo's web/, also when included from ports/pico_w
 file(GLOB ROTORD_WEB_FILES CONFIGURE_DEPENDS
   ${ROTORD_WEB_DIR}/*.html ${ROTORD_WEB_DIR}/*.css ${ROTORD_WEB_DIR}/*.js ${ROTORD_WEB_DIR}/*.svg)
+include(${CMAKE_CURRENT_LIST_DIR}/world_map.cmake)  # world.js, the map's coastlines
 set(ROTORD_WEB_ASSETS_CPP ${CMAKE_CURRENT_BINARY_DIR}/web_assets.cpp)
 add_custom_command(
   OUTPUT ${ROTORD_WEB_ASSETS_CPP}
   COMMAND ${CMAKE_COMMAND} -DGZIP=${ROTORD_GZIP} -DWEB_DIR=${ROTORD_WEB_DIR}
+          -DEXTRA_DIR=${ROTORD_WEB_GENERATED_DIR}
           -DOUT=${ROTORD_WEB_ASSETS_CPP} -P ${CMAKE_CURRENT_LIST_DIR}/embed_assets.cmake
-  DEPENDS ${ROTORD_WEB_FILES} ${CMAKE_CURRENT_LIST_DIR}/embed_assets.cmake
+  DEPENDS ${ROTORD_WEB_FILES} ${ROTORD_WORLD_JS} ${CMAKE_CURRENT_LIST_DIR}/embed_assets.cmake
   COMMENT "Embedding the web UI (gzip)"
   VERBATIM)
 target_sources(rotord_web PRIVATE ${ROTORD_WEB_ASSETS_CPP})

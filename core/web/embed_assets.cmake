@@ -1,24 +1,33 @@
-# cmake -DGZIP=gzip -DWEB_DIR=web -DOUT=web_assets.cpp -P embed_assets.cmake
-# Writes a C++ file with every web/ file gzipped (-9 -n: reproducible, no name
+# cmake -DGZIP=gzip -DWEB_DIR=web [-DEXTRA_DIR=dir] -DOUT=web_assets.cpp -P embed_assets.cmake
+# Writes a C++ file with every web/ file (and every *.js of EXTRA_DIR, the
+# files generated at build time: the map's world.js) gzipped (-9 -n: reproducible, no name
 # or time stamp) as a byte array, plus the table web::find_asset() searches.
 cmake_minimum_required(VERSION 3.25)
 
 file(GLOB files RELATIVE ${WEB_DIR}
   ${WEB_DIR}/*.html ${WEB_DIR}/*.css ${WEB_DIR}/*.js ${WEB_DIR}/*.svg)
+if(EXTRA_DIR)
+  file(GLOB extra RELATIVE ${EXTRA_DIR} ${EXTRA_DIR}/*.js)
+  list(APPEND files ${extra})
+endif()
 list(SORT files)
 
 set(arrays "")
 set(table "")
 set(index 0)
 foreach(name IN LISTS files)
-  execute_process(COMMAND ${GZIP} -9 -n -c ${WEB_DIR}/${name}
+  set(source ${WEB_DIR}/${name})
+  if(NOT EXISTS ${source})
+    set(source ${EXTRA_DIR}/${name})
+  endif()
+  execute_process(COMMAND ${GZIP} -9 -n -c ${source}
                   OUTPUT_FILE ${OUT}.${index}.gz COMMAND_ERROR_IS_FATAL ANY)
   file(READ ${OUT}.${index}.gz hex HEX)
   file(REMOVE ${OUT}.${index}.gz)
   string(LENGTH "${hex}" hex_length)
   math(EXPR size "${hex_length} / 2")
   string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${hex}")
-  file(SHA1 ${WEB_DIR}/${name} sha)
+  file(SHA1 ${source} sha)
   string(SUBSTRING "${sha}" 0 16 etag)
   get_filename_component(ext ${name} LAST_EXT)
   if(ext STREQUAL ".html")

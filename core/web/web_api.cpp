@@ -7,6 +7,7 @@
 #include "json/json_reader.hpp"
 #include "util/slice.hpp"
 #include "util/utc_time.hpp"
+#include "web/place_api.hpp"
 
 namespace rotord::web {
 namespace {
@@ -215,6 +216,7 @@ void Api::write_status(JsonWriter& w) const {
       .end_object();
   w.key("lock");
   write_lock(w, nullptr);
+  write_beam(w, s);
   w.key("az");
   write_axis(w, s.az, values.i(Id::kAzSensor));
   w.key("el");
@@ -369,6 +371,18 @@ const Api::Route Api::kRoutes[] = {
     {"/api/track", true, N::kControl, true, false,
      [](Api& a, const Call& c) { return a.run_track(c); },
      "POST: track an object, the Sun, the Moon or az/el; DELETE: end the track", "POST DELETE"},
+    // Where the beam points (place_api.cpp, preset_api.cpp).
+    {"/api/place", false, N::kRead, false, false, get_place,
+     "the bearing and distance to a locator or lat/lon (no move)"},
+    {"/api/place", true, N::kControl, true, true, post_place,
+     "turn the beam to a locator or lat/lon, short or long path"},
+    {"/api/sky", false, N::kRead, false, false, get_sky,
+     "the station, the beamwidth, the Sun's and the Moon's positions (the map)"},
+    {"/api/presets", false, N::kRead, false, false, get_presets, "the named headings"},
+    {"/api/presets", true, N::kControl, true, true, post_presets,
+     "add or replace a named heading (16 at most), saved"},
+    {"/api/presets/delete", true, N::kControl, true, true, delete_preset, "remove a named heading"},
+    {"/api/preset", true, N::kControl, true, true, post_preset, "turn the beam to a named heading"},
 };
 
 std::span<const Api::Route> Api::routes() {

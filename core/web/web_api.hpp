@@ -179,6 +179,9 @@ class Api {
   void write_status(JsonWriter& w) const;
   Controller& controller() { return ctx_.controller; }
   WebAuth& auth() { return auth_; }
+  /// Saves the settings as POST /api/settings does; false when that fails
+  /// (the presets, place_api.hpp).
+  bool persist_settings() { return save(); }
   /// GET /api/station's data (the MQTT station); nullptr: 404.
   void set_station(const StationSource* station) { station_ = station; }
 

@@ -304,12 +304,12 @@ TEST_F(MqttBridge, StationListsTheRotordsSeen) {
   EXPECT_EQ(json.find("javascript"), std::string::npos);
   EXPECT_NE(
       json.find(
-          R"({"prefix":"rotord/test","name":"","web":"","online":true,"mode":"idle","az_deg":100,"el_deg":20,"fault":false})"),
+          R"({"prefix":"rotord/test","name":"","web":"","online":true,"mode":"idle","az_deg":100,"mech_az_deg":100,"el_deg":20,"fault":false})"),
       std::string::npos)
       << json;
   EXPECT_NE(
       json.find(
-          R"({"prefix":"rotord/other","name":"rotord other","web":"http://other:8080/","online":false,"mode":"goto","az_deg":271.5,"el_deg":null,"fault":false})"),
+          R"({"prefix":"rotord/other","name":"rotord other","web":"http://other:8080/","online":false,"mode":"goto","az_deg":271.5,"mech_az_deg":271.5,"el_deg":null,"fault":false})"),
       std::string::npos)
       << json;
 }

@@ -11,6 +11,7 @@
 #include "http_test_client.hpp"
 #include "json/settings_json.hpp"
 #include "memory_storage.hpp"
+#include "settings/preset.hpp"
 #include "settings/settings.hpp"
 #include "settings_bases.hpp"
 #include "storage/flash_slots.hpp"
@@ -233,6 +234,10 @@ Settings longest_texts() {
   EXPECT_EQ(s.set_text(Id::kNetIpv4Netmask, "255.255.255.128").error, Error::kOk);
   EXPECT_EQ(s.set_text(Id::kNetIpv4Gateway, "192.168.100.129").error, Error::kOk);
   EXPECT_EQ(s.set_text(Id::kNetIpv4Dns, "192.168.100.254").error, Error::kOk);
+  // Sixteen presets at their longest (a name is 20 bytes, no escapes).
+  for (std::size_t n = 0; n < settings::kPresetCount; ++n)
+    EXPECT_EQ(s.set_text(settings::preset_id(n), "359.9L:" + std::string(20, 'p')).error,
+              Error::kOk);
   return s;
 }
 
