@@ -121,9 +121,15 @@ const rotordMap = (() => {
       grey.setAttribute('d', pathOf(pts, state.lat, state.lon, false));
     }
 
+    // Where the pointer went down: a pointer event has fractional pixels, a
+    // click whole ones (half a pixel is 0.2 deg of bearing on a phone).
+    let down = null;
+    svg.addEventListener('pointerdown', (e) => { down = [e.clientX, e.clientY]; });
     svg.addEventListener('click', (e) => {
+      const near = down && Math.abs(down[0] - e.clientX) <= 1 && Math.abs(down[1] - e.clientY) <= 1;
       const pt = svg.createSVGPoint();
-      pt.x = e.clientX; pt.y = e.clientY;
+      [pt.x, pt.y] = near ? down : [e.clientX, e.clientY];
+      down = null;
       const p = pt.matrixTransform(svg.getScreenCTM().inverse());
       const c = Math.hypot(p.x, p.y) / K;
       if (c > Math.PI) return;

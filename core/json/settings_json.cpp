@@ -148,10 +148,11 @@ void write_settings(const settings::Settings& values, JsonWriter& out, Secrets s
 
 void write_settings_schema(const settings::Settings& defaults, JsonWriter& out) {
   static constexpr const char* kTypeNames[] = {"float", "int", "bool", "enum", "text"};
-  static constexpr const char* kFormatNames[] = {
-      "text", "ascii", "ipv4", "label", "hostname", "hostlist", "networks", "pwhash", "token"};
+  static constexpr const char* kFormatNames[] = {"text",     "ascii",    "ipv4",     "label",
+                                                 "hostname", "hostlist", "networks", "pwhash",
+                                                 "token",    "preset"};
   static_assert(sizeof(kFormatNames) / sizeof(kFormatNames[0]) ==
-                    static_cast<std::size_t>(settings::TextFormat::kTokenRecord) + 1,
+                    static_cast<std::size_t>(settings::TextFormat::kPreset) + 1,
                 "a name for every text format");
   out.begin_object().key("groups").begin_array();
   for (std::size_t n = 0; n < settings::kCount; ++n) {

@@ -84,7 +84,8 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
 
 /// The stored settings document (pretty-printed), with room to grow: the
 /// buffers that load, save or export it (web::Api, the Pico's boot buffer).
-inline constexpr std::size_t kMaxSettingsDocumentBytes = 7168;
+/// 7.5 KB since the 16 presets (issue 26); a flash slot holds 8 KB.
+inline constexpr std::size_t kMaxSettingsDocumentBytes = 7680;
 
 /// The outcome of reading the stored document at start-up.
 struct LoadOutcome {

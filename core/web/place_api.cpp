@@ -57,9 +57,12 @@ const char* place_from_body(std::string_view body, PlaceQuery& q, char* why_buf,
     } else if (key == "lon" && number) {
       lon = value.number;
       has_lon = true;
-    } else if (key == "path" && text && value.text.size() < sizeof path) {
-      value.text.copy(path, value.text.size());
-      path[value.text.size()] = '\0';
+    } else if (key == "path" && text) {
+      // A word longer than "short" is no path: kept as "?" to be refused.
+      const std::size_t n = value.text.size() < sizeof path ? value.text.size() : 0;
+      value.text.copy(path, n);
+      path[n] = n == 0 ? '?' : '\0';
+      path[n == 0 ? 1 : n] = '\0';
     } else {
       std::snprintf(why_buf, cap, "'%.*s' is not a member here (locator, lat, lon, path)",
                     static_cast<int>(key.size() > 24 ? 24 : key.size()), key.data());

@@ -510,16 +510,17 @@ TEST_F(Mqtt, ABrokerThatStopsReadingCannotGrowTheQueue) {
 TEST_F(Mqtt, HomeAssistantDiscoveryFollowsTheSchema) {
   start_daemon(false);
   const std::string file = dir + "/discovery.txt";
-  // Six retained configs (az and el sensors, target, two buttons, fault).
+  // Seven retained configs (the beam's az and el, the mechanical az, target,
+  // two buttons, fault); no preset is set, so no preset button.
   const CommandOutput got =
-      run_command("mosquitto_sub -p " + p() + " -t 'homeassistant/#' -v -C 6 -W 10 > " + file);
+      run_command("mosquitto_sub -p " + p() + " -t 'homeassistant/#' -v -C 7 -W 10 > " + file);
   ASSERT_EQ(got.rc, 0) << got.out;
   const CommandOutput check = run_command("python3 " ROTORD_SOURCE_DIR
                                           "/tests/interop/ha_discovery_check.py " ROTORD_SOURCE_DIR
                                           "/tests/data/mqtt/ha_discovery.schema.json " +
                                           file + " rotord/test");
   EXPECT_EQ(check.rc, 0) << check.out;
-  EXPECT_NE(check.out.find("6 messages, 6 entities, 0 problems"), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("7 messages, 7 entities, 0 problems"), std::string::npos) << check.out;
 }
 
 TEST_F(Mqtt, ReconnectsAfterTheBrokerRestarts) {

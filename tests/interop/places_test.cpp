@@ -112,6 +112,7 @@ TEST_F(Places, BadPlacesAreRefusedWithTheReasonAndNothingMoves) {
   EXPECT_NE(r.body.find("short or long"), std::string::npos) << r.body;
   // A travel of 0..180: the west is out of reach, and the refusal says so.
   ASSERT_EQ(post("/api/settings", R"({"az.min_deg": 0, "az.max_deg": 180})").status, 200);
+  ASSERT_GE(daemon->advance_ms(100), 0);  // the controller takes them on its next tick
   r = get("/api/place?locator=FN31PR");
   EXPECT_NE(r.body.find(R"("reachable":false)"), std::string::npos) << r.body;
   r = post("/api/place", R"({"locator": "FN31PR"})");

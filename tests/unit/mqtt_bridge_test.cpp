@@ -165,15 +165,19 @@ TEST_F(MqttBridge, AFullQueueDelaysTheAnnouncementsNeverLosesThem) {
   }
   std::vector<std::string> topics;
   for (const auto& m : transport.sent) topics.push_back(m.topic);
-  const std::vector<std::string> expected = {
+  std::vector<std::string> expected = {
       "homeassistant/sensor/rotord_test/azimuth/config",
       "homeassistant/sensor/rotord_test/elevation/config",
       "homeassistant/number/rotord_test/target_azimuth/config",
       "homeassistant/button/rotord_test/stop/config",
       "homeassistant/button/rotord_test/park/config",
       "homeassistant/binary_sensor/rotord_test/fault/config",
-      "rotord/test/info",
-      "rotord/test/state"};
+      "homeassistant/sensor/rotord_test/mechanical_azimuth/config"};
+  // Then one button config per preset slot (empty for an unused one).
+  for (int n = 1; n <= 16; ++n)
+    expected.push_back("homeassistant/button/rotord_test/preset_" + std::to_string(n) + "/config");
+  expected.push_back("rotord/test/info");
+  expected.push_back("rotord/test/state");
   EXPECT_EQ(topics, expected);
 }
 
