@@ -136,10 +136,15 @@ for (const size of [PHONE, DESKTOP]) {
     await page.click('#pick-long');
     await until(async () => angleDiff(wrap(await azTarget()), g.bearing + 180) < 0.1,
       { what: 'the long path' });
-    // The beam line and its wedge follow the status (the target at once).
-    await rotord.advance(60000);
+    // The target line at once; the beam line and its wedge once the antenna has turned.
     await until(async () => (await page.getAttribute('#map .map-target', 'visibility')) === 'visible',
       { what: 'target line' });
+    await rotord.advance(120000);
+    const beamAt = async () => {
+      const m = /rotate\(([-\d.e]+)\)/.exec((await page.getAttribute('#map .map-beam', 'transform')) || '');
+      return m && angleDiff(wrap(Number(m[1])), g.bearing + 180) < 1.5;
+    };
+    await until(beamAt, { what: 'the beam line on the long path' });
     await screenshot(page, `map-turned-${size.width}.png`);
     await rotord.post('/api/stop');
     assert.deepEqual(page.errors, []);
