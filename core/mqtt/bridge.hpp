@@ -138,6 +138,8 @@ class Bridge {
   bool have_published_ = false;
   Fingerprint last_;
   std::uint32_t presets_crc_ = 0;
+  std::uint32_t presets_revision_ = 0;
+  bool presets_revision_valid_ = false;
   float last_az_deg_ = 0.0f;
   float last_el_deg_ = 0.0f;
   Millis last_publish_ms_ = 0;

@@ -32,8 +32,12 @@ void Bridge::write_entity_head(web::JsonWriter& w, const char* name, const char*
 }
 
 bool Bridge::presets_changed() {
-  std::uint32_t crc = 0;
   const settings::Settings& s = api_->settings();
+  // Looked at only when some setting changed (the CRC is bit by bit).
+  if (presets_revision_valid_ && s.revision() == presets_revision_) return false;
+  presets_revision_ = s.revision();
+  presets_revision_valid_ = true;
+  std::uint32_t crc = 0;
   for (std::size_t n = 0; n < settings::kPresetCount; ++n) {
     const std::string_view row = s.text(settings::preset_id(n));
     crc = crc32(row.data(), row.size(), crc);
