@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord {
@@ -77,7 +78,7 @@ const char* parse_place(std::string_view line, PlaceQuery& q) {
     if (rest.empty()) break;
     std::size_t end = 0;
     while (end < rest.size() && rest[end] != ' ' && rest[end] != ',') ++end;
-    words[count++] = rest.substr(0, end);
+    words[count++] = text::slice(rest, 0, end);
     rest.remove_prefix(end);
   }
   while (!rest.empty() && (rest.front() == ' ' || rest.front() == ',')) rest.remove_prefix(1);

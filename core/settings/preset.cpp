@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::settings {
@@ -26,7 +27,7 @@ const char* parse_preset(std::string_view text, Preset& out) {
   const std::size_t colon = text.find(':');
   if (colon == std::string_view::npos || colon == 0)
     return "not <az_deg>[L]:<name> (e.g. 45:EU or 150L:JA)";
-  std::string_view az_text = text.substr(0, colon);
+  std::string_view az_text = rotord::text::slice(text, 0, colon);
   out.long_path = az_text.back() == 'L' || az_text.back() == 'l';
   if (out.long_path) az_text.remove_suffix(1);
   char number[16];
@@ -39,7 +40,7 @@ const char* parse_preset(std::string_view text, Preset& out) {
   if (end != number + az_text.size() || !std::isfinite(az))
     return "the heading is not a number of degrees";
   if (az < 0.0 || az >= 360.0) return "the heading is outside 0..360";
-  const std::string_view name = text.substr(colon + 1);
+  const std::string_view name = rotord::text::slice(text, colon + 1);
   if (const char* why = check_preset_name(name)) return why;
   out.az_deg = az;
   std::memcpy(out.name, name.data(), name.size());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include "json/json_reader.hpp"
 #include "rotator/place.hpp"
@@ -60,7 +61,7 @@ const char* place_from_body(std::string_view body, PlaceQuery& q, char* why_buf,
     } else if (key == "path" && text) {
       // A word longer than "short" is no path: kept as "?" to be refused.
       const std::size_t n = value.text.size() < sizeof path ? value.text.size() : 0;
-      value.text.copy(path, n);
+      if (n > 0) std::memcpy(path, value.text.data(), n);
       path[n] = n == 0 ? '?' : '\0';
       path[n == 0 ? 1 : n] = '\0';
     } else {

@@ -3,6 +3,7 @@
 // setting, so they survive a restart and travel with an export.
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "json/json_reader.hpp"
 #include "rotator/place.hpp"
@@ -32,7 +33,7 @@ const char* read_body(std::string_view body, PresetBody& b, bool name_only) {
     if (key == "name" && value.type == JsonType::kString) {
       if (value.truncated) return "a preset name is at most 20 bytes";
       if (const char* why = settings::check_preset_name(value.text)) return why;
-      value.text.copy(b.name, value.text.size());
+      std::memcpy(b.name, value.text.data(), value.text.size());
       b.name[value.text.size()] = '\0';
       b.has_name = true;
     } else if (!name_only && key == "az" && value.type == JsonType::kNumber) {
@@ -74,7 +75,7 @@ bool store(Api& api, std::size_t n, std::string_view text, const Api::Call& call
   settings::Settings& s = api.controller().settings();
   char old[32];
   const std::string_view before = s.text(settings::preset_id(n));
-  before.copy(old, before.size());
+  if (!before.empty()) std::memcpy(old, before.data(), before.size());
   const std::size_t old_len = before.size();
   const settings::Rejection r = s.set_text(settings::preset_id(n), text);
   if (r.error != Error::kOk) {
