@@ -214,7 +214,7 @@
 
   rotordPlaces.wirePlace(msg);
   rotordPlaces.wirePresets(msg);
-  // The map beside the controls on a desktop (its coastlines are loaded
+  // The map below the controls on a desktop (its coastlines are loaded
   // only there: a phone has the map page).
   let updateMap = null;
   if (window.matchMedia('(min-width: 1000px)').matches) {

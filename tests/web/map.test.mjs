@@ -183,6 +183,10 @@ test('presets are one tap each and survive a restart', async () => {
     await page.click('#preset-form button[type="submit"]');
     await page.waitForSelector(`#presets button[data-name="${name}"]`);
   }
+  // A desktop's control page has the map below the controls, no pick buttons before a pick.
+  await page.waitForSelector('#map[data-ready="1"]');
+  assert.equal(await page.isVisible('#pick-short'), false);
+  await screenshot(page, 'control-map-1280.png');
   await page.context().close();
   await rotord.stop();
   await rotord.start();
