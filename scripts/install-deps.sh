@@ -8,7 +8,7 @@ set -euo pipefail
 
 # What `make deb` needs: debian/control's Build-Depends, dpkg-buildpackage, git.
 deb_packages=(
-  build-essential dpkg-dev debhelper cmake ninja-build pkg-config gzip git nodejs npm
+  build-essential dpkg-dev debhelper cmake ninja-build pkg-config gzip git
   libasio-dev libcli11-dev libgpiod-dev libsystemd-dev libavahi-client-dev libmbedtls-dev
   libcurl4-openssl-dev
 )
@@ -31,7 +31,10 @@ packages=(
 )
 if [ "${1:-}" = "--deb" ]; then
   packages=("${deb_packages[@]}")
-elif ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+fi
+# node and npm build the map's data (and run the web tests): Debian's, unless
+# the machine already has both (Debian's npm pulls in some 300 packages).
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
   packages+=(nodejs npm)
 fi
 
@@ -47,7 +50,9 @@ if [ ${#missing[@]} -gt 0 ]; then
   sudo_cmd=()
   [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
   export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -q
+  # A mirror caught mid-sync fails one index (often another architecture's):
+  # the install below still fails, naming the package, if one is really missing.
+  "${sudo_cmd[@]}" apt-get update -q || echo "install-deps: WARNING: apt-get update reported errors; installing anyway" >&2
   "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
