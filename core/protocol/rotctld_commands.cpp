@@ -6,8 +6,8 @@ namespace rotord::protocol::rotctld {
 namespace {
 
 // The order and codes of rotctl_parse.c's test_list (Hamlib 4.5.4); get_conf
-// is Hamlib 4.6's (0xad).
-constexpr std::array<Command, 29> kCommands = {{
+// (0xad) and dump_conf ('3') are Hamlib 4.6's.
+constexpr std::array<Command, 30> kCommands = {{
     {'P', "set_pos", Op::kSetPos, 2, false, false, true},
     {'p', "get_pos", Op::kGetPos, 0, true, false, false},
     {'K', "park", Op::kPark, 0, false, false, true},
@@ -37,6 +37,7 @@ constexpr std::array<Command, 29> kCommands = {{
     {'a', "d_sp2d_lp", Op::kDistSp2DistLp, 1, true, false, false},
     {0x8c, "pause", Op::kPause, 1, false, false, false},
     {0xad, "get_conf", Op::kGetConf, 1, true, false, false},
+    {'3', "dump_conf", Op::kDumpConf, 0, false, false, false},
 }};
 
 }  // namespace

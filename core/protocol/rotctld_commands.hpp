@@ -6,7 +6,7 @@
 namespace rotord::protocol::rotctld {
 
 /// What a command does (one per row of rotctl 4.5.4's test_list, plus
-/// get_conf from Hamlib 4.6).
+/// get_conf and dump_conf from Hamlib 4.6).
 enum class Op : std::uint8_t {
   kSetPos,
   kGetPos,
@@ -37,6 +37,7 @@ enum class Op : std::uint8_t {
   kAzSp2AzLp,
   kDistSp2DistLp,
   kPause,
+  kDumpConf,
 };
 
 struct Command {

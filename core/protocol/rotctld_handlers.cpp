@@ -99,7 +99,7 @@ HamlibError RotctldSession::execute(const Command& command) {
       return HamlibError::kOk;
     case Op::kReset: {
       long what = 0;  // ROT_RESET_ALL is 1; every value resets everything here
-      if (!rotctld::scan_int(arg(0), what)) return HamlibError::kInvalid;
+      if (!rotctld::scan_whole_int(arg(0), what)) return HamlibError::kInvalid;
       return from(controller_.reset());  // refused while the emergency stop is active
     }
     case Op::kMove:
@@ -111,7 +111,7 @@ HamlibError RotctldSession::execute(const Command& command) {
       }
       if (arg(0) != "SPEED") return HamlibError::kNotAvailable;  // as rotctld: no such level
       long pct = 0;
-      if (!rotctld::scan_int(arg(1), pct)) return HamlibError::kInvalid;
+      if (!rotctld::scan_whole_int(arg(1), pct)) return HamlibError::kInvalid;
       if (pct < 1 || pct > 100) return HamlibError::kInvalid;
       return from(controller_.set_speed_pct(static_cast<int>(pct)));
     }
@@ -156,15 +156,22 @@ HamlibError RotctldSession::execute(const Command& command) {
     case Op::kDumpState:
       dump_state();
       return HamlibError::kOk;
+    case Op::kDumpConf:
+      // Hamlib 4.6's rotctld prints its configuration list on its own
+      // standard output (dumpconf_list() -> print_conf_list() writes to
+      // stdout, not to the client) and answers the client RPRT 0 alone; so
+      // does rotord. `\get_conf ?` lists the tokens to a client.
+      return HamlibError::kOk;
     case Op::kPause: {
       long seconds = 0;
-      if (!rotctld::scan_int(arg(0), seconds) || seconds < 0 || seconds > kMaxPauseS)
+      if (!rotctld::scan_whole_int(arg(0), seconds) || seconds < 0 || seconds > kMaxPauseS)
         return HamlibError::kInvalid;
       if (seconds > 0) {
         paused_ = true;
-        // On the transport's clock, as poll() reads it: controller time runs
-        // N times faster under `rotord --speedup N`.
-        pause_until_ = transport_now_ + static_cast<Millis>(seconds) * 1000;
+        // On the transport's clock, from the next poll(): controller time
+        // runs N times faster under `rotord --speedup N`.
+        pause_started_ = false;
+        pause_ms_ = static_cast<Millis>(seconds) * 1000;
       }
       return HamlibError::kOk;
     }
@@ -183,11 +190,11 @@ HamlibError RotctldSession::move(std::string_view direction, std::string_view sp
     dir = kMoveUp;
   } else if (direction == "DOWN") {
     dir = kMoveDown;
-  } else if (!rotctld::scan_int(direction, dir)) {
+  } else if (!rotctld::scan_whole_int(direction, dir)) {
     return HamlibError::kInvalid;
   }
   long pct = 0;
-  if (!rotctld::scan_int(speed, pct)) return HamlibError::kInvalid;
+  if (!rotctld::scan_whole_int(speed, pct)) return HamlibError::kInvalid;
   // Speed 1..100 or "no change"; 0 is refused like Hamlib's GS-232B backend
   // does (the dummy backend takes anything).
   if (pct != kSpeedNoChange && (pct < 1 || pct > 100)) return HamlibError::kInvalid;
@@ -258,6 +265,14 @@ void RotctldSession::dump_state() {
   };
   line("rotctld Protocol Ver: ", "", "%d", 1);  // ROTCTLD_PROT_VER
   line("Rotor Model: ", "", "%d", kModelNumber);
+  if (!labels && controller_.settings().b(Id::kRotctldOldClients)) {
+    // Hamlib before 4.5.1 (netrotctl_open) takes atof() of lines 3 to 6 as
+    // min_az, max_az, min_el, max_el and leaves the rest unread, to be
+    // flushed before its next command; 4.5.1 and later skip lines without a
+    // '=' and read the tagged ones below (docs/protocols/rotctld.md).
+    reply_.format("%f\n%f\n", static_cast<double>(l.az_min_deg), static_cast<double>(l.az_max_deg));
+    reply_.format("%f\n%f\n", static_cast<double>(l.el_min_deg), static_cast<double>(l.el_max_deg));
+  }
   line("Minimum Azimuth: ", "min_az=", "%f", static_cast<double>(l.az_min_deg));
   line("Maximum Azimuth: ", "max_az=", "%f", static_cast<double>(l.az_max_deg));
   line("Minimum Elevation: ", "min_el=", "%f", static_cast<double>(l.el_min_deg));
@@ -332,7 +347,7 @@ HamlibError RotctldSession::set_conf(std::string_view token, std::string_view te
   // Secrets and the access rules are written through the web or REST only.
   if (!settings::line_writable(*id)) return HamlibError::kRejected;
   // A value that breaks a cross-setting rule (a minimum above its maximum) is undone.
-  if (s.update_from_text(*id, text).error != Error::kOk) return HamlibError::kInvalid;
+  if (s.save_from_text(*id, text).error != Error::kOk) return HamlibError::kInvalid;
   return HamlibError::kOk;
 }
 

@@ -67,4 +67,13 @@ bool scan_int(std::string_view token, long& out) {
   return text::parse_int(text::slice(token, 0, i), out);
 }
 
+bool scan_whole_int(std::string_view token, long& out) {
+  std::size_t i = 0;
+  if (i < token.size() && (token[i] == '+' || token[i] == '-')) ++i;
+  for (std::size_t j = i; j < token.size(); ++j) {
+    if (!is_digit(token[j])) return false;
+  }
+  return scan_int(token, out);
+}
+
 }  // namespace rotord::protocol::rotctld

@@ -15,4 +15,11 @@ bool scan_float(std::string_view token, double& out, bool comma_is_point = true)
 /// Refuses more than 9 digits instead of overflowing.
 bool scan_int(std::string_view token, long& out);
 
+/// A whole token that is an optionally signed decimal integer: "1e9", "60.5",
+/// "3abc" and "1e400" are refused, where sscanf("%d") would read 1, 60, 3
+/// and 1. For the arguments no Hamlib client sends in another form (pause
+/// seconds, move direction and speed, speed level, reset), so a typo or a
+/// hostile value fails with RPRT -1 instead of acting on a prefix.
+bool scan_whole_int(std::string_view token, long& out);
+
 }  // namespace rotord::protocol::rotctld

@@ -59,8 +59,15 @@ void RotctldSession::consume(std::string_view bytes, ByteSink& out) {
 }
 
 void RotctldSession::poll(Millis now, ByteSink& out) {
-  transport_now_ = now;
-  if (!paused_ || now < pause_until_) return;
+  if (!paused_) return;
+  if (!pause_started_) {
+    // The first poll after the command: the pause runs from here, so it lasts
+    // at least its seconds (one transport poll longer at most).
+    pause_started_ = true;
+    pause_until_ = now + pause_ms_;
+    return;
+  }
+  if (now < pause_until_) return;
   paused_ = false;
   out.write(reply_.view());  // the \pause reply, held until now as rotctld does
   std::array<char, kPauseInputBytes> held;

@@ -116,8 +116,12 @@ class RotctldSession final : public Session {
   bool line_skipped_lf_ = false;
 
   bool paused_ = false;
-  Millis pause_until_ = 0;    // on the transport's clock
-  Millis transport_now_ = 0;  // the last poll's time
+  /// A \pause's length until the next poll() starts it: the session knows
+  /// the transport's time only from poll(), and on a fresh connection the
+  /// command arrives before the first one.
+  Millis pause_ms_ = 0;
+  bool pause_started_ = false;
+  Millis pause_until_ = 0;  // on the transport's clock
   std::array<char, kPauseInputBytes> pause_input_{};
   std::size_t pause_input_length_ = 0;
 

@@ -447,6 +447,7 @@ TEST_F(RotctldTest, PauseHoldsTheReplyAndLaterInput) {
   EXPECT_EQ(ask("\\pause 2\np\n"), "");
   EXPECT_EQ(ask("_\n"), "");
   StringSink sink;
+  session.poll(r.now, sink);  // the transport's next poll starts the pause
   r.run_ms(1000);
   session.poll(r.now, sink);
   EXPECT_EQ(sink.data, "");
@@ -454,6 +455,55 @@ TEST_F(RotctldTest, PauseHoldsTheReplyAndLaterInput) {
   session.poll(r.now, sink);
   EXPECT_EQ(sink.data, "RPRT 0\n100.00\n20.00\nrotord 9.9.9\n");
   EXPECT_EQ(ask("p\n"), "100.00\n20.00\n");
+}
+
+TEST_F(RotctldTest, PauseOnAFreshConnectionLastsItsSecondsFromWhenItArrives) {
+  // Issue 23 item 1: a session that has not been polled yet took its deadline
+  // from transport time 0, so on a daemon up for a while it ended at once.
+  StringSink sink;
+  const Millis uptime_ms = 3000;
+  EXPECT_EQ(ask("\\pause 2\n"), "");
+  session.poll(uptime_ms, sink);
+  session.poll(uptime_ms + 10, sink);
+  session.poll(uptime_ms + 1990, sink);
+  EXPECT_EQ(sink.data, "");
+  session.poll(uptime_ms + 2000, sink);
+  EXPECT_EQ(sink.data, "RPRT 0\n");
+}
+
+TEST_F(RotctldTest, OldClientsSettingAddsThePositionalLimitsBeforeTheTags) {
+  // Issue 23 item 2: Hamlib before 4.5.1 reads lines 3-6 with atof; 4.5.1
+  // and later skip lines without '=' and read the tags.
+  r.settings.set(Id::kRotctldOldClients, 1);
+  EXPECT_EQ(ask("\\dump_state\n"),
+            "1\n1\n0.000000\n450.000000\n0.000000\n180.000000\n"
+            "min_az=0.000000\nmax_az=450.000000\nmin_el=0.000000\nmax_el=180.000000\n"
+            "south_zero=0\nrot_type=AzEl\ndone\n");
+  EXPECT_EQ(last_writes, 1);
+  // The extended form is for people and stays as it was.
+  r.settings.set(Id::kRotctldOldClients, 0);
+  const std::string extended = ask("+\\dump_state\n");
+  r.settings.set(Id::kRotctldOldClients, 1);
+  EXPECT_EQ(ask("+\\dump_state\n"), extended);
+}
+
+TEST_F(RotctldTest, DumpConfAnswersAsHamlib46sRotctld) {
+  // rotctld 4.6 prints the list on its own stdout and the client gets RPRT 0.
+  EXPECT_EQ(ask("\\dump_conf\n"), "RPRT 0\n");
+  EXPECT_EQ(ask("3\n"), "RPRT 0\n");
+  EXPECT_EQ(ask("+\\dump_conf\n"), "dump_conf:\nRPRT 0\n");
+}
+
+TEST_F(RotctldTest, IntegerArgumentsMustBeWholeIntegers) {
+  // Issue 29 item 7: sscanf("%d") would read 1, 60, 3 and 1.
+  for (const char* bad : {"\\pause 1e9\n", "\\pause 60.5\n", "\\pause 3abc\n",
+                          "M 16 1e400\n", "M 16 50.5\n", "M 16x 50\n", "V SPEED 2.5\n",
+                          "R 1x\n"}) {
+    EXPECT_EQ(ask(bad), "RPRT -1\n") << bad;
+  }
+  EXPECT_FALSE(status().moving());
+  EXPECT_EQ(ask("M 16 +50\n"), "RPRT 0\n");
+  EXPECT_EQ(ask("S\n"), "RPRT 0\n");
 }
 
 }  // namespace
