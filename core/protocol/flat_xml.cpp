@@ -38,7 +38,7 @@ std::string_view take_tag(std::string_view& s, bool closing) {
 
 }  // namespace
 
-bool FlatXml::parse(std::string_view message, std::string_view root) {
+bool FlatXml::parse(std::string_view message, std::string_view root, std::string_view nestable) {
   count_ = 0;
   std::string_view s = message;
   skip_space(s);
@@ -50,25 +50,50 @@ bool FlatXml::parse(std::string_view message, std::string_view root) {
     skip_space(s);
   }
   if (!text::iequals(take_tag(s, false), root)) return false;
+  if (!parse_items(s, root, nestable)) return false;
+  skip_space(s);
+  return s.empty();  // nothing after the root
+}
+
+bool FlatXml::parse_content(std::string_view content) {
+  count_ = 0;
+  return parse_items(content, {}, {});
+}
+
+bool FlatXml::parse_items(std::string_view& s, std::string_view root, std::string_view nestable) {
   while (true) {
     skip_space(s);
-    if (s.empty()) return false;  // the root never closed
+    if (s.empty()) return root.empty();  // content ends here; a root must close
     if (s[0] != '<') {
-      // Bare text up to the next tag.
-      const std::size_t lt = s.find('<');
-      if (lt == std::string_view::npos) return false;
+      // Bare text up to the next tag (or the end of nested content).
+      std::size_t lt = s.find('<');
+      if (lt == std::string_view::npos) {
+        if (!root.empty()) return false;
+        lt = s.size();
+      }
       if (count_ == kMaxItems) return false;
-      items_[count_++] = {{}, text::trim(text::slice(s, 0, lt))};
+      items_[count_++] = {{}, text::trim(text::slice(s, 0, lt)), false};
       s.remove_prefix(lt);
       continue;
     }
-    if (s.size() > 1 && s[1] == '/') {
-      if (!text::iequals(take_tag(s, true), root)) return false;
-      skip_space(s);
-      return s.empty();  // nothing after the root
-    }
+    if (s.size() > 1 && s[1] == '/') return !root.empty() && text::iequals(take_tag(s, true), root);
     const std::string_view name = take_tag(s, false);
     if (name.empty()) return false;
+    std::string_view rest = s;
+    skip_space(rest);
+    if (!nestable.empty() && text::iequals(name, nestable) && rest.size() > 1 && rest[0] == '<' &&
+        rest[1] != '/') {
+      // One level of flat elements inside; checked now, read by the caller.
+      FlatXml inner;
+      std::string_view content = s;
+      if (!inner.parse_items(content, name, {})) return false;
+      if (count_ == kMaxItems) return false;
+      const std::size_t used = s.size() - content.size();  // content now follows </name>
+      const std::size_t close = text::slice(s, 0, used).rfind("</");
+      items_[count_++] = {name, text::trim(text::slice(s, 0, close)), true};
+      s = content;
+      continue;
+    }
     // The value runs to the next '<', which must close this element: no
     // nesting, no comments, no CDATA.
     const std::size_t lt = s.find('<');
@@ -77,7 +102,7 @@ bool FlatXml::parse(std::string_view message, std::string_view root) {
     s.remove_prefix(lt);
     if (!text::iequals(take_tag(s, true), name)) return false;
     if (count_ == kMaxItems) return false;
-    items_[count_++] = {name, value};
+    items_[count_++] = {name, value, false};
   }
 }
 

@@ -20,7 +20,7 @@ constexpr N1mmRotor::Element kElements[] = {
     {"offset", V::kOffset, "offset: the antenna points this far clockwise of the rotor", false},
     {"bidirectional", V::kFlag, "bidirectional: 1, either end of the beam will do", false},
     {"freqband", V::kNumber, "freqband: the band in MHz (ignored)", false},
-    {"stop", V::kName, "stop: stop that rotor", false},
+    {"stop", V::kName, "stop: stop that rotor (its name, a flag, or its elements nested)", false},
 };
 
 /// The longest rotor name compared or reported; n1mm.rotor_name holds 32.
@@ -33,6 +33,9 @@ struct Request {
   float offset_deg = 0.0f;
   bool bidirectional = false;
   bool stop = false;
+  /// Something in the message is not as the format says: only a stop in it
+  /// is obeyed.
+  bool malformed = false;
 };
 
 const N1mmRotor::Element* find(std::string_view name) {
@@ -55,40 +58,84 @@ bool parse_number(std::string_view v, double lo, double hi, float& out) {
   return true;
 }
 
-/// Fills `r` from the message; false when anything is not as the format says.
-bool read_request(const FlatXml& xml, Request& r) {
+bool read_items(std::span<const XmlItem> items, Request& r, bool inside_stop);
+
+/// The rotor's name from one element; false when it disagrees with another.
+bool take_name(std::string_view value, Request& r) {
+  if (value.size() > kMaxName) return false;
+  if (r.name && *r.name != value) return false;  // <rotor> and <stop> disagree
+  r.name = value;
+  return true;
+}
+
+/// `<stop>` in each form it is sent in (docs/protocols/udp.md, "Stop"):
+/// the rotor's name (N1MM+'s documented form), a flag (True / False, 1 / 0)
+/// or the rotor's elements nested inside.
+bool read_stop(const XmlItem& item, Request& r) {
+  if (item.nested) {
+    FlatXml inner;
+    r.stop = true;
+    return inner.parse_content(item.value) && read_items(inner.items(), r, true);
+  }
+  bool flag = false;
+  if (parse_flag(item.value, flag)) {
+    r.stop = r.stop || flag;
+    return true;
+  }
+  r.stop = true;
+  return !item.value.empty() && take_name(item.value, r);
+}
+
+/// Fills `r` from the items; false when anything is not as the format says
+/// (r.stop may still be set: a stop is obeyed whatever else is wrong).
+bool read_items(std::span<const XmlItem> items, Request& r, bool inside_stop) {
   unsigned seen = 0;  // one bit per row: each element at most once
-  for (const XmlItem& item : xml.items()) {
+  bool ok = true;
+  for (const XmlItem& item : items) {
     const N1mmRotor::Element* e = item.name.empty() ? nullptr : find(item.name);
-    if (e == nullptr) return false;
+    if (e == nullptr || (inside_stop && e->name == "stop")) {
+      ok = false;
+      continue;
+    }
     const unsigned bit = 1u << static_cast<unsigned>(e - kElements);
-    if ((seen & bit) != 0) return false;
+    if ((seen & bit) != 0) ok = false;
     seen |= bit;
     float number = 0.0f;
-    switch (e->value) {
-      case V::kName:
-        if (item.value.size() > kMaxName) return false;
-        if (r.name && *r.name != item.value) return false;  // <rotor> and <stop> disagree
-        r.name = item.value;
-        r.stop = r.stop || e->name == "stop";
-        break;
-      case V::kBearing:
-        if (!parse_number(item.value, 0.0, 360.0, number)) return false;
-        r.goazi_deg = number;
-        break;
-      case V::kOffset:
-        if (!parse_number(item.value, -360.0, 360.0, r.offset_deg)) return false;
-        break;
-      case V::kFlag:
-        if (!parse_flag(item.value, r.bidirectional)) return false;
-        break;
-      case V::kNumber:
-        if (!parse_number(item.value, -1e9, 1e9, number)) return false;
-        break;
+    bool good = true;
+    if (e->name == "stop") {
+      good = read_stop(item, r);
+    } else if (item.nested) {
+      good = false;
+    } else {
+      switch (e->value) {
+        case V::kName:
+          good = take_name(item.value, r);
+          break;
+        case V::kBearing:
+          good = parse_number(item.value, 0.0, 360.0, number);
+          if (good) r.goazi_deg = number;
+          break;
+        case V::kOffset:
+          good = parse_number(item.value, -360.0, 360.0, r.offset_deg);
+          break;
+        case V::kFlag:
+          good = parse_flag(item.value, r.bidirectional);
+          break;
+        case V::kNumber:
+          good = parse_number(item.value, -1e9, 1e9, number);
+          break;
+      }
     }
+    ok = ok && good;
   }
-  // A message either turns or stops.
-  return r.stop != r.goazi_deg.has_value();
+  return ok;
+}
+
+/// Reads the message. A stop wins over a heading in the same message;
+/// without a stop, a message must turn.
+void read_request(const FlatXml& xml, Request& r) {
+  r.malformed = !read_items(xml.items(), r, false);
+  if (!r.stop && !r.goazi_deg) r.malformed = true;
 }
 
 /// Of a bidirectional antenna's two rotor bearings, the one the rotator
@@ -114,18 +161,29 @@ DatagramOutcome N1mmRotor::receive(std::string_view datagram, const access::Peer
   if (datagram.size() > kMaxDatagramBytes) return DatagramOutcome::kOversize;
   FlatXml xml;
   Request r;
-  if (!xml.parse(datagram, "N1MMRotor") || !read_request(xml, r))
-    return DatagramOutcome::kMalformed;
+  if (!xml.parse(datagram, "N1MMRotor", "stop")) return DatagramOutcome::kMalformed;
+  read_request(xml, r);
   char name[kMaxName];
   std::size_t name_size = 0;
   if (r.name) {
     name_size = xml_unescape(*r.name, name, sizeof(name));
-    if (name_size == std::string_view::npos) return DatagramOutcome::kMalformed;
+    if (name_size == std::string_view::npos) {
+      // A name that cannot be read is nobody's; a stop without a name is
+      // everybody's (below).
+      if (!r.stop) return DatagramOutcome::kMalformed;
+      r.malformed = true;
+      name_size = 0;
+    }
   }
   const std::string_view wanted =
       text::trim(controller_.settings().text(settings::Id::kN1mmRotorName));
-  if (!wanted.empty() && text::trim(std::string_view(name, name_size)) != wanted)
+  // A stop that names no rotor stops every rotator that hears it: stopping
+  // one too many is safe, missing one is not.
+  const bool named = name_size > 0;
+  if (!wanted.empty() && (named || !r.stop) &&
+      text::trim(std::string_view(name, name_size)) != wanted)
     return DatagramOutcome::kNotForUs;
+  if (r.malformed && !r.stop) return DatagramOutcome::kMalformed;
 
   DatagramOutcome outcome = DatagramOutcome::kDone;
   if (r.stop) {

@@ -201,6 +201,44 @@ TEST_F(UdpRotor, N1mmGoesToTheHeadingWithOffsetAndBidirectionalAndStops) {
   EXPECT_EQ(n1mm_reports->receive(200), "");  // and get no report
 }
 
+TEST_F(UdpRotor, N1mmStopsInEveryFormTheStopIsSentIn) {
+  // Issue 23 item 4: the stop as programs send it (docs/protocols/udp.md,
+  // "Stop"). Each time the rotator is turning towards 300 first.
+  start(R"(, "n1mm.rotor_name": "teststack")");
+  const std::string turn = n1mm_goazi("teststack", "300", "0", "0");
+  for (const std::string& stop : {
+           // nested, with the band (sconklin/netrotor's capture of N1MM+)
+           std::string("<N1MMRotor><stop><rotor>teststack</rotor>"
+                       "<freqband>14.0</freqband></stop></N1MMRotor>"),
+           // a flag beside the heading (DK8DE/RotorTcpBridge)
+           std::string("<N1MMRotor><rotor>teststack</rotor><goazi>123.4</goazi>"
+                       "<stop>True</stop></N1MMRotor>"),
+           // a flag and no rotor name at all: every rotator stops
+           std::string("<N1MMRotor><stop>1</stop></N1MMRotor>"),
+       }) {
+    n1mm(turn);
+    daemon->advance_ms(3000);
+    ASSERT_TRUE(moving()) << stop;
+    EXPECT_EQ(n1mm(stop).rfind("teststack @ ", 0), 0u) << stop;
+    const std::string st = status();
+    const std::size_t az_target_at = st.find("\"target_deg\"", st.find("\"az\""));
+    EXPECT_EQ(st.find("\"target_deg\":null", az_target_at), az_target_at) << stop;
+    daemon->advance_ms(10000);
+    EXPECT_FALSE(moving()) << stop;
+  }
+  // <stop>False</stop> beside a heading is no stop: the heading is obeyed.
+  n1mm("<N1MMRotor><rotor>teststack</rotor><goazi>45</goazi><stop>False</stop></N1MMRotor>");
+  EXPECT_NEAR(az_target(), 45.0, 0.1);
+  daemon->advance_ms(1000);
+  EXPECT_TRUE(moving());
+  // A nested stop for another rotor is that rotor's.
+  client.send_to(n1mm_port,
+                 "<N1MMRotor><stop><rotor>Tribander</rotor><freqband>14</freqband></stop>"
+                 "</N1MMRotor>");
+  ASSERT_TRUE(daemon->wait_for_output("for another rotor")) << daemon->output();
+  EXPECT_NEAR(az_target(), 45.0, 0.1);
+}
+
 TEST_F(UdpRotor, AReadOnlySenderIsRefusedEveryMoveButStopsTheRotator) {
   start();
   pst_then_az("<PST><AZIMUTH>100</AZIMUTH></PST>");

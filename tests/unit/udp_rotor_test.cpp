@@ -140,13 +140,64 @@ TEST_F(UdpRotorTest, N1mmObeysOnlyItsOwnRotorName) {
   EXPECT_EQ(replies.count(), 0u);
 }
 
+TEST_F(UdpRotorTest, N1mmStopsInEveryFormAStopIsSentIn) {
+  // Issue 23 item 4 (docs/protocols/udp.md, "Stop").
+  r.controller->settings().set_text(Id::kN1mmRotorName, "teststack");
+  const std::string turn = goazi("teststack", "200");
+  for (const std::string& stop : {
+           std::string("<N1MMRotor><stop>teststack</stop></N1MMRotor>"),
+           std::string("<N1MMRotor><stop><rotor>teststack</rotor><freqband>14.0</freqband>"
+                       "</stop></N1MMRotor>"),
+           std::string("<N1MMRotor>\n <stop>\n  <rotor>teststack</rotor>\n </stop>\n"
+                       "</N1MMRotor>"),
+           std::string("<N1MMRotor><rotor>teststack</rotor><goazi>123.4</goazi>"
+                       "<stop>True</stop></N1MMRotor>"),
+           std::string("<N1MMRotor><stop>True</stop></N1MMRotor>"),
+           std::string("<N1MMRotor><stop>1</stop></N1MMRotor>"),
+           std::string("<N1MMRotor><rotor>teststack</rotor><stop>true</stop></N1MMRotor>"),
+           // A stop is obeyed whatever else in the message is wrong.
+           std::string("<N1MMRotor><rotor>teststack</rotor><goazi>999</goazi>"
+                       "<stop>teststack</stop></N1MMRotor>"),
+           std::string("<N1MMRotor><stop><rotor>teststack</rotor><speed>3</speed></stop>"
+                       "</N1MMRotor>"),
+       }) {
+    ASSERT_EQ(send(n1mm, turn), DatagramOutcome::kDone);
+    ASSERT_TRUE(has_target());
+    EXPECT_EQ(send(n1mm, stop), DatagramOutcome::kDone) << stop;
+    EXPECT_FALSE(has_target()) << stop;
+  }
+  // False is no stop: beside a heading the heading is obeyed.
+  EXPECT_EQ(send(n1mm, "<N1MMRotor><rotor>teststack</rotor><goazi>123.4</goazi>"
+                       "<stop>False</stop></N1MMRotor>"),
+            DatagramOutcome::kDone);
+  EXPECT_NEAR(az_target(), 123.4f, 0.01f);
+  EXPECT_EQ(send(n1mm, "<N1MMRotor><stop>False</stop></N1MMRotor>"),
+            DatagramOutcome::kMalformed);
+  // Another rotor's stop, in any form, is that rotor's.
+  for (const std::string& other : {
+           std::string("<N1MMRotor><stop>Other</stop></N1MMRotor>"),
+           std::string("<N1MMRotor><stop><rotor>Other</rotor></stop></N1MMRotor>"),
+           std::string("<N1MMRotor><rotor>Other</rotor><stop>True</stop></N1MMRotor>"),
+       }) {
+    EXPECT_EQ(send(n1mm, other), DatagramOutcome::kNotForUs) << other;
+    EXPECT_TRUE(has_target()) << other;
+  }
+  // Nesting is for <stop> alone, one level deep.
+  for (const std::string& bad : {
+           std::string("<N1MMRotor><goazi><rotor>a</rotor></goazi></N1MMRotor>"),
+           std::string("<N1MMRotor><stop><rotor><a>x</a></rotor></stop></N1MMRotor>"),
+           std::string("<N1MMRotor><stop><rotor>x</rotor></N1MMRotor>"),
+       }) {
+    EXPECT_NE(send(n1mm, bad), DatagramOutcome::kDone) << bad;
+  }
+}
+
 TEST_F(UdpRotorTest, N1mmIgnoresMalformedMessagesAndMovesNothing) {
   for (const std::string& bad : {
            std::string("<N1MMRotor><goazi>abc</goazi></N1MMRotor>"),
            std::string("<N1MMRotor><goazi>361</goazi></N1MMRotor>"),
            std::string("<N1MMRotor><goazi>-1</goazi></N1MMRotor>"),
            std::string("<N1MMRotor><goazi>200</goazi><goazi>100</goazi></N1MMRotor>"),
-           std::string("<N1MMRotor><goazi>200</goazi><stop>x</stop></N1MMRotor>"),
            std::string("<N1MMRotor><goazi>200</goazi><speed>3</speed></N1MMRotor>"),
            std::string("<N1MMRotor><goazi>200</goazi><bidirectional>2</bidirectional></N1MMRotor>"),
            std::string("<N1MMRotor><rotor>a</rotor></N1MMRotor>"),
