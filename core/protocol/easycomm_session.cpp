@@ -13,6 +13,19 @@
 namespace rotord::protocol {
 namespace {
 
+/// A velocity field: exactly four digits, 0000..9999 mdeg/s. Hamlib's 204
+/// backend, the one client that sends velocities, writes them "%04d"
+/// (rotators/easycomm/easycomm.c, easycomm_rot_move_velocity), and its speed
+/// level is 0..9999; "VU999", "VD-0" or "VL+0100" are typos or another
+/// program's guess and are refused (ALSYNTAX) rather than read leniently.
+bool is_velocity(std::string_view value) {
+  if (value.size() != 4) return false;
+  for (char c : value) {
+    if (c < '0' || c > '9') return false;
+  }
+  return true;
+}
+
 using settings::Id;
 
 /// One reply line, LF ended, in one write.
@@ -196,10 +209,8 @@ bool EasycommSession::parse_token(std::string_view token, std::string_view& rest
       request.*(c->target) = static_cast<float>(deg);
       return true;
     }
-    case Arg::kVelocity: {
-      long velocity = 0;
-      return (text::parse_int(value, velocity) && velocity >= 0) || reject("SYNTAX");
-    }
+    case Arg::kVelocity:
+      return is_velocity(value) || reject("SYNTAX");
     case Arg::kRegister:
       // The register may follow as its own token ("CR 1", as Hamlib writes it).
       if (value.empty() && next_token(rest).empty()) return reject("SYNTAX");
@@ -301,7 +312,7 @@ void EasycommSession::write_config(std::string_view arg, ByteSink& out) {
   // Secrets and the access rules are written through the web or REST only.
   if (!settings::line_writable(*id)) return alarm(out, "DENIED");
   // A value that breaks a cross-setting rule (a min above its max) is undone.
-  if (controller_.settings().update_from_text(*id, text::slice(arg, comma + 1)).error != Error::kOk)
+  if (controller_.settings().save_from_text(*id, text::slice(arg, comma + 1)).error != Error::kOk)
     alarm(out, "RANGE");
 }
 

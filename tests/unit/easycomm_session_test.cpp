@@ -276,6 +276,12 @@ TEST_F(EasycommTest, BadInputGetsAnAlarmAndMovesNothing) {
   EXPECT_EQ(ask("VL\n"), "ALSYNTAX\n");
   EXPECT_EQ(ask("VR-100\n"), "ALSYNTAX\n");
   EXPECT_EQ(ask("VUfast\n"), "ALSYNTAX\n");
+  // Issue 29 item 7: four digits exactly, as Hamlib's 204 writes "%04d".
+  EXPECT_EQ(ask("VU999\n"), "ALSYNTAX\n");
+  EXPECT_EQ(ask("VD-0\n"), "ALSYNTAX\n");
+  EXPECT_EQ(ask("VL+100\n"), "ALSYNTAX\n");
+  EXPECT_EQ(ask("VR10000\n"), "ALSYNTAX\n");
+  EXPECT_FALSE(status().moving());
   EXPECT_EQ(ask("VEx\n"), "ALSYNTAX\n");
   EXPECT_EQ(ask("GSx\n"), "ALSYNTAX\n");
   EXPECT_EQ(ask("FOO\n"), "ALUNKNOWN\n");
@@ -317,7 +323,7 @@ TEST_F(EasycommAzOnlyTest, ElevationReadsZeroAndIsIgnoredOnSet) {
   EXPECT_EQ(ask("SE\n"), "");
   EXPECT_TRUE(status().az.has_target);
   EXPECT_EQ(ask("MU\n"), "ALUNSUPPORTED\n");
-  EXPECT_EQ(ask("VD100\n"), "ALUNSUPPORTED\n");
+  EXPECT_EQ(ask("VD0100\n"), "ALUNSUPPORTED\n");
   EXPECT_EQ(ask("EL10\n"), "");  // nothing to do, nothing moves
 }
 
