@@ -105,7 +105,11 @@
     $('faults').hidden = faults.length === 0;
     $('fault-text').textContent = faults.length ? 'Fault ' + faults.join(', ') : '';
     if (document.activeElement !== $('speed')) $('speed').value = s.speed_pct;
-    $('speed-out').textContent = s.speed_pct + '%';
+    // A relay drive has one speed: the slider would move and change nothing.
+    const oneSpeed = s.speed_applies === false;
+    $('speed').disabled = oneSpeed;
+    $('speed-note').hidden = !oneSpeed;
+    $('speed-out').textContent = oneSpeed ? '–' : s.speed_pct + '%';
   }
   function elevSector(e0, e1) {
     const p = (e, r) => [100 + r * Math.cos((e * Math.PI) / 180), -r * Math.sin((e * Math.PI) / 180)];

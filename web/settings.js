@@ -41,8 +41,12 @@
             inputmode: d.format === 'ipv4' ? 'decimal' : undefined,
             placeholder: d.format === 'ipv4' ? '192.168.1.20' : d.type === 'password' ? '(not set)' : undefined });
         } else {
-          input = el('input', { type: 'number', id, min: d.min, max: d.max,
-            step: d.type === 'int' ? 1 : 'any', inputmode: 'decimal' });
+          // Text, not type=number: Chromium's number field drops what it
+          // cannot read (a locator typed as JO62QM became 62, 12,5 became
+          // 125), so the field keeps what was typed and numberError() says
+          // what is wrong. A phone's decimal keypad has no minus sign.
+          input = el('input', { type: 'text', id, spellcheck: 'false', autocomplete: 'off',
+            inputmode: d.min < 0 ? 'text' : 'decimal' });
         }
         input.dataset.key = d.key;
         const error = el('div', { class: 'error', role: 'alert' });
@@ -82,6 +86,23 @@
     return t === '' || isNaN(Number(t)) ? t : Number(t);  // text goes through: the server explains
   }
 
+  // A number as the form shows it: digits, one point for decimals, a sign.
+  const NUMBER = /^[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?$/;
+
+  /** What is wrong with a number field's text, or null (range: the server). */
+  function numberError(f) {
+    if (f.def.type !== 'float' && f.def.type !== 'int') return null;
+    const t = f.input.value.trim();
+    if (t === '') return 'enter a number';
+    if (!NUMBER.test(t)) {
+      const pointed = t.replace(',', '.');
+      if (NUMBER.test(pointed)) return `not a number: write ${pointed} (a point, not a comma)`;
+      return `not a number: ${f.def.key} takes a number such as ${f.def.default}`;
+    }
+    if (f.def.type === 'int' && !Number.isInteger(Number(t))) return 'a whole number';
+    return null;
+  }
+
   function clearErrors() {
     for (const f of Object.values(fields)) { f.error.textContent = ''; f.row.classList.remove('invalid'); }
   }
@@ -117,9 +138,23 @@
   $('form').addEventListener('submit', async (e) => {
     e.preventDefault();
     const changed = {};
+    clearErrors();
+    let wrong = null;
     for (const [key, f] of Object.entries(fields)) {
       const v = read(f);
-      if (v !== values[key]) changed[key] = v;
+      if (v === values[key]) continue;
+      const why = numberError(f);
+      if (why) {
+        // Beside the field, and nothing is sent: a number is never guessed.
+        f.error.textContent = why;
+        f.row.classList.add('invalid');
+        wrong = wrong || f.input;
+      }
+      changed[key] = v;
+    }
+    if (wrong) {
+      wrong.scrollIntoView({ block: 'center' });
+      return rotord.message(msg, 'not saved: fix the fields marked', false);
     }
     if (!Object.keys(changed).length) return rotord.message(msg, 'nothing changed', true);
     const r = await rotord.post('/api/settings', changed);
@@ -173,6 +208,10 @@
     schema = s.body;
     build();
     show(v.body);
+    // Links to one setting (settings.html#f-station.lat_deg, from the
+    // control and track pages): the field exists only now.
+    const target = location.hash && $(decodeURIComponent(location.hash.slice(1)));
+    if (target) { target.scrollIntoView({ block: 'center' }); target.focus(); }
     if (st.status === 200) calibration.update(st.body);
     rotordAccess.wire(msg);
     rotordAccess.card($('access'));

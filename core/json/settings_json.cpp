@@ -190,7 +190,7 @@ void write_settings_schema(const settings::Settings& defaults, JsonWriter& out) 
 }
 
 ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& target,
-                                 settings::Settings& scratch, SettingErrors& errors) {
+                                 settings::Settings& scratch, SettingErrors& errors, bool saving) {
   ApplyOutcome outcome;
   errors.clear();
   JsonObjectReader reader(json);
@@ -225,7 +225,8 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
     outcome.message = errors[0].reason;
     return outcome;
   }
-  const settings::Rejection rule = scratch.check_consistency();
+  settings::Rejection rule = scratch.check_consistency();
+  if (rule.error == Error::kOk && saving) rule = scratch.check_dependent(target);
   if (rule.error != Error::kOk) {
     // Attach the rule to every key it names that this document set, so a
     // form can show it next to the fields involved.

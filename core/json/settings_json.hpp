@@ -79,8 +79,12 @@ struct ApplyOutcome {
 /// checked (known key, type, range) on a copy, then the cross-setting rules;
 /// only when all pass is `target` updated. `scratch` holds the copy so the
 /// caller decides where its ~600 bytes live (not the Pico's small stack).
+/// `saving`: a person saves these values (REST, the console), so the rules
+/// between dependent values are checked too (Settings::check_dependent);
+/// the file loader passes false.
 ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& target,
-                                 settings::Settings& scratch, SettingErrors& errors);
+                                 settings::Settings& scratch, SettingErrors& errors,
+                                 bool saving = false);
 
 /// The stored settings document (pretty-printed), with room to grow: the
 /// buffers that load, save or export it (web::Api, the Pico's boot buffer).

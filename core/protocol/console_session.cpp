@@ -214,7 +214,7 @@ void ConsoleSession::set(std::string_view args, ByteSink& out) {
   }
   // The same checks as every other writer: type, range, format, then the
   // rules across settings (a value that breaks one is undone).
-  const settings::Rejection r = controller_.settings().update_from_text(*id, value);
+  const settings::Rejection r = controller_.settings().save_from_text(*id, value);
   if (r.error != Error::kOk) return send(out, "error: %s: %s", def.key, r.reason);
   const Value now(controller_.settings(), *id);
   send(out, "ok %s=%s%s", def.key, now.text,
@@ -249,7 +249,7 @@ void ConsoleSession::import_settings(std::string_view args, ByteSink& out) {
   }
   web::SettingErrors errors;
   const web::ApplyOutcome r =
-      web::apply_settings_json(json, controller_.settings(), *port_->scratch, errors);
+      web::apply_settings_json(json, controller_.settings(), *port_->scratch, errors, true);
   if (r.status == web::ApplyOutcome::kBadJson)
     return send(out, "error: invalid JSON: %s", r.message);
   if (r.status == web::ApplyOutcome::kInvalid) {

@@ -119,8 +119,14 @@ tracking::Observer Controller::observer() const {
   return tracking::Observer(where);
 }
 
+bool Controller::station_set() const {
+  return settings_.get(Id::kStationLatDeg) != 0.0 || settings_.get(Id::kStationLonDeg) != 0.0;
+}
+
 TrackError Controller::track(const TrackRequest& request) {
   note_command();  // ends a track already armed
+  // A fixed az/el needs no station; a satellite, the Sun and the Moon do.
+  if (request.kind != tracking::TargetKind::kNone && !station_set()) return TrackError::kNoStation;
   const std::optional<std::int64_t> utc = utc_ms();
   if (!utc) return TrackError::kNoClock;
   if (!utc_clock_->synchronized() && !settings_.b(Id::kTimeTrustClock))

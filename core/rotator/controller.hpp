@@ -90,10 +90,20 @@ class Controller {
   std::optional<std::int64_t> utc_ms() const;
   /// The station (station.* settings) as an observer.
   tracking::Observer observer() const;
+  /// Whether the station's position was ever set: 0 N 0 E, the default, is
+  /// taken as "not set" (open sea in the Gulf of Guinea), and nothing is
+  /// computed for it (TrackError::kNoStation).
+  bool station_set() const;
 
   RotatorStatus status() const;
   Limits limits() const;
   bool has_el() const { return has_el_; }
+  /// Whether a speed changes anything: false when every drive is plain
+  /// relays (one speed), where the speed setting and commands do nothing.
+  bool speed_applies() const {
+    return az_.config().drive != DriveType::kRelay ||
+           (has_el_ && el_.config().drive != DriveType::kRelay);
+  }
   Millis now() const { return now_; }
   settings::Settings& settings() { return settings_; }
   /// The control lock (access/control_lock.hpp): every command source asks

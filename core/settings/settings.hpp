@@ -166,6 +166,16 @@ class Settings {
   /// that names values (pin conflicts) points into this object and stays
   /// valid until the next check on it.
   Rejection check_consistency() const;
+  /// The rules a value must meet when someone saves it, on top of
+  /// check_consistency (settings_dependent.cpp): the park position within
+  /// the travel, each slow zone shorter than its travel. Checked only for a
+  /// rule one of whose settings differs from `before` (or is `changed`), so
+  /// a save is judged by what it changes; never by the file loader, which
+  /// must keep a station running on what it stored.
+  Rejection check_dependent(const Settings& before) const;
+  Rejection check_dependent(Id changed) const;
+  /// update_from_text, then check_dependent: a protocol's write of one key.
+  Rejection save_from_text(Id id, std::string_view text);
 
   void reset_to_defaults();
   /// Bumps on every change; the controller re-derives its configuration when it moves.
@@ -176,6 +186,10 @@ class Settings {
 
  private:
   Rejection check_network() const;
+  /// One rule of check_dependent applies when `touched` says one of its
+  /// settings changed.
+  template <typename Touched>
+  Rejection check_dependent_rules(Touched touched) const;
   char* text_slot(Id id) { return text_ + detail::kTextOffset[static_cast<std::size_t>(id)]; }
   const char* text_slot(Id id) const {
     return text_ + detail::kTextOffset[static_cast<std::size_t>(id)];

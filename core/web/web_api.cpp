@@ -198,6 +198,7 @@ void Api::write_status(JsonWriter& w) const {
   }
   w.member("mode", mode_name(s.mode))
       .member("speed_pct", s.speed_pct)
+      .member("speed_applies", ctx_.controller.speed_applies())
       .member("moving", s.moving())
       .member("fault", s.any_fault());
   w.key("limits")
@@ -502,10 +503,19 @@ Api::Outcome Api::get_status(const Call& call) {
 
 Api::Outcome Api::get_station(const Call& call) {
   if (station_ == nullptr) {
-    send_error(call.out, 404,
-               "no station here: MQTT is off (mqtt.enabled), or this is a Pico W (a Linux "
-               "rotord on the same broker shows the station)",
-               call.options);
+    // 200, not 404: the station page asks for this, and a page that meets a
+    // 404 shows an error in the browser's console for a setting left off.
+    send_json(call.out, 200, call.options, [](JsonWriter& w) {
+      w.begin_object()
+          .member("available", false)
+          .member("reason",
+                  "no station here: MQTT is off (mqtt.enabled), or this is a Pico W (a Linux "
+                  "rotord on the same broker shows the station)")
+          .key("rotators")
+          .begin_array()
+          .end_array()
+          .end_object();
+    });
   } else {
     send_json(call.out, 200, call.options, [this](JsonWriter& w) { station_->write_station(w); });
   }
@@ -768,7 +778,7 @@ void Api::post_settings(std::string_view body, protocol::ByteSink& out,
     }
   }
   backup_ = values;
-  const ApplyOutcome r = apply_settings_json(body, values, scratch_, errors_);
+  const ApplyOutcome r = apply_settings_json(body, values, scratch_, errors_, true);
   if (r.status == ApplyOutcome::kBadJson) {
     char message[160];
     std::snprintf(message, sizeof(message), "invalid JSON: %s", r.message);
