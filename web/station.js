@@ -54,7 +54,7 @@ function render(rotators) {
       name.textContent = r.name || r.prefix;
     }
     row.appendChild(name);
-    cell(row, r.prefix);
+    cell(row, r.prefix).className = 'prefix';
     // Where the beam points; the mechanism's azimuth beside it.
     const az = cell(row, `${r.az_deg.toFixed(1)}°`);
     if (typeof r.mech_az_deg === 'number') {
@@ -70,6 +70,8 @@ function render(rotators) {
   });
 }
 
+let timer = null;
+
 async function refresh() {
   const msg = document.getElementById('msg');
   try {
@@ -84,6 +86,14 @@ async function refresh() {
       render([]);
       return;
     }
+    if (doc.available === false) {
+      // No station on this controller (MQTT off, or a Pico W): say why once
+      // and stop asking; turning MQTT on takes a restart, which reloads.
+      msg.textContent = doc.reason;
+      render([]);
+      clearInterval(timer);
+      return;
+    }
     msg.textContent = doc.rotators.length ? '' : 'No rotord seen on the broker yet.';
     render(doc.rotators);
   } catch (e) {
@@ -91,5 +101,5 @@ async function refresh() {
   }
 }
 
+timer = setInterval(refresh, 2000);
 refresh();
-setInterval(refresh, 2000);

@@ -99,6 +99,22 @@
     }
   });
 
+  /**
+   * A refusal in words on the page, each setting it names (station.lat_deg,
+   * time.trust_system_clock, ...) a link to that field of the settings page.
+   */
+  function problem(text) {
+    msg.className = 'msg error';
+    msg.replaceChildren(...String(text || 'refused').split(/\b((?:station|time|track)\.[a-z_]+)\b/)
+      .map((part, i) => {
+        if (i % 2 === 0) return part;
+        const a = document.createElement('a');
+        a.href = `settings.html#f-${part}`;
+        a.textContent = part;
+        return a;
+      }));
+  }
+
   // --- passes ------------------------------------------------------------------
   let passesTimer = 0;
   async function loadPasses() {
@@ -110,7 +126,7 @@
     body.textContent = '';
     if (r.status === 202) passesTimer = setTimeout(loadPasses, 1000);  // still searching
     if (r.status !== 200 && r.status !== 202) {
-      rotord.message(msg, (r.body && r.body.error) || `passes: ${r.status}`, false);
+      problem((r.body && r.body.error) || `passes: ${r.status}`);
       return;
     }
     for (const p of r.body.passes) {
@@ -139,8 +155,12 @@
     const object = $('object').value;
     const body = object === 'sun' || object === 'moon' ? { body: object, when } : { object, when };
     const r = await rotord.post('/api/track', body);
-    rotord.message(msg, r.status === 200 ? `tracking ${r.body.target.name}` : (r.body && r.body.error), r.status === 200);
-    if (r.status === 200) showTrack(r.body);
+    if (r.status === 200) {
+      rotord.message(msg, `tracking ${r.body.target.name}`, true);
+      showTrack(r.body);
+    } else {
+      problem(r.body && r.body.error);
+    }
   }
   $('track-now').addEventListener('click', () => start('now'));
   $('track-next').addEventListener('click', () => start('next'));

@@ -128,7 +128,7 @@ std::size_t Station::size() const {
 }
 
 void Station::write_station(web::JsonWriter& w) const {
-  w.begin_object().key("rotators").begin_array();
+  w.begin_object().member("available", true).key("rotators").begin_array();
   for (const Entry& e : entries_) {
     if (!e.used || !e.seen_state) continue;
     w.begin_object()

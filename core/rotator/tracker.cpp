@@ -57,8 +57,10 @@ const char* track_error_text(TrackError error) {
     case TrackError::kNoClock:
       return "the time (UTC) is not known yet; tracking needs a valid clock";
     case TrackError::kClockUnsynced:
-      return "the system clock is not synchronized (NTP); tracking needs a valid clock "
-             "(or set time.trust_system_clock)";
+      return "the computer's clock is not synchronized with a time server (NTP), and "
+             "satellite positions need the right time: let it set its clock (timedatectl "
+             "set-ntp true, a reachable NTP server), or, if you know the clock is right, turn "
+             "on time.trust_system_clock in Settings";
     case TrackError::kBadElements:
       return "SGP4 cannot use these elements";
     case TrackError::kPropagation:
@@ -75,6 +77,10 @@ const char* track_error_text(TrackError error) {
       return "an axis has a latched fault: clear it first";
     case TrackError::kNoTarget:
       return "nothing to track";
+    case TrackError::kNoStation:
+      return "the station's position is not set: enter the antenna's latitude and longitude "
+             "(station.lat_deg, station.lon_deg) in Settings; passes and pointing would "
+             "otherwise be computed for 0 N 0 E";
   }
   return "?";
 }

@@ -42,6 +42,7 @@ enum class TrackError : std::uint8_t {
   kNotSupported,   ///< an elevation on an azimuth-only rotator
   kFaulted,        ///< an axis has (or latched) a fault
   kNoTarget,       ///< nothing to track
+  kNoStation,      ///< station.lat_deg / lon_deg never set (both 0)
 };
 const char* track_error_text(TrackError error);
 

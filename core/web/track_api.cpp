@@ -61,6 +61,7 @@ int track_error_status(TrackError e) {
   switch (e) {
     case TrackError::kNoClock:
     case TrackError::kClockUnsynced:
+    case TrackError::kNoStation:
     case TrackError::kFaulted:
     case TrackError::kBelowHorizon:
       return 409;
@@ -224,6 +225,8 @@ void Api::get_passes(const HttpRequest& request, protocol::ByteSink& out,
     if (end == number || *end != '\0' || min_el < 0 || min_el > 89)
       return send_error(out, 422, "min_el must be 0..89 (degrees)", options);
   }
+  if (!ctx_.controller.station_set())
+    return send_error(out, 409, track_error_text(TrackError::kNoStation), options);
   const std::optional<std::int64_t> utc = ctx_.controller.utc_ms();
   if (!utc) return send_error(out, 409, "the time (UTC) is not known yet", options);
   PassSearch& s = passes_;
@@ -348,7 +351,7 @@ void Api::post_track(const HttpRequest& request, protocol::ByteSink& out,
   const TrackError e = ctx_.controller.track(r);
   if (e != TrackError::kOk) {
     const TrackStatus& t = ctx_.controller.track_status();
-    char message[192];
+    char message[384];
     if (t.sgp4_error != tracking::Sgp4Error::kOk) {
       std::snprintf(message, sizeof message, "%s (%s)", track_error_text(e),
                     tracking::sgp4_error_name(t.sgp4_error));
