@@ -32,19 +32,49 @@ def tick_rows(build_dir):
              "metrics": {"instructions_per_tick": (with_tick - sim_only) / TICKS}}]
 
 
-def m0_rows():
-    """Builds only what the size report needs (ccache makes reruns quick)."""
-    src = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# What the size report needs from the embedded preset: the probe and the
+# empty baseline (they pull in every core layer). rotord_core itself is an
+# INTERFACE library, so no build system has a target of that name.
+M0_TARGETS = ["m0_size_probe", "m0_size_baseline"]
+
+
+def _run(cmd, **kw):
+    """Runs cmd; on failure raises RuntimeError naming the command and its
+    last lines of output (they were captured, so say them here)."""
+    r = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    if r.returncode != 0:
+        tail = "\n".join((r.stdout + r.stderr).strip().splitlines()[-8:])
+        raise RuntimeError(f"`{' '.join(cmd)}` failed (exit {r.returncode}):\n{tail}")
+    return r.stdout
+
+
+def configure_embedded(src, binary_dir=None):
+    """Configures the embedded preset (ccache when present); returns its env."""
     if shutil.which("arm-none-eabi-gcc") is None:
-        raise RuntimeError("arm-none-eabi-gcc not installed")
+        raise RuntimeError("the embedded preset needs arm-none-eabi-gcc (scripts/install-deps.sh)")
     env = dict(os.environ, CCACHE_BASEDIR="/work", CCACHE_NOHASHDIR="true")
     launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"] \
         if shutil.which("ccache") else []
-    subprocess.run(["cmake", "--preset", "embedded", *launcher], cwd=src, env=env, check=True,
-                   capture_output=True)
-    subprocess.run(["cmake", "--build", "--preset", "embedded", "-j2", "--target", "m0_size_probe",
-                    "m0_size_baseline", "rotord_core"], cwd=src, env=env, check=True,
-                   capture_output=True)
+    where = ["-B", binary_dir] if binary_dir else []
+    _run(["cmake", "--preset", "embedded", *where, *launcher], cwd=src, env=env)
+    return env
+
+
+def check_m0_targets(src, binary_dir):
+    """Configures the embedded preset into binary_dir and checks that every
+    target m0_rows() builds exists there (tests/packaging's bench check)."""
+    configure_embedded(src, binary_dir)
+    for target in M0_TARGETS:
+        _run(["ninja", "-C", binary_dir, "-t", "query", target])
+
+
+def m0_rows():
+    """Configures the embedded preset and builds only what the size report
+    needs (ccache makes reruns quick)."""
+    src = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env = configure_embedded(src)
+    _run(["cmake", "--build", "--preset", "embedded", "-j2", "--target", *M0_TARGETS], cwd=src,
+         env=env)
     out = subprocess.run(["ctest", "--preset", "embedded", "-R", "^m0_size_budget$", "-V"],
                          cwd=src, env=env, capture_output=True, text=True).stdout
     metrics = {}
@@ -52,7 +82,8 @@ def m0_rows():
         metrics[name + "_bytes"] = int(value)
         metrics[name + "_budget_bytes"] = int(budget)
     if not metrics:
-        raise RuntimeError("size report not found in ctest output")
+        raise RuntimeError("size report not found in the output of "
+                           "`ctest --preset embedded -R ^m0_size_budget$`")
     return [{"name": "footprint/core_m0plus", "inputs": {"minsizerel": 1}, "metrics": metrics}]
 
 
@@ -92,10 +123,19 @@ def web_rows(build_dir):
 
 
 def run(build_dir):
-    rows = tick_rows(build_dir)
-    rows += web_rows(build_dir)
+    # The M0+ size report is part of make bench: a failure fails the bench
+    # (run.py), naming what was missing or which step broke.
     try:
-        rows += m0_rows()
-    except (OSError, subprocess.CalledProcessError, RuntimeError) as e:
-        print(f"bench: M0+ size report skipped: {e}")
-    return rows
+        m0 = m0_rows()
+    except (OSError, RuntimeError) as e:
+        raise RuntimeError(f"M0+ size report (embedded preset): {e}") from e
+    return tick_rows(build_dir) + web_rows(build_dir) + m0
+
+
+if __name__ == "__main__":
+    import sys
+    if len(sys.argv) == 3 and sys.argv[1] == "--check-m0-targets":
+        check_m0_targets(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), sys.argv[2])
+        print("embedded preset: " + ", ".join(M0_TARGETS) + " configured")
+    else:
+        sys.exit("usage: footprint.py --check-m0-targets BINARY_DIR")

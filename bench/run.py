@@ -3,8 +3,9 @@
 
 results.json is a list of {"name", "inputs", "metrics"} rows with numbers
 only, so two runs compare key by key (bench/compare.py OLD NEW). Each part
-runs as its own program; a part whose tools are missing is reported and
-skipped, the others still run. Benchmarks print numbers; no test asserts on
+runs as its own program; a part that cannot run (a tool missing, a build
+step failing) is reported by name, the others still run, and the bench then
+exits non-zero. Benchmarks print numbers; no test asserts on
 them.
 """
 import argparse
@@ -17,6 +18,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 import table  # noqa: E402
+from skip import Skipped  # noqa: E402
 
 
 def run_control(build_dir):
@@ -51,12 +53,17 @@ def main():
         pass
     chosen = [p for p in args.only.split(",") if p] or list(parts)
     results = []
+    failed = []
     for name in chosen:
         print(f"bench: {name} ...", file=sys.stderr, flush=True)
         try:
             results.extend(parts[name](args.build_dir))
-        except (OSError, subprocess.CalledProcessError, RuntimeError) as e:
+        except Skipped as e:
             print(f"bench: {name} skipped: {e}", file=sys.stderr)
+        except (OSError, subprocess.CalledProcessError, RuntimeError) as e:
+            # The other parts still run; the bench then fails, naming this one.
+            print(f"bench: {name} FAILED: {e}", file=sys.stderr)
+            failed.append(name)
     path = os.path.join(args.build_dir, "bench", "results.json")
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w") as f:
@@ -64,6 +71,8 @@ def main():
         f.write("\n")
     table.print_all(results)
     print(f"\nwrote {path} ({len(results)} rows)")
+    if failed:
+        sys.exit(f"bench: failed: {', '.join(failed)} (see above)")
 
 
 if __name__ == "__main__":
