@@ -47,6 +47,21 @@ after(async () => {
   cleanup(dir);
 });
 
+test('on a 390 px phone every column fits, State included (issue 23)', async () => {
+  const [east] = rotords;
+  const page = await openPage(browser, east.url + '/station.html', { width: 390, height: 844 });
+  await until(async () => (await page.$$('#rotators tbody tr')).length === 2, { what: 'two rows' });
+  for (const cell of await page.$$('#rotators tr > :last-child')) {
+    const box = await cell.boundingBox();
+    assert.ok(box && box.x >= 0 && box.x + box.width <= 390, `State column at ${box && box.x}..${box && box.x + box.width}`);
+  }
+  const overflow = await page.evaluate(() => document.documentElement.scrollWidth > innerWidth);
+  assert.equal(overflow, false, 'horizontal scroll at 390 px');
+  await screenshot(page, 'station-390.png');
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
+
 test('each station page lists both rotords on one compass, linked to their panels', async () => {
   const [east, west] = rotords;
   const page = await openPage(browser, east.url + '/station.html');
