@@ -16,8 +16,7 @@ Rejection Settings::check_dependent_rules(Touched touched) const {
   const double el_min = get(Id::kElMinDeg);
   const double el_max = get(Id::kElMaxDeg);
   // A continuous azimuth takes any bearing: the park azimuth wraps.
-  if (!continuous &&
-      touched({Id::kParkAzDeg, Id::kAzMinDeg, Id::kAzMaxDeg, Id::kAzContinuous})) {
+  if (!continuous && touched({Id::kParkAzDeg, Id::kAzMinDeg, Id::kAzMaxDeg, Id::kAzContinuous})) {
     const double park = get(Id::kParkAzDeg);
     if (park < az_min || park > az_max) {
       std::snprintf(detail_, sizeof detail_,
@@ -27,7 +26,8 @@ Rejection Settings::check_dependent_rules(Touched touched) const {
       return {Error::kOutOfRange, detail_};
     }
   }
-  if (b(Id::kElEnabled) && touched({Id::kParkElDeg, Id::kElMinDeg, Id::kElMaxDeg, Id::kElEnabled})) {
+  if (b(Id::kElEnabled) &&
+      touched({Id::kParkElDeg, Id::kElMinDeg, Id::kElMaxDeg, Id::kElEnabled})) {
     const double park = get(Id::kParkElDeg);
     if (park < el_min || park > el_max) {
       std::snprintf(detail_, sizeof detail_,
@@ -41,10 +41,11 @@ Rejection Settings::check_dependent_rules(Touched touched) const {
   const double az_travel = continuous ? 360.0 : az_max - az_min;
   if (touched({Id::kAzSlowZoneDeg, Id::kAzMinDeg, Id::kAzMaxDeg, Id::kAzContinuous}) &&
       get(Id::kAzSlowZoneDeg) >= az_travel) {
-    std::snprintf(detail_, sizeof detail_,
-                  "az.slow_zone_deg %g must be shorter than the azimuth travel az.min_deg..az.max_deg "
-                  "(%g deg)",
-                  get(Id::kAzSlowZoneDeg), az_travel);
+    std::snprintf(
+        detail_, sizeof detail_,
+        "az.slow_zone_deg %g must be shorter than the azimuth travel az.min_deg..az.max_deg "
+        "(%g deg)",
+        get(Id::kAzSlowZoneDeg), az_travel);
     return {Error::kOutOfRange, detail_};
   }
   if (b(Id::kElEnabled) && touched({Id::kElSlowZoneDeg, Id::kElMinDeg, Id::kElMaxDeg}) &&

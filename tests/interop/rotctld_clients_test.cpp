@@ -145,8 +145,7 @@ struct Hamlib44Client {
   int set_position(float az, float el) {
     if (az < min_az || az > max_az || el < min_el || el > max_el) return -1;  // -RIG_EINVAL
     char cmd[32];
-    std::snprintf(cmd, sizeof(cmd), "P %f %f\n", static_cast<double>(az),
-                  static_cast<double>(el));
+    std::snprintf(cmd, sizeof(cmd), "P %f %f\n", static_cast<double>(az), static_cast<double>(el));
     char buf[64];
     const int ret = port.transaction(cmd, buf);
     return ret > 0 ? -8 : ret;
@@ -183,9 +182,9 @@ TEST(RotctldClients, HamlibBefore451ReadsTheLimitsWithRotctldOldClients) {
     EXPECT_EQ(old.set_position(200, 30), -1);
   }
   // The user turns the setting on (web settings page, REST).
-  ASSERT_EQ(http(daemon.ports().web, "POST", "/api/settings", R"({"rotctld.old_clients": true})")
-                .status,
-            200);
+  ASSERT_EQ(
+      http(daemon.ports().web, "POST", "/api/settings", R"({"rotctld.old_clients": true})").status,
+      200);
   Hamlib44Client old(daemon.ports().rotctld);
   ASSERT_TRUE(old.port.ok());
   ASSERT_EQ(old.open(), 0);

@@ -496,9 +496,8 @@ TEST_F(RotctldTest, DumpConfAnswersAsHamlib46sRotctld) {
 
 TEST_F(RotctldTest, IntegerArgumentsMustBeWholeIntegers) {
   // Issue 29 item 7: sscanf("%d") would read 1, 60, 3 and 1.
-  for (const char* bad : {"\\pause 1e9\n", "\\pause 60.5\n", "\\pause 3abc\n",
-                          "M 16 1e400\n", "M 16 50.5\n", "M 16x 50\n", "V SPEED 2.5\n",
-                          "R 1x\n"}) {
+  for (const char* bad : {"\\pause 1e9\n", "\\pause 60.5\n", "\\pause 3abc\n", "M 16 1e400\n",
+                          "M 16 50.5\n", "M 16x 50\n", "V SPEED 2.5\n", "R 1x\n"}) {
     EXPECT_EQ(ask(bad), "RPRT -1\n") << bad;
   }
   EXPECT_FALSE(status().moving());

@@ -167,12 +167,12 @@ TEST_F(UdpRotorTest, N1mmStopsInEveryFormAStopIsSentIn) {
     EXPECT_FALSE(has_target()) << stop;
   }
   // False is no stop: beside a heading the heading is obeyed.
-  EXPECT_EQ(send(n1mm, "<N1MMRotor><rotor>teststack</rotor><goazi>123.4</goazi>"
-                       "<stop>False</stop></N1MMRotor>"),
+  EXPECT_EQ(send(n1mm,
+                 "<N1MMRotor><rotor>teststack</rotor><goazi>123.4</goazi>"
+                 "<stop>False</stop></N1MMRotor>"),
             DatagramOutcome::kDone);
   EXPECT_NEAR(az_target(), 123.4f, 0.01f);
-  EXPECT_EQ(send(n1mm, "<N1MMRotor><stop>False</stop></N1MMRotor>"),
-            DatagramOutcome::kMalformed);
+  EXPECT_EQ(send(n1mm, "<N1MMRotor><stop>False</stop></N1MMRotor>"), DatagramOutcome::kMalformed);
   // Another rotor's stop, in any form, is that rotor's.
   for (const std::string& other : {
            std::string("<N1MMRotor><stop>Other</stop></N1MMRotor>"),
