@@ -3,6 +3,7 @@
 // cannot work (issue 23: park.az_deg 500 on a 0..450 rotator was saved, and
 // PARK then failed). Each message names both settings and their values.
 #include <cstdio>
+#include <initializer_list>
 
 #include "settings/settings.hpp"
 

@@ -121,7 +121,7 @@ class Hamlib44Port {
 /// \dump_state by line position, rot_set_position() (src/rotator.c) refuses
 /// a position outside those limits before anything is sent.
 struct Hamlib44Client {
-  explicit Hamlib44Client(int port) : port(port) {}
+  explicit Hamlib44Client(int tcp_port) : port(tcp_port) {}
 
   /// netrotctl_open(): 0 (RIG_OK) or a negative Hamlib error.
   int open() {

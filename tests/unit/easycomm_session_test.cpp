@@ -258,7 +258,11 @@ TEST_F(EasycommTest, ConfigErrorsChangeNothing) {
   EXPECT_EQ(ask("CW0,101\n"), "ALRANGE\n");
   EXPECT_EQ(ask("CW0,fast\n"), "ALRANGE\n");
   EXPECT_EQ(revision, r.settings.revision());
+  // A park azimuth outside the travel (0..450) is refused (issue 23 item 5).
+  EXPECT_EQ(ask("CW7,500\n"), "ALRANGE\n");
+  EXPECT_FLOAT_EQ(r.settings.f(settings::Id::kParkAzDeg), 0.0f);
   // In range alone but inconsistent with az.max_deg (450): rolled back.
+  EXPECT_EQ(ask("CW7,400\n"), "");
   EXPECT_EQ(ask("CWaz.min_deg,360\n"), "");
   EXPECT_EQ(ask("CWaz.max_deg,300\n"), "ALRANGE\n");
   EXPECT_FLOAT_EQ(r.settings.f(settings::Id::kAzMaxDeg), 450.0f);

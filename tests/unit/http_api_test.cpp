@@ -279,10 +279,10 @@ TEST_F(HttpApi, SchemaComesFromTheTable) {
   const HttpResponse res = get("/api/settings/schema");
   EXPECT_EQ(res.status, 200);
   EXPECT_TRUE(JsonObjectReader(res.body).valid());
-  EXPECT_TRUE(has(
-      res,
-      R"("groups":["Rotator","Azimuth","Elevation","Magnetometer","Pins",)"
-      R"("Raspberry Pi","GS-232","UDP","USB","Network","Access","Station","Presets","MQTT","Tracking"])"))
+  EXPECT_TRUE(has(res,
+                  R"("groups":["Rotator","Azimuth","Elevation","Magnetometer","Pins",)"
+                  R"("Raspberry Pi","GS-232","rotctld","UDP","USB","Network","Access","Station",)"
+                  R"("Presets","MQTT","Tracking"])"))
       << res.body;
   EXPECT_TRUE(has(res, R"({"key":"az.drive","type":"enum","unit":"","min":0,"max":3,)"
                        R"("default":"relay","group":"Azimuth")"));
