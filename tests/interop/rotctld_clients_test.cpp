@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 
 #include "daemon_process.hpp"
 #include "http_client.hpp"
@@ -39,7 +40,7 @@ TEST(RotctldClients, PauseOnAFreshConnectionWaitsItsSeconds) {
   ASSERT_TRUE(daemon.ready()) << daemon.output();
   // Wall time on purpose: the daemon's transport clock must run past the
   // pause's length before the connection opens.
-  ::usleep(3000 * 1000);
+  std::this_thread::sleep_for(std::chrono::seconds(3));
   for (int seconds : {1, 2}) {
     TcpClient rotctld(daemon.ports().rotctld);
     const Clock::time_point sent = Clock::now();
