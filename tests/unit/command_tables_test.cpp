@@ -186,7 +186,7 @@ TEST_F(ReadOnlyRows, Easycomm) {
     std::string token(c.name);
     using Arg = EasycommSession::Arg;
     if (c.arg == Arg::kQueryOrNumber) token += "10";
-    if (c.arg == Arg::kVelocity) token += "100";
+    if (c.arg == Arg::kVelocity) token += "0100";
     if (c.arg == Arg::kRegister) token += c.name == "CW" ? "park.az_deg,10" : "park.az_deg";
     if (c.arg == Arg::kFrequency || c.arg == Arg::kAny) token += "1";
     const std::string reply = ask(s, token + "\n");

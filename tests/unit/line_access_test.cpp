@@ -141,7 +141,7 @@ TEST_P(ReadOnly, EasycommRefusesWithAnAlarm) {
   const auto revision = r.settings.revision();
   EXPECT_EQ(ask(s, "AZ EL\n"), "AZ100.0 EL20.0\n");
   for (const char* command :
-       {"AZ200.0 EL30.0\n", "MR\n", "VL500\n", "PARK\n", "RESET\n", "CW7,10\n", "CW 7,10\n"})
+       {"AZ200.0 EL30.0\n", "MR\n", "VL0500\n", "PARK\n", "RESET\n", "CW7,10\n", "CW 7,10\n"})
     EXPECT_EQ(ask(s, command), "ALDENIED\n") << command;
   EXPECT_EQ(ask(s, "SA SE\n"), "");
   expect_untouched(revision);

@@ -118,9 +118,10 @@ TEST(ReadingEdges, RotctldPauseRunsOnTheTransportClockNotControllerTime) {
   StringSink sink;
   rotctld.poll(3000, sink);
   EXPECT_EQ(ask(rotctld, "\\pause 1\n"), "");
+  rotctld.poll(3010, sink);  // the transport's next poll starts the pause
   rotctld.poll(3500, sink);
   EXPECT_EQ(sink.data, "");
-  rotctld.poll(4000, sink);
+  rotctld.poll(4010, sink);
   EXPECT_EQ(sink.data, "RPRT 0\n");
 }
 
