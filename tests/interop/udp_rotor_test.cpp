@@ -14,6 +14,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -228,7 +229,9 @@ TEST_F(UdpRotor, N1mmStopsInEveryFormTheStopIsSentIn) {
   }
   // <stop>False</stop> beside a heading is no stop: the heading is obeyed.
   n1mm("<N1MMRotor><rotor>teststack</rotor><goazi>45</goazi><stop>False</stop></N1MMRotor>");
-  EXPECT_NEAR(az_target(), 45.0, 0.1);
+  // A compass bearing: from near 300 the rotator takes it through the overlap.
+  const double target = az_target();
+  EXPECT_NEAR(std::fmod(target, 360.0), 45.0, 0.1);
   daemon->advance_ms(1000);
   EXPECT_TRUE(moving());
   // A nested stop for another rotor is that rotor's.
@@ -236,7 +239,7 @@ TEST_F(UdpRotor, N1mmStopsInEveryFormTheStopIsSentIn) {
                  "<N1MMRotor><stop><rotor>Tribander</rotor><freqband>14</freqband></stop>"
                  "</N1MMRotor>");
   ASSERT_TRUE(daemon->wait_for_output("for another rotor")) << daemon->output();
-  EXPECT_NEAR(az_target(), 45.0, 0.1);
+  EXPECT_NEAR(az_target(), target, 0.1);
 }
 
 TEST_F(UdpRotor, AReadOnlySenderIsRefusedEveryMoveButStopsTheRotator) {
