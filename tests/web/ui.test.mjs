@@ -51,7 +51,10 @@ test('control page loads without console errors, phone and desktop, light and da
 });
 
 test('small phone: STOP stays in reach; the elevation arc shows both travel limits', async () => {
-  assert.equal((await rotord.post('/api/settings', { 'el.min_deg': 10, 'el.max_deg': 170 })).status, 200);
+  // The park elevation moves inside the narrower travel with it (a park
+  // outside the travel is refused).
+  assert.equal((await rotord.post('/api/settings',
+    { 'el.min_deg': 10, 'el.max_deg': 170, 'park.el_deg': 10 })).status, 200);
   await rotord.advance(100);  // the controller applies new settings on its next tick
   const page = await openPage(browser, rotord.url + '/', { width: 360, height: 640 });
   await page.waitForSelector('#conn.live');
@@ -62,7 +65,8 @@ test('small phone: STOP stays in reach; the elevation arc shows both travel limi
     { what: 'two blocked wedges' });
   assert.deepEqual(page.errors, []);
   await page.context().close();
-  assert.equal((await rotord.post('/api/settings', { 'el.min_deg': 0, 'el.max_deg': 180 })).status, 200);
+  assert.equal((await rotord.post('/api/settings',
+    { 'el.min_deg': 0, 'el.max_deg': 180, 'park.el_deg': 0 })).status, 200);
 });
 
 test('clicking the rose moves the rotator and the displayed azimuth follows', async () => {
