@@ -212,5 +212,43 @@ TEST(RotctldClients, HamlibBefore451ReadsTheLimitsWithRotctldOldClients) {
   EXPECT_EQ(newer.rc, 0) << newer.out;
 }
 
+TEST(RotctldClients, DumpConfIsAnsweredAsHamlib46sRotctldAnswersIt) {
+  // Seen on main: RPRT -4. Hamlib 4.6's rotctld prints the list on its own
+  // standard output and answers the client RPRT 0.
+  DaemonProcess daemon({"--sim", "g5500", "--clock", "manual"});
+  ASSERT_TRUE(daemon.ready()) << daemon.output();
+  TcpClient rotctld(daemon.ports().rotctld);
+  EXPECT_EQ(rotctld.ask("\\dump_conf\n"), "RPRT 0");
+  EXPECT_EQ(rotctld.ask("3\n"), "RPRT 0");
+  EXPECT_EQ(rotctld.ask("+\\dump_conf\n"), "dump_conf:");
+  std::string line;
+  ASSERT_TRUE(rotctld.read_line(line));
+  EXPECT_EQ(line, "RPRT 0");
+}
+
+TEST(RotctldClients, NumbersAreReadWholeOrRefusedAndNothingMoves) {
+  // Issue 29 item 7, seen on main: \pause 1e9 paused 1 s, 60.5 and 3abc
+  // paused 60 and 3 s, M 16 1e400 moved at speed 1, Easycomm VU999 and VD-0
+  // moved the elevation.
+  DaemonProcess daemon({"--sim", "g5500", "--clock", "manual"});
+  ASSERT_TRUE(daemon.ready()) << daemon.output();
+  TcpClient rotctld(daemon.ports().rotctld);
+  for (const char* bad : {"\\pause 1e9\n", "\\pause 60.5\n", "\\pause 3abc\n", "M 16 1e400\n",
+                          "M 2 50.5\n", "V SPEED 3abc\n"})
+    EXPECT_EQ(rotctld.ask(bad), "RPRT -1") << bad;
+  TcpClient easycomm(daemon.ports().easycomm);
+  for (const char* bad : {"VU999\n", "VD-0\n", "VL+100\n"})
+    EXPECT_EQ(easycomm.ask(bad), "ALSYNTAX") << bad;
+  daemon.advance_ms(2000);
+  const std::string status = http(daemon.ports().web, "GET", "/api/status").body;
+  EXPECT_NE(status.find("\"moving\":false"), std::string::npos) << status;
+  // What Hamlib's 204 sends still moves: "VU%04d".
+  ASSERT_TRUE(easycomm.send("VU0100\n"));
+  daemon.advance_ms(1000);
+  const std::string moving = http(daemon.ports().web, "GET", "/api/status").body;
+  EXPECT_NE(moving.find("\"moving\":true"), std::string::npos) << moving;
+  EXPECT_EQ(rotctld.ask("S\n"), "RPRT 0");
+}
+
 }  // namespace
 }  // namespace rotord::testing
