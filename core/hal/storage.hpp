@@ -14,6 +14,10 @@ class Storage {
   virtual long load(char* buf, std::size_t capacity) = 0;
   /// Replaces the stored document; a power cut leaves the old or the new one.
   virtual bool save(std::string_view document) = 0;
+  /// A person may read the stored document (a file), so it is indented; a
+  /// flash slot stores it compact, since every setting row the table gains
+  /// eats into the slot (about 4 bytes a key of indentation alone).
+  virtual bool human_readable() const { return true; }
 };
 
 }  // namespace rotord::hal

@@ -301,7 +301,7 @@ bool save_settings(hal::Storage& storage, const settings::Settings& values,
   BufferSink sink(buf, capacity);
   {
     JsonWriter writer(sink);
-    writer.set_pretty(true);
+    writer.set_pretty(storage.human_readable());
     writer.begin_object();
     writer.member(settings::kVersionKey, settings::kStoredVersion);
     const settings::KeySet keys = settings::user_layer(values, base);

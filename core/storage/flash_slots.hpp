@@ -36,6 +36,7 @@ class FlashSlots final : public hal::Storage {
   bool usable() const;
   /// Largest document a slot holds.
   std::size_t capacity() const;
+  bool human_readable() const override { return false; }
 
   long load(char* buf, std::size_t capacity) override;
   bool save(std::string_view document) override;
