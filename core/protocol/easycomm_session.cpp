@@ -334,7 +334,7 @@ void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
       // 0..360 is a compass bearing; the controller picks the turn within
       // the overlap. Beyond 0..360 it is an unwrapped position, refused
       // unless inside the travel.
-      const Error e = controller_.go_to(request.set_az_deg, el, AzTarget::kCompass);
+      const Error e = controller_.go_to(request.set_az_deg, el, AzTarget::kCompass, source());
       if (e != Error::kOk) alarm(out, alarm_reason(e));
     }
   }

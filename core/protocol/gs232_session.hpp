@@ -8,6 +8,7 @@
 #include "protocol/line_assembler.hpp"
 #include "protocol/line_reply.hpp"
 #include "protocol/session.hpp"
+#include "rotator/client_frame.hpp"
 
 namespace rotord::protocol {
 
@@ -133,6 +134,7 @@ class Gs232Session final : public Session {
   void stop_axis(AxisId axis, ByteSink& out);
 
   Controller& controller_;
+  ClientFrame frame_;  // the azimuth frame this client sends in
   LineAssembler<kMaxLineLength> lines_;
   std::array<Point, kMaxListPoints> list_{};
   std::uint16_t list_size_ = 0;

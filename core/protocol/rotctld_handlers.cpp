@@ -80,14 +80,19 @@ HamlibError RotctldSession::execute(const Command& command) {
           el_deg > l.el_max_deg)
         return HamlibError::kInvalid;
       // Hamlib clients send the position they want, overlap included: 420 on
-      // a 450 deg rotator is 420, and 60 is 60 wherever the rotator is.
+      // a 450 deg rotator is 420, and 60 is 60 wherever the rotator is;
+      // except in a tracker's stream, which the continuity rule keeps on
+      // its turn (Gpredict sends 0.5 after 359.5, meaning 360.5).
       std::optional<float> el_target;
       if (controller_.has_el()) el_target = el_deg;
-      return from(controller_.go_to(az_deg, el_target, AzTarget::kUnwrapped));
+      const Error e = controller_.go_to(az_deg, el_target, AzTarget::kUnwrapped, source());
+      if (e == Error::kOk) frame_.note_goto(az_deg, controller_.az_continuity_shift_deg());
+      return from(e);
     }
     case Op::kGetPos: {
-      const RotatorStatus s = controller_.status();
+      RotatorStatus s = controller_.status();
       if (!s.az.position_valid || (s.el.present && !s.el.position_valid)) return HamlibError::kIo;
+      s.az.position_deg = frame_.az_deg(s.az.position_deg);  // as this client sent it
       value("Azimuth", "%.2f", az_reading(s, 2));
       value("Elevation", "%.2f", s.el.present ? two_decimals(s.el.position_deg) : 0.0);
       return HamlibError::kOk;

@@ -5,6 +5,7 @@
 #include "protocol/rotctld_commands.hpp"
 #include "protocol/rotctld_reply.hpp"
 #include "protocol/session.hpp"
+#include "rotator/client_frame.hpp"
 #include "tracking/track_plan.hpp"
 
 namespace rotord {
@@ -96,6 +97,7 @@ class RotctldSession final : public Session {
   rotctld::HamlibError locator_helper(rotctld::Op op);
 
   Controller& controller_;
+  ClientFrame frame_;  // the azimuth frame this client sends in
   const char* version_;
   State state_ = State::kCommand;
   bool extended_ = false;

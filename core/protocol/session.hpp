@@ -1,9 +1,11 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string_view>
 
 #include "access/peer.hpp"
 #include "net/line_access.hpp"
+#include "rotator/goto_stream.hpp"
 #include "util/byte_sink.hpp"
 #include "util/time.hpp"
 
@@ -44,6 +46,9 @@ class Session {
   /// Who the client is; the transport calls this once, before the first byte.
   void set_peer(const access::Peer& peer) { peer_ = peer; }
   const access::Peer& peer() const { return peer_; }
+  /// This session as the source of its go-tos: each session is its own
+  /// stream for the continuity rule (rotator/goto_stream.hpp).
+  CommandSource source() const { return source_of(this); }
 
  protected:
   /// Whether this client may change anything: its network is allowed

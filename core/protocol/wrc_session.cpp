@@ -117,7 +117,8 @@ void MonitorTap::offer(Millis now, std::string_view line) {
 }
 
 void WrcSession::write_state(ByteSink& out, const char* prefix) {
-  const RotatorStatus s = controller_.status();
+  RotatorStatus s = controller_.status();
+  s.az.position_deg = frame_.az_deg(s.az.position_deg);  // as this client sent it
   char flags[64] = "";
   std::size_t n = 0;
   auto add = [&](bool on, const char* name) {
@@ -164,15 +165,18 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
 void WrcSession::go_az(std::string_view arg, ByteSink& out) {
   float az = 0;
   if (!parse_float(arg, az)) return send(out, "ERROR INVALID AZIMUTH");
-  const Error e = controller_.go_to(az, std::nullopt);
+  const Error e = controller_.go_to(az, std::nullopt, AzTarget::kCompass, source());
   if (e == Error::kOutOfRange || e == Error::kInvalidArgument)
     return send(out, "ERROR INVALID AZIMUTH");
+  if (e == Error::kOk) frame_.note_goto(az, controller_.az_continuity_shift_deg());
   if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
   send(out, "OK AZ %.2f", static_cast<double>(az));
 }
 
 void WrcSession::get_az(std::string_view, ByteSink& out) {
-  send(out, "OK AZ %.1f", az_reading(controller_.status(), 1));
+  RotatorStatus s = controller_.status();
+  s.az.position_deg = frame_.az_deg(s.az.position_deg);
+  send(out, "OK AZ %.1f", az_reading(s, 1));
 }
 
 void WrcSession::go_el(std::string_view arg, ByteSink& out) {

@@ -5,6 +5,7 @@
 #include "protocol/line_assembler.hpp"
 #include "protocol/line_reply.hpp"
 #include "protocol/session.hpp"
+#include "rotator/client_frame.hpp"
 
 namespace rotord::protocol {
 
@@ -90,6 +91,7 @@ class WrcSession final : public Session {
   void get_az_offset(std::string_view arg, ByteSink& out);
 
   Controller& controller_;
+  ClientFrame frame_;  // the azimuth frame this client sends in
   const char* version_;
   MonitorTap* tap_;
   LineAssembler<kMaxLineLength> lines_;

@@ -1,5 +1,7 @@
 #include "rotator/controller.hpp"
 
+#include <cmath>
+
 #include "motion/angles.hpp"
 
 namespace rotord {
@@ -125,6 +127,7 @@ bool Controller::station_set() const {
 
 TrackError Controller::track(const TrackRequest& request) {
   note_command();  // ends a track already armed
+  stream_.interrupt();
   // A fixed az/el needs no station; a satellite, the Sun and the Moon do.
   if (request.kind != tracking::TargetKind::kNone && !station_set()) return TrackError::kNoStation;
   const std::optional<std::int64_t> utc = utc_ms();
@@ -217,13 +220,31 @@ std::optional<float> Controller::resolve_az(float az_deg, AzTarget mode) const {
 }
 
 Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg,
-                        AzTarget az_mode) {
+                        AzTarget az_mode, CommandSource source) {
   note_command();
   if (el_deg && !has_el_) return Error::kNotSupported;
   std::optional<float> az_target;
+  GotoStream::Step step;
+  float shift_deg = 0.0f;
   if (az_deg) {
     az_target = resolve_az(*az_deg, az_mode);
     if (!az_target) return Error::kOutOfRange;
+    const AxisConfig& c = az_.config();
+    if (!c.continuous) {
+      step = stream_.judge(*az_deg, source, now_, c.max_deg - c.min_deg);
+      // Only a compass azimuth is resolved: a client that sends 420 means 420.
+      if (step.continues && settings_.b(Id::kTrackContinuity) && *az_deg >= 0.0f &&
+          *az_deg <= 360.0f) {
+        const float continued = unwrap_near(*az_deg, stream_.last_target_deg());
+        // Never outside the travel: where the stream would leave it, the
+        // literal turn (the unwind) is the only way on.
+        if (continued >= c.min_deg && continued <= c.max_deg &&
+            std::fabs(continued - *az_target) > 1.0f) {
+          shift_deg = continued - *az_target;
+          az_target = continued;
+        }
+      }
+    }
   }
   if (el_deg) {
     const AxisConfig& c = el_.config();
@@ -234,6 +255,9 @@ Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg
   if (az_target) {
     const Error e = az_.go_to(*az_target);
     if (e != Error::kOk) return e;
+    stream_.accept(step, *az_deg, *az_target, source, now_);
+    if (shift_deg != 0.0f) stream_.count_resolved();
+    az_shift_deg_ = shift_deg;
   }
   if (el_deg) {
     const Error e = el_.go_to(*el_deg);
@@ -245,6 +269,7 @@ Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg
 
 Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman_ms) {
   note_command();
+  stream_.interrupt();
   if (axis == AxisId::kEl && !has_el_) return Error::kNotSupported;
   if (speed_pct != -1 && (speed_pct < 1 || speed_pct > 100)) return Error::kOutOfRange;
   Axis& a = axis == AxisId::kAz ? az_ : el_;
@@ -256,6 +281,7 @@ Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman
 
 void Controller::stop() {
   note_command();
+  stream_.interrupt();
   az_.stop();
   el_.stop();
   mode_ = Mode::kIdle;

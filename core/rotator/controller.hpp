@@ -5,6 +5,7 @@
 #include "axis/axis.hpp"
 #include "hal/wall_clock.hpp"
 #include "input/manual_buttons.hpp"
+#include "rotator/goto_stream.hpp"
 #include "rotator/tracker.hpp"
 #include "settings/settings.hpp"
 #include "tracking/track_plan.hpp"
@@ -69,8 +70,13 @@ class Controller {
   void set_track_budget(int evaluations_per_tick) { tracker_.set_budget(evaluations_per_tick); }
 
   // Commands. Each validates everything before it changes anything.
+  /// A go-to. `source` names who sent it (a session, REST or MQTT from an
+  /// address): a stream of go-tos from one source that moves like a tracker
+  /// gets the continuity rule (rotator/goto_stream.hpp, track.continuity):
+  /// a 0..360 azimuth goes on the turn continuous with the stream, inside
+  /// the travel, rather than the literal one. kNoSource: always literal.
   Error go_to(std::optional<float> az_deg, std::optional<float> el_deg,
-              AzTarget az_mode = AzTarget::kCompass);
+              AzTarget az_mode = AzTarget::kCompass, CommandSource source = kNoSource);
   /// Moves one axis until stop, a limit, or for `deadman_ms` (0 = no dead-man;
   /// the web's hold-to-move buttons renew it).
   Error move(AxisId axis, Direction dir, int speed_pct = -1, Millis deadman_ms = 0);
@@ -118,7 +124,16 @@ class Controller {
                           [static_cast<std::size_t>(kind)];
   }
 
-  /// Resolves a compass azimuth to the unwrapped target go_to would use.
+  /// What the continuity rule added to the last go-to's azimuth (whole
+  /// turns; 0 when it was taken literally). A session that sent it reports
+  /// positions in its own frame from then on (rotator/client_frame.hpp).
+  float az_continuity_shift_deg() const { return az_shift_deg_; }
+  /// Go-tos the continuity rule put on another turn than the literal one
+  /// (GET /metrics: rotord_goto_continuity_total).
+  std::uint32_t continuity_resolved() const { return stream_.resolved_count(); }
+
+  /// Resolves a compass azimuth to the literal unwrapped target go_to would
+  /// use (without the continuity rule).
   std::optional<float> resolve_az(float az_deg, AzTarget mode) const;
 
  private:
@@ -151,6 +166,8 @@ class Controller {
   bool auto_parked_ = false;     // parked for being idle; no command since
   const hal::WallClock* utc_clock_ = nullptr;
   Tracker tracker_;
+  GotoStream stream_;         // the continuity rule's view of the go-tos
+  float az_shift_deg_ = 0.0f;  // what it added to the last go-to
   std::array<AxisFault, kMaxAxes> counted_fault_{};  // each axis's fault, as last counted
   std::array<std::array<std::uint32_t, kAxisFaultKinds>, kMaxAxes> faults_latched_{};
 };

@@ -578,7 +578,12 @@ Api::Outcome Api::post_goto(const Call& call) {
   std::optional<float> el;
   if (m[0].present) az = static_cast<float>(m[0].value.number);
   if (m[1].present) el = static_cast<float>(m[1].value.number);
-  const Error e = c.go_to(az, el, mode);
+  // Each caller's address is its own stream for the continuity rule (MQTT
+  // arrives here as the broker).
+  const CommandSource source = (CommandSource{1} << 62) |
+                               (static_cast<CommandSource>(call.peer.kind) << 32) |
+                               call.peer.ipv4;
+  const Error e = c.go_to(az, el, mode, source);
   if (e != Error::kOk) {
     send_command_error(e, out, options);
     return Outcome::kDone;

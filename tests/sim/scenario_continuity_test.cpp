@@ -1,0 +1,340 @@
+// The continuity rule (docs/tracking.md, "Trackers through the protocols")
+// on the physics simulator, in virtual time: a tracker that sends 0..360
+// azimuths through a protocol session (Gpredict through rotctld, and the
+// same stream through GS-232, Easycomm and WRC) follows a pass through north
+// into the overlap with no unwind, and reads the position back in its own
+// frame; a single go-to, a zig-zag, a STOP and the travel's end stay literal.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "../unit/string_sink.hpp"
+#include "protocol/easycomm_session.hpp"
+#include "protocol/gs232_session.hpp"
+#include "protocol/rotctld_session.hpp"
+#include "protocol/wrc_session.hpp"
+#include "rotator/controller.hpp"
+#include "sim/profiles.hpp"
+#include "sim/sim_rotator.hpp"
+#include "tracking/julian.hpp"
+#include "tracking/sky_target.hpp"
+#include "tracking/tle.hpp"
+
+namespace rotord {
+namespace {
+
+using settings::Id;
+using testing::StringSink;
+
+constexpr const char* kIssLine1 =
+    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
+constexpr const char* kIssLine2 =
+    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
+
+/// A rotator on the simulator, its controller and a clock for the sky.
+class Bench {
+ public:
+  explicit Bench(const char* profile, double az0, double el0)
+      : profile_(*sim::find_profile(profile)) {
+    for (const auto& o : profile_.overrides) settings_.set(*settings::find(o.key), o.value);
+    // Boulder, as the tracking mode's pass through north.
+    settings_.set(Id::kStationLatDeg, 40.015);
+    settings_.set(Id::kStationLonDeg, -105.27);
+    settings_.set(Id::kStationAltM, 1655.0);
+    sim_ = std::make_unique<sim::SimRotator>(profile_, 11);
+    sim_->set_theta_deg(AxisId::kAz, az0);
+    if (sim_->has_el()) sim_->set_theta_deg(AxisId::kEl, el0);
+  }
+  void power_on() {
+    controller_ =
+        std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
+    controller_->begin(now_);
+  }
+  void run_ms(Millis ms) {
+    for (Millis t = 0; t < ms; t += 10) {
+      now_ += 10;
+      sim_->advance_to(now_);
+      controller_->tick(now_);
+      const RotatorStatus s = controller_->status();
+      if (s.az.switch_cw || s.az.switch_ccw || s.el.switch_cw || s.el.switch_ccw) ++limit_ticks_;
+      const double az = theta(AxisId::kAz);
+      min_az_ = std::fmin(min_az_, az);
+      max_az_ = std::fmax(max_az_, az);
+    }
+  }
+  double theta(AxisId axis) const { return sim_->plant(axis).theta_deg(); }
+  Controller& controller() { return *controller_; }
+  settings::Settings& settings() { return settings_; }
+  Millis now() const { return now_; }
+  int limit_ticks() const { return limit_ticks_; }
+  void reset_extent() { min_az_ = max_az_ = theta(AxisId::kAz); }
+  double min_az() const { return min_az_; }
+  double max_az() const { return max_az_; }
+
+ private:
+  const sim::Profile& profile_;
+  settings::Settings settings_;
+  Millis now_ = 0;
+  std::unique_ptr<sim::SimRotator> sim_;
+  std::unique_ptr<Controller> controller_;
+  int limit_ticks_ = 0;
+  double min_az_ = 1e9, max_az_ = -1e9;
+};
+
+/// Sends one line to a session and returns its reply.
+std::string ask(protocol::Session& session, const std::string& line) {
+  StringSink out;
+  session.receive(line, out);
+  return out.data;
+}
+
+/// What a Gpredict-style client through rotctld measured over a pass.
+struct PassRun {
+  double max_error_deg = 0;  ///< great circle, az judged below 80 deg el
+  double max_readback_gap_deg = 0;  ///< |read-back az - last sent az|, in the client's frame
+  int commands = 0;
+  int refused = 0;
+};
+
+double great_circle_deg(double az1, double el1, double az2, double el2) {
+  const double r = 3.14159265358979323846 / 180.0;
+  if (el2 > 80.0) return std::fabs(el1 - el2);
+  const double c = std::sin(el1 * r) * std::sin(el2 * r) +
+                   std::cos(el1 * r) * std::cos(el2 * r) * std::cos((az1 - az2) * r);
+  return std::acos(c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c)) / r;
+}
+
+/// Gpredict as its source reads (gtk-rot-ctrl.c): a cycle of 1 s, `p`, then
+/// `P az el` with the satellite's 0..360 azimuth when it is off by more than
+/// the threshold on either axis. The ISS's pass of 2019-12-09 22:3x UTC over
+/// Boulder rises at 312 deg and sets at 74 through north.
+PassRun gpredict_pass(Bench& b, double threshold_deg) {
+  tracking::Tle tle;
+  EXPECT_TRUE(tracking::parse_tle(kIssLine1, kIssLine2, tle).ok());
+  tracking::SkyTarget sat;
+  EXPECT_EQ(sat.set_satellite(tle), tracking::Sgp4Error::kOk);
+  std::int64_t utc0 = 0;
+  EXPECT_TRUE(tracking::parse_utc("2019-12-09T22:36:00Z", utc0));
+  const tracking::Observer station = b.controller().observer();
+  protocol::RotctldSession gpredict(b.controller(), "test");
+  gpredict.set_peer(access::Peer::from_ipv4(0x7f000001));
+  PassRun run;
+  double sent_az = -1;
+  bool up = false;
+  for (int cycle = 0; cycle < 1200; ++cycle) {
+    tracking::LookAngles look;
+    EXPECT_EQ(sat.look(utc0 + b.now(), station, look), tracking::Sgp4Error::kOk);
+    if (look.el_deg < 0.0) {
+      if (up) break;  // LOS
+      b.run_ms(1000);
+      continue;
+    }
+    up = true;
+    double read_az = 0, read_el = 0;
+    const std::string reply = ask(gpredict, "p\n");
+    EXPECT_EQ(std::sscanf(reply.c_str(), "%lf\n%lf", &read_az, &read_el), 2) << reply;
+    if (sent_az >= 0)
+      run.max_readback_gap_deg = std::fmax(run.max_readback_gap_deg, std::fabs(read_az - sent_az));
+    if (cycle > 0 && sent_az >= 0) {
+      const double e = great_circle_deg(std::fmod(b.theta(AxisId::kAz), 360.0),
+                                        b.theta(AxisId::kEl), look.az_deg, look.el_deg);
+      // Judged once the antenna has reached the pass (AOS pre-positioning excluded).
+      if (run.commands > 3) run.max_error_deg = std::fmax(run.max_error_deg, e);
+    }
+    if (std::fabs(look.az_deg - read_az) > threshold_deg ||
+        std::fabs(look.el_deg - read_el) > threshold_deg) {
+      char cmd[64];
+      std::snprintf(cmd, sizeof cmd, "P %.2f %.2f\n", look.az_deg, look.el_deg);
+      const std::string r = ask(gpredict, cmd);
+      ++run.commands;
+      if (r != "RPRT 0\n") ++run.refused;
+      sent_az = std::round(look.az_deg * 100.0) / 100.0;
+    }
+    b.run_ms(1000);
+  }
+  return run;
+}
+
+TEST(ContinuityScenario, GpredictPassThroughNorthRunsIntoTheOverlapOfA450DegRotator) {
+  // G-5500 without flip (el 0..90), antenna at 300.
+  Bench b("g5500", 300.0, 0.0);
+  b.settings().set(Id::kElMaxDeg, 90.0);
+  b.power_on();
+  const PassRun run = gpredict_pass(b, 5.0);
+  std::printf(
+      "[ continuity ] g5500 450 deg, ISS through north, Gpredict threshold 5: az %.0f..%.0f, max "
+      "error %.1f deg, read-back at most %.1f deg from what was sent, %d commands, %d refused\n",
+      b.min_az(), b.max_az(), run.max_error_deg, run.max_readback_gap_deg, run.commands,
+      run.refused);
+  EXPECT_GT(b.max_az(), 400.0);  // on into the overlap ...
+  EXPECT_GT(b.min_az(), 290.0);  // ... never back the long way round
+  EXPECT_EQ(b.limit_ticks(), 0);
+  EXPECT_EQ(run.refused, 0);
+  // The client reads its own frame: never 360 deg from what it sent.
+  EXPECT_LT(run.max_readback_gap_deg, 30.0);
+  // At most the client's threshold plus the plant's lag, the crossing included.
+  EXPECT_LT(run.max_error_deg, 5.0 + 4.0);
+  EXPECT_GT(b.controller().continuity_resolved(), 5u);
+}
+
+TEST(ContinuityScenario, WithTheRuleOffTheSamePassUnwindsTheLongWay) {
+  // What the rule removes: Hamlib's literal meaning turns 300+ deg at north.
+  Bench b("g5500", 300.0, 0.0);
+  b.settings().set(Id::kElMaxDeg, 90.0);
+  b.settings().set(Id::kTrackContinuity, 0.0);
+  b.power_on();
+  const PassRun run = gpredict_pass(b, 5.0);
+  std::printf("[ continuity ] off: az %.0f..%.0f, max error %.1f deg\n", b.min_az(), b.max_az(),
+              run.max_error_deg);
+  EXPECT_LT(b.min_az(), 100.0);
+  EXPECT_GT(run.max_error_deg, 45.0);
+  EXPECT_EQ(b.controller().continuity_resolved(), 0u);
+}
+
+TEST(ContinuityScenario, GpredictPassThroughNorthOnSpidStaysOnOneTurn) {
+  // SPID -180..540 (H-bridge, slow zones), the SatNOGS client's 4 deg
+  // threshold: the stream goes on past 360 rather than back to 0.
+  Bench b("spid", 300.0, 0.0);
+  b.power_on();
+  const PassRun run = gpredict_pass(b, 4.0);
+  std::printf("[ continuity ] spid -180..540: az %.0f..%.0f, max error %.1f deg, %d commands\n",
+              b.min_az(), b.max_az(), run.max_error_deg, run.commands);
+  EXPECT_GT(b.max_az(), 400.0);
+  EXPECT_EQ(b.limit_ticks(), 0);
+  EXPECT_EQ(run.refused, 0);
+  EXPECT_LT(run.max_readback_gap_deg, 30.0);
+  EXPECT_LT(run.max_error_deg, 4.0 + 4.0);
+}
+
+/// Runs until both axes stand still (or the time is up).
+void settle(Bench& b) {
+  for (int i = 0; i < 200; ++i) {
+    b.run_ms(500);
+    if (!b.controller().status().moving() && !b.controller().status().az.has_target) return;
+  }
+}
+
+TEST(ContinuityScenario, ASingleGotoAndAZigZagAreLiteral) {
+  Bench b("g5500", 400.0, 10.0);
+  b.power_on();
+  protocol::RotctldSession client(b.controller(), "test");
+  // A single go-to means what Hamlib means: 60 is 60, not 420.
+  ASSERT_EQ(ask(client, "P 60 10\n"), "RPRT 0\n");
+  settle(b);
+  EXPECT_NEAR(b.theta(AxisId::kAz), 60.0, 2.0);
+  // A stream to 355, then a zig-zag across north: 359, 1 (continued: 361),
+  // 359, then 1 again is a zig-zag and literal.
+  for (const char* cmd : {"P 350 10\n", "P 355 10\n", "P 359 10\n", "P 1 10\n"}) {
+    ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
+    settle(b);
+  }
+  EXPECT_NEAR(b.theta(AxisId::kAz), 361.0, 2.0);
+  EXPECT_NEAR(std::stod(ask(client, "p\n")), 1.0, 2.0);  // in its frame
+  ASSERT_EQ(ask(client, "P 359 10\n"), "RPRT 0\n");
+  settle(b);
+  ASSERT_EQ(ask(client, "P 1 10\n"), "RPRT 0\n");
+  settle(b);
+  EXPECT_NEAR(b.theta(AxisId::kAz), 1.0, 2.0);
+  // A pause longer than a stream's: the next go-to is literal again.
+  for (const char* cmd : {"P 350 10\n", "P 355 10\n"}) {
+    ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
+    settle(b);
+  }
+  b.run_ms(GotoStream::kMaxGapMs + 1000);
+  ASSERT_EQ(ask(client, "P 2 10\n"), "RPRT 0\n");
+  settle(b);
+  EXPECT_NEAR(b.theta(AxisId::kAz), 2.0, 2.0);
+}
+
+TEST(ContinuityScenario, StopAnotherSourceAndTheTravelsEndAreObeyed) {
+  Bench b("g5500", 430.0, 10.0);
+  b.power_on();
+  protocol::RotctldSession client(b.controller(), "test");
+  protocol::RotctldSession other(b.controller(), "test");
+  for (const char* cmd : {"P 70 10\n", "P 75 10\n"}) {
+    ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
+    settle(b);
+  }
+  EXPECT_NEAR(b.theta(AxisId::kAz), 75.0, 2.0);  // the first was literal
+  for (const char* cmd : {"P 350 10\n", "P 355 10\n", "P 359 10\n", "P 3 10\n"}) {
+    ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
+    settle(b);
+  }
+  // Jumped: 350 is a new stream; 3 continues it at 363.
+  EXPECT_NEAR(b.theta(AxisId::kAz), 363.0, 2.0);
+  // STOP ends the stream: the next go-to is literal (the long way, as asked).
+  ASSERT_EQ(ask(client, "S\n"), "RPRT 0\n");
+  ASSERT_EQ(ask(client, "P 8 10\n"), "RPRT 0\n");
+  b.run_ms(2000);
+  EXPECT_LT(b.controller().status().az.target_deg, 10.0);
+  ASSERT_EQ(ask(client, "S\n"), "RPRT 0\n");
+  settle(b);
+  // Near the end stop: the stream continues up to 450, never beyond it.
+  for (const char* cmd : {"P 80 10\n", "P 82 10\n", "P 86 10\n", "P 89 10\n", "P 92 10\n"}) {
+    ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
+    settle(b);
+    EXPECT_LE(b.controller().status().az.target_deg, 450.0f);
+  }
+  // 80 literal; 82, 86, 89 on the same turn; 92 too (no other turn fits).
+  EXPECT_NEAR(b.theta(AxisId::kAz), 92.0, 2.0);
+  for (const char* cmd : {"P 350 10\n", "P 355 10\n", "P 2 10\n"}) {
+    ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
+    settle(b);
+  }
+  EXPECT_NEAR(b.theta(AxisId::kAz), 362.0, 2.0);
+  // Another source's go-to is its own (literal) stream.
+  ASSERT_EQ(ask(other, "P 5 10\n"), "RPRT 0\n");
+  settle(b);
+  EXPECT_NEAR(b.theta(AxisId::kAz), 5.0, 2.0);
+  EXPECT_EQ(b.limit_ticks(), 0);
+}
+
+/// One stream across north through another protocol's session; `format`
+/// prints one go-to.
+void stream_across_north(protocol::Session& session, Bench& b, const char* format) {
+  for (const double az : {340.0, 345.0, 350.0, 355.0, 359.0, 4.0, 9.0}) {
+    char cmd[64];
+    std::snprintf(cmd, sizeof cmd, format, az);
+    ask(session, cmd);
+    b.run_ms(1500);
+  }
+  settle(b);
+}
+
+TEST(ContinuityScenario, TheSameStreamThroughGs232EasycommAndWrc) {
+  {
+    Bench b("g5500", 330.0, 10.0);
+    b.power_on();
+    protocol::Gs232Session gs232(b.controller());
+    stream_across_north(gs232, b, "W%03.0f 010\r");
+    EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0);
+    // Read back in its frame: 009, not 369.
+    EXPECT_NE(ask(gs232, "C\r").find("009"), std::string::npos) << ask(gs232, "C\r");
+  }
+  {
+    // Easycomm and WRC read 0..360 as a bearing on the turn nearest the
+    // antenna, which agrees with the stream while the antenna keeps up; the
+    // stream keeps them on its turn either way.
+    Bench b("g5500", 330.0, 10.0);
+    b.power_on();
+    protocol::EasycommSession easycomm(b.controller(), "test");
+    stream_across_north(easycomm, b, "AZ%.1f EL10.0\n");
+    EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0);
+  }
+  {
+    Bench b("g5500", 330.0, 10.0);
+    b.power_on();
+    protocol::WrcSession wrc(b.controller(), "test");
+    stream_across_north(wrc, b, "AZ %.1f\n");
+    EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0);
+    // WRC reads 0..360 as the bearing on the nearest turn and reports the
+    // unwrapped position (docs/protocols): the rule agreed, nothing shifted.
+    EXPECT_NE(ask(wrc, "AZ?\n").find("OK AZ 36"), std::string::npos) << ask(wrc, "AZ?\n");
+  }
+}
+
+}  // namespace
+}  // namespace rotord
