@@ -195,7 +195,8 @@ DatagramOutcome N1mmRotor::receive(std::string_view datagram, const access::Peer
     // at goazi.
     float bearing_deg = wrap_360(*r.goazi_deg - r.offset_deg);
     if (r.bidirectional) bearing_deg = nearer_end(controller_, bearing_deg);
-    if (controller_.go_to(bearing_deg, std::nullopt, AzTarget::kCompass, source_of(this)) != Error::kOk)
+    if (controller_.go_to(bearing_deg, std::nullopt, AzTarget::kCompass, source_of(this)) !=
+        Error::kOk)
       outcome = DatagramOutcome::kFailed;
   }
   const std::string_view label = wanted.empty() ? std::string_view(name, name_size) : wanted;

@@ -131,7 +131,8 @@ DatagramOutcome PstRotor::receive(std::string_view datagram, const access::Peer&
     std::optional<float> el = r.el_deg;
     // An azimuth-only rotator ignores the elevation (Hamlib sends one).
     if (!controller_.has_el()) el.reset();
-    if (e == Error::kOk && (az || el)) e = controller_.go_to(az, el, AzTarget::kCompass, source_of(this));
+    if (e == Error::kOk && (az || el))
+      e = controller_.go_to(az, el, AzTarget::kCompass, source_of(this));
     if (e != Error::kOk) outcome = DatagramOutcome::kFailed;
   }
   // Answers go to port + 1 of the port this protocol listens on.

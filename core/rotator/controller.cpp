@@ -219,8 +219,8 @@ std::optional<float> Controller::resolve_az(float az_deg, AzTarget mode) const {
   return az_deg;
 }
 
-Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg,
-                        AzTarget az_mode, CommandSource source) {
+Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg, AzTarget az_mode,
+                        CommandSource source) {
   note_command();
   if (el_deg && !has_el_) return Error::kNotSupported;
   std::optional<float> az_target;

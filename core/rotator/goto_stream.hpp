@@ -66,9 +66,9 @@ class GotoStream {
   Millis last_ms_ = 0;
   float last_az_ = 0.0f;
   float last_target_ = 0.0f;
-  int dir_ = 0;            // sign of the last step that moved
-  int run_ = 0;            // steps since the direction last reversed
-  bool literal_ = false;   // zig-zagged: literal until steady again
+  int dir_ = 0;           // sign of the last step that moved
+  int run_ = 0;           // steps since the direction last reversed
+  bool literal_ = false;  // zig-zagged: literal until steady again
   std::uint32_t resolved_ = 0;
 };
 

@@ -581,8 +581,7 @@ Api::Outcome Api::post_goto(const Call& call) {
   // Each caller's address is its own stream for the continuity rule (MQTT
   // arrives here as the broker).
   const CommandSource source = (CommandSource{1} << 62) |
-                               (static_cast<CommandSource>(call.peer.kind) << 32) |
-                               call.peer.ipv4;
+                               (static_cast<CommandSource>(call.peer.kind) << 32) | call.peer.ipv4;
   const Error e = c.go_to(az, el, mode, source);
   if (e != Error::kOk) {
     send_command_error(e, out, options);

@@ -93,7 +93,7 @@ std::string ask(protocol::Session& session, const std::string& line) {
 
 /// What a Gpredict-style client through rotctld measured over a pass.
 struct PassRun {
-  double max_error_deg = 0;  ///< great circle, az judged below 80 deg el
+  double max_error_deg = 0;         ///< great circle, az judged below 80 deg el
   double max_readback_gap_deg = 0;  ///< |read-back az - last sent az|, in the client's frame
   int commands = 0;
   int refused = 0;
