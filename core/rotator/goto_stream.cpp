@@ -19,7 +19,9 @@ GotoStream::Step GotoStream::judge(float az_deg, CommandSource source, Millis no
   const bool reversal = step.sign != 0 && dir_ != 0 && step.sign != dir_;
   step.zigzag = reversal && run_ < kSteadySteps;
   const bool literal = step.zigzag || (literal_ && !(run_ + 1 >= kSteadySteps && !reversal));
-  step.continues = !literal;
+  // A client that sends unwrapped azimuths (420) chooses its turns itself.
+  const bool compass = !unwrapped_ && az_deg >= 0.0f && az_deg <= 360.0f;
+  step.continues = !literal && compass && gotos_ >= kMinGotos;
   return step;
 }
 
@@ -29,7 +31,9 @@ void GotoStream::accept(const Step& step, float az_deg, float target_deg, Comman
     // The first go-to of a stream.
     dir_ = 0;
     run_ = 0;
+    gotos_ = 0;
     literal_ = false;
+    unwrapped_ = false;
   } else if (step.sign != 0 && dir_ != 0 && step.sign != dir_) {
     run_ = 1;
     if (step.zigzag) literal_ = true;
@@ -38,6 +42,8 @@ void GotoStream::accept(const Step& step, float az_deg, float target_deg, Comman
     if (run_ >= kSteadySteps) literal_ = false;
   }
   if (step.sign != 0) dir_ = step.sign;
+  ++gotos_;
+  if (az_deg < 0.0f || az_deg > 360.0f) unwrapped_ = true;
   source_ = source;
   last_ms_ = now;
   last_az_ = az_deg;

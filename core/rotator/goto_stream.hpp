@@ -37,6 +37,9 @@ class GotoStream {
   /// reversal after a steady run is a tracker too (the SatNOGS client's
   /// flip mirrors the pass at culmination).
   static constexpr int kSteadySteps = 3;
+  /// Go-tos a stream must have had before the rule resolves one: two go-tos
+  /// are no stream yet, and a single one means what the client sent.
+  static constexpr int kMinGotos = 2;
 
   /// How the next go-to relates to the stream.
   struct Step {
@@ -66,9 +69,11 @@ class GotoStream {
   Millis last_ms_ = 0;
   float last_az_ = 0.0f;
   float last_target_ = 0.0f;
-  int dir_ = 0;           // sign of the last step that moved
-  int run_ = 0;           // steps since the direction last reversed
-  bool literal_ = false;  // zig-zagged: literal until steady again
+  int gotos_ = 0;           // go-tos in the stream so far
+  bool unwrapped_ = false;  // the client sent an azimuth outside 0..360: it knows the turns
+  int dir_ = 0;             // sign of the last step that moved
+  int run_ = 0;             // steps since the direction last reversed
+  bool literal_ = false;    // zig-zagged: literal until steady again
   std::uint32_t resolved_ = 0;
 };
 

@@ -88,6 +88,10 @@ void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s
   w.family("rotord_axis_moves_total", "counter",
            "Motor starts since the controller started (relay wear, hunting).");
   for (std::size_t n = 0; n < count; ++n) w.integer({{"axis", all[n].label}}, all[n].status->moves);
+  w.family("rotord_goto_continuity_total", "counter",
+           "Go-tos of a tracker's stream put on the turn continuous with it instead of the "
+           "literal one (track.continuity: a pass through north kept in the overlap).");
+  w.integer({}, c.continuity_resolved());
   w.family("rotord_axis_limit_active", "gauge",
            "1 while that direction is blocked by a limit switch or soft limit.");
   for (std::size_t n = 0; n < count; ++n) {

@@ -1,0 +1,181 @@
+// The continuity rule through the real daemon and the real Hamlib client: one
+// `rotctl -m 2` session (Debian's libhamlib-utils) streams a pass across
+// north as Gpredict and the SatNOGS client send it (0..360, a go-to every
+// 1.5 s of controller time); the simulated G-5500 (0..450) runs on into the
+// overlap with no unwind, this client reads the position back in its own
+// frame, and another client reads the unwrapped position.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "daemon_process.hpp"
+#include "shell.hpp"
+
+namespace rotord::testing {
+namespace {
+
+/// rotctl in its interactive mode on one connection: commands go to its
+/// standard input, its answers land in a file.
+class RotctlSession {
+ public:
+  explicit RotctlSession(const std::string& where) : dir_(make_temp_dir("rotctl-stream")) {
+    out_path_ = dir_ + "/out.txt";
+    pipe_ =
+        ::popen(("timeout 300 rotctl -m 2 -r " + where + " > " + out_path_ + " 2>&1").c_str(), "w");
+  }
+  ~RotctlSession() {
+    if (pipe_ != nullptr) {
+      std::fputs("q\n", pipe_);
+      ::pclose(pipe_);
+    }
+    std::remove(out_path_.c_str());
+    ::rmdir(dir_.c_str());
+  }
+  bool ok() const { return pipe_ != nullptr; }
+  void send(const std::string& line) {
+    std::fputs(line.c_str(), pipe_);
+    std::fflush(pipe_);
+  }
+  /// Sends `p` and returns the azimuth rotctl prints (NAN when none came).
+  double read_az() {
+    const std::size_t before = azimuths().size();
+    send("p\n");
+    // Wall-clock poll for the bytes to cross the socket and rotctl's stdout:
+    // the daemon's clock stands still meanwhile.
+    for (int i = 0; i < 200; ++i) {
+      const std::vector<double> v = azimuths();
+      if (v.size() > before) return v.back();
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return NAN;
+  }
+  std::string text() const {
+    std::ifstream in(out_path_);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+ private:
+  std::vector<double> azimuths() const {
+    static const std::regex kAz("Azimuth: (-?[0-9.]+)");
+    std::vector<double> v;
+    const std::string t = text();
+    for (auto it = std::sregex_iterator(t.begin(), t.end(), kAz); it != std::sregex_iterator();
+         ++it)
+      v.push_back(std::stod((*it)[1]));
+    return v;
+  }
+
+  std::string dir_;
+  std::string out_path_;
+  FILE* pipe_ = nullptr;
+};
+
+/// What one streamed pass did.
+struct Streamed {
+  double lowest = 1e9, highest = -1e9;  ///< the antenna, as another client reads it
+  double worst_gap = 0;                 ///< |the tracker's reading - what it sent|
+  double end_mine = NAN, end_other = NAN;
+};
+
+/// The pass: AOS at 330 (the first go-to, literal; waited for), then 3 deg
+/// per command every 1.5 s across north to 27, as a tracker sends it.
+void stream_pass(DaemonProcess& daemon, RotctlSession& tracker, const std::string& where,
+                 Streamed& r) {
+  tracker.send("P 330 5\n");
+  double az = NAN;
+  for (int i = 0; i < 200; ++i) {
+    ASSERT_GE(daemon.advance_ms(1000), 0);
+    az = tracker.read_az();
+    if (std::fabs(az - 330.0) < 2.0) break;
+  }
+  ASSERT_NEAR(az, 330.0, 2.0) << tracker.text();
+  for (double sky = 333.0; sky < 390.0; sky += 3.0) {
+    const double sent = std::fmod(sky, 360.0);
+    char cmd[48];
+    std::snprintf(cmd, sizeof cmd, "P %.2f 20\n", sent);
+    tracker.send(cmd);
+    for (int step = 0; step < 3; ++step) {
+      ASSERT_GE(daemon.advance_ms(500), 0);
+      // Another client's view: the unwrapped position.
+      const CommandOutput o = run_command("timeout 20 rotctl -m 2 -r " + where + " p");
+      const std::vector<double> v = numbers_in(o.out);
+      ASSERT_EQ(v.size(), 2u) << o.out;
+      r.lowest = std::fmin(r.lowest, v[0]);
+      r.highest = std::fmax(r.highest, v[0]);
+    }
+    // The tracker's own view: the frame it sends in.
+    const double mine = tracker.read_az();
+    ASSERT_FALSE(std::isnan(mine)) << tracker.text();
+    r.worst_gap = std::fmax(r.worst_gap, std::fabs(mine - sent));
+  }
+  for (int i = 0; i < 10; ++i) ASSERT_GE(daemon.advance_ms(1000), 0);
+  r.end_mine = tracker.read_az();
+  const std::vector<double> other =
+      numbers_in(run_command("timeout 20 rotctl -m 2 -r " + where + " p").out);
+  if (other.size() == 2) r.end_other = other[0];
+}
+
+TEST(TrackerStream, RotctlStreamingAPassAcrossNorthRunsIntoTheOverlap) {
+  DaemonProcess daemon({"--sim", "g5500", "--clock", "manual"});
+  ASSERT_TRUE(daemon.ready()) << daemon.output();
+  const std::string where = "127.0.0.1:" + std::to_string(daemon.ports().rotctld);
+  RotctlSession tracker(where);
+  ASSERT_TRUE(tracker.ok());
+  Streamed r;
+  stream_pass(daemon, tracker, where, r);
+  std::printf(
+      "[ continuity ] rotctl stream 333 -> 27 across north: antenna %.1f..%.1f, the tracker read "
+      "at most %.1f deg from what it sent, ends reading %.2f (another client %.2f)\n",
+      r.lowest, r.highest, r.worst_gap, r.end_mine, r.end_other);
+  EXPECT_GT(r.lowest, 325.0) << "unwound the long way round";
+  EXPECT_GT(r.highest, 380.0);
+  EXPECT_LT(r.worst_gap, 10.0);
+  EXPECT_NEAR(r.end_mine, 27.0, 2.0);
+  EXPECT_NEAR(r.end_other, 387.0, 2.0);
+  // STOP is obeyed at once; the next go-to is single, hence literal.
+  tracker.send("S\n");
+  tracker.send("P 40 20\n");
+  for (int i = 0; i < 120; ++i) ASSERT_GE(daemon.advance_ms(1000), 0);
+  EXPECT_NEAR(tracker.read_az(), 40.0, 2.0) << tracker.text();
+  const std::vector<double> after =
+      numbers_in(run_command("timeout 20 rotctl -m 2 -r " + where + " p").out);
+  ASSERT_EQ(after.size(), 2u);
+  EXPECT_NEAR(after[0], 40.0, 2.0);
+}
+
+TEST(TrackerStream, WithTrackContinuityOffTheSameStreamTurnsTheLongWay) {
+  // What the rule removes: Hamlib's literal meaning, 360 deg back at north.
+  DaemonProcess daemon({"--sim", "g5500", "--clock", "manual"});
+  ASSERT_TRUE(daemon.ready()) << daemon.output();
+  const std::string where = "127.0.0.1:" + std::to_string(daemon.ports().rotctld);
+  {
+    // Any settings key through rotctld's set_conf (rotctl maps only Hamlib's tokens).
+    TcpClient setter(daemon.ports().rotctld);
+    ASSERT_TRUE(setter.send("C track.continuity 0\n"));
+    ASSERT_EQ(setter.recv_once(3000), "RPRT 0\n");
+  }
+  RotctlSession tracker(where);
+  ASSERT_TRUE(tracker.ok());
+  Streamed r;
+  stream_pass(daemon, tracker, where, r);
+  std::printf("[ continuity ] off: antenna %.1f..%.1f, ends at %.2f\n", r.lowest, r.highest,
+              r.end_other);
+  // Never into the overlap; after the stream still on its way back round.
+  EXPECT_LT(r.highest, 360.0);
+  EXPECT_LT(r.end_other, 300.0);
+}
+
+}  // namespace
+}  // namespace rotord::testing
