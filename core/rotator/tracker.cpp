@@ -113,6 +113,7 @@ TrackError Tracker::start(const TrackRequest& request, std::int64_t utc_ms,
   after_los_ = values.i(Id::kTrackAfterLos);
   min_el_deg_ = values.f(Id::kTrackMinElDeg);
   az_shift_deg_ = 0.0f;
+  planned_unwind_done_ = false;
   return_az_deg_ = az.status().position_deg;
   return_el_deg_ = el != nullptr ? el->status().position_deg : 0.0f;
   if (az.status().fault != AxisFault::kNone ||
@@ -236,7 +237,11 @@ void Tracker::plan(std::int64_t utc_ms, Axis& az, Axis* el) {
   }
   const float az_now = az.status().position_deg;
   const float el_now = el != nullptr ? el->status().position_deg : 0.0f;
-  status_.plan = tracking::choose_plan(table_, travel, az_now, el_now, kPlanMarginDeg);
+  // A pass no turn holds whole unwinds once, where the satellite is lowest
+  // while the antenna turns round (360 deg at the measured speed).
+  const float az_speed = follow_[0].speed_deg_s > 0.5f ? follow_[0].speed_deg_s : 0.5f;
+  const float unwind_s = 360.0f / az_speed + follow_[0].lag_ms / 1000.0f;
+  status_.plan = tracking::choose_plan(table_, travel, az_now, el_now, kPlanMarginDeg, unwind_s);
   status_.planned = true;
   // Pre-position in time for AOS at the speed measured so far.
   float az0 = 0.0f, el0 = 0.0f;
@@ -261,8 +266,16 @@ void Tracker::position_now(std::int64_t utc_ms, float& az, float& el) const {
 float Tracker::inside_az(float az_deg, const Axis& axis) {
   const AxisConfig& c = axis.config();
   if (c.continuous || status_.plan.fits) return az_deg;
-  // The plan could not keep the pass inside the travel: turn the other way
-  // round once, where the pass leaves it.
+  // The plan holds at the travel's end while the pass is beyond it (that
+  // loses less than an unwind): the antenna waits there for the pass to
+  // come back or set.
+  if (status_.plan.unwind_deg == 0.0f) {
+    if (az_deg > c.max_deg - 0.5f) return c.max_deg - 0.5f;
+    if (az_deg < c.min_deg + 0.5f) return c.min_deg + 0.5f;
+    return az_deg;
+  }
+  // A planned unwind keeps the azimuth inside; past it, as a backstop, turn
+  // the other way round once, where the pass leaves the travel.
   if (az_deg > c.max_deg - 0.5f) {
     az_shift_deg_ -= 360.0f;
     ++status_.unwinds;
@@ -352,6 +365,11 @@ Tracker::Action Tracker::tick(Millis now, std::int64_t utc_ms, Axis& az, Axis* e
     status_.phase = TrackPhase::kTracking;
   }
   // Following. Each axis leads by its own measured lag.
+  if (status_.plan.unwind_deg != 0.0f && !planned_unwind_done_ &&
+      utc_ms >= status_.plan.unwind_at_ms) {
+    planned_unwind_done_ = true;
+    ++status_.unwinds;
+  }
   az_now = inside_az(az_now, az);
   float az_lead = 0.0f, el_lead = 0.0f, az_next = 0.0f, el_next = 0.0f, unused = 0.0f;
   position_now(utc_ms + static_cast<std::int64_t>(follow_[0].lag_ms), az_lead, unused);

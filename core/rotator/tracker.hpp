@@ -131,7 +131,8 @@ class Tracker {
   float return_az_deg_ = 0.0f;
   float return_el_deg_ = 0.0f;
   AxisFollow follow_[2];
-  float az_shift_deg_ = 0.0f;  // whole turns added by unwinds
+  float az_shift_deg_ = 0.0f;         // whole turns added by unwinds
+  bool planned_unwind_done_ = false;  // the plan's one unwind has begun
 };
 
 }  // namespace rotord

@@ -49,6 +49,9 @@ class PassTable {
   /// at the ends outside the span.
   void at(std::int64_t t_ms, float& az_unwrapped_deg, float& el_deg) const;
   float az_first_deg() const { return az_[0]; }
+  /// Sample `i` (0 <= i < size()).
+  float az_sample(std::size_t i) const { return az_[i]; }
+  float el_sample(std::size_t i) const { return el_[i]; }
   float az_lowest_deg() const { return az_lo_; }
   float az_highest_deg() const { return az_hi_; }
   float el_lowest_deg() const { return el_lo_; }
@@ -79,19 +82,37 @@ struct PassPlan {
   bool flip = false;
   float az_offset_deg = 0.0f;  ///< whole turns (plus nothing else): -720..720
   /// The pass fits the travel with this plan: no limit, no unwind. When
-  /// false the follow phase unwinds once where it must (a 360 deg rotator
-  /// without flip and a pass through its stop).
+  /// false the plan either unwinds once (unwind_deg) or holds at the
+  /// travel's end while the pass is beyond it (a 360 deg rotator without
+  /// flip and a pass through its stop).
   bool fits = true;
   float preposition_deg = 0.0f;  ///< az + el degrees from where the antenna is to AOS
   float margin_deg = 0.0f;       ///< closest approach of the azimuth to a travel end
+  /// A pass that fits no turn whole, split into two that do: from
+  /// `unwind_at_ms` on, `unwind_deg` (+-360) is added to the azimuth. The
+  /// split is where the unwind costs least: the lowest elevation the
+  /// satellite reaches while the antenna turns round (`unwind_s`).
+  float unwind_deg = 0.0f;
+  std::int64_t unwind_at_ms = 0;
+  float unwind_el_deg = 0.0f;  ///< the highest elevation during the unwind
+  /// fits == false without an unwind: the follow phase holds the azimuth at
+  /// the travel's end while the pass is beyond it, which costs this much
+  /// (the squared pointing error over the pass, deg^2 s).
+  float held_cost = 0.0f;
 };
 
 /// Chooses the wrap and the flip for the whole pass: among the plans that
 /// keep it `margin_deg` inside the travel, the one that turns least to reach
 /// AOS (the pass itself is the same length either way); a tie goes to no
 /// flip, then to the plan farther from the ends.
+/// When no plan fits, the one that loses least (the squared pointing error
+/// over the pass): either it holds at the travel's end while the pass is
+/// beyond it (the plan that starts inside and loses least so,
+/// PassPlan::held_cost), or it unwinds once where the satellite is lowest
+/// while the antenna turns round (PassPlan::unwind_deg; `unwind_s`: 360 deg
+/// at the axis's speed, about 90 deg off on average; 0 = never).
 PassPlan choose_plan(const PassTable& table, const Travel& travel, float az_now_deg,
-                     float el_now_deg, float margin_deg);
+                     float el_now_deg, float margin_deg, float unwind_s = 0.0f);
 
 /// The antenna position the plan asks for at `t_ms`.
 void plan_position(const PassTable& table, const PassPlan& plan, std::int64_t t_ms, float& az_deg,

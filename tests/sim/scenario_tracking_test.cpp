@@ -228,6 +228,30 @@ TEST(TrackingScenario, PassThroughNorthUsesTheOverlapOfA450DegRotator) {
   EXPECT_LT(s.rms(), 1.5);
 }
 
+TEST(TrackingScenario, APassNoTurnHoldsIsHeldAtTheEndStopNotUnwoundNearCulmination) {
+  // Issue 22's case: a G-5500 limited to el 0..90 and the ISS turning 170
+  // deg through north (300 -> 470, max el 57 deg; 45 N 10 E). No turn of
+  // 0..450 holds it, and the second turn holds the rest only from near the
+  // culmination on: an unwind costs a minute near the top of the pass
+  // (unwound where it met the end stop: RMS 25.9 deg, max 132 deg). Held at
+  // the end stop, it loses the last 20 deg of azimuth, low in the sky.
+  TrackScenario s("g5500", "2019-12-10T15:40:00Z", 45.0, 10.0, 0.0, 300.0, 0.0);
+  s.settings().set(Id::kElMaxDeg, 90.0);
+  s.power_on();
+  ASSERT_EQ(s.track_satellite(TrackWhen::kNextPass), TrackError::kOk);
+  s.run_until_done(40 * 60 * 1000);
+  const TrackStatus& t = s.controller().track_status();
+  ASSERT_EQ(t.phase, TrackPhase::kDone) << track_error_text(t.error);
+  EXPECT_FALSE(t.plan.fits);
+  EXPECT_EQ(t.plan.unwind_deg, 0.0f);
+  EXPECT_EQ(t.unwinds, 0u);
+  EXPECT_EQ(s.limit_ticks(), 0);
+  EXPECT_GT(s.min_az(), 290.0);  // never back the long way round
+  s.report("g5500 el 0..90, ISS 170 deg through north (300 -> 470), held at the end");
+  EXPECT_LT(s.max_error(), 30.0);  // 19.8 (unwound: 132)
+  EXPECT_LT(s.rms(), 12.0);        // 9.1 (unwound: 25.9)
+}
+
 TEST(TrackingScenario, PassOnSpidUsesItsMinus180To540Travel) {
   // SPID (H-bridge PWM, az -180..540): the antenna at -100 (260 deg) is
   // nearest the pass's start on the turn below zero. Max el 85.5 deg.

@@ -75,6 +75,48 @@ TEST(PassPlan, ChoosesTheTurnNearestWhereTheAntennaIs) {
   EXPECT_FLOAT_EQ(q.az_offset_deg, 0.0f);
 }
 
+TEST(PassPlan, APassNoTurnHoldsUnwindsOnceWhereTheElevationIsLowest) {
+  // 300 -> 600 (300 deg through north) on a G-5500 without flip: no turn
+  // of 0..450 holds it, and holding at the end stop would lose half the
+  // pass. The elevation peaks late (at 3/4 of the pass); the pass leaves
+  // the travel at 0.49 (448), so the plan unwinds as early as the second
+  // turn holds the rest (362.5 at 0.21), while the satellite is low.
+  auto t = std::make_unique<PassTable>();
+  t->begin(0, 600000);
+  while (!t->complete()) {
+    const float f = static_cast<float>(t->next_time()) / 600000.0f;
+    LookAngles look;
+    look.az_deg = std::fmod(300.0f + 300.0f * f, 360.0f);
+    const float x = f < 0.75f ? (f - 0.75f) / 0.75f : (f - 0.75f) / 0.25f;
+    look.el_deg = 60.0f * (1.0f - x * x);
+    look.az_rate_deg_s = 1.0;
+    t->add(look);
+  }
+  const PassPlan p = choose_plan(*t, g5500(90.0f), 300.0f, 0.0f, 2.0f, 60.0f);
+  EXPECT_FALSE(p.fits);
+  ASSERT_FLOAT_EQ(p.unwind_deg, -360.0f);
+  const float at = static_cast<float>(p.unwind_at_ms) / 600000.0f;
+  EXPECT_NEAR(at, 0.21f, 0.01f);
+  EXPECT_LT(p.unwind_el_deg, 40.0f);  // leaving at the travel's end: 53
+  // Each part inside the travel, continuous but for the unwind.
+  float prev = 0.0f;
+  for (std::int64_t ms = 0; ms <= 600000; ms += 1000) {
+    float az = 0, el = 0;
+    plan_position(*t, p, ms, az, el);
+    EXPECT_GE(az, 0.5f) << ms;
+    EXPECT_LE(az, 449.5f) << ms;
+    if (ms > 0 && ms != p.unwind_at_ms) {
+      EXPECT_LT(std::fabs(az - prev), 2.0f) << ms;  // 0.5 deg/s
+    }
+    prev = az;
+  }
+  // Without the unwind's duration: hold at the end (starts inside, loses least).
+  const PassPlan hold = choose_plan(*t, g5500(90.0f), 300.0f, 0.0f, 2.0f);
+  EXPECT_FLOAT_EQ(hold.unwind_deg, 0.0f);
+  EXPECT_FALSE(hold.fits);
+  EXPECT_GT(hold.held_cost, 60.0f * 90.0f * 90.0f);
+}
+
 TEST(PassPlan, RateLimitKeepsTheSlowPartsAndSpreadsAFastSwing) {
   auto t = std::make_unique<PassTable>();
   t->begin(0, 100000);
