@@ -9,6 +9,7 @@
 
 #include "access/api_token.hpp"
 #include "access/control_lock.hpp"
+#include "access/guess_budget.hpp"
 #include "access/login_limiter.hpp"
 #include "access/password_hash.hpp"
 #include "access/pbkdf2.hpp"
@@ -72,6 +73,13 @@ class WebAuth {
   access::WebSessions& sessions() { return sessions_; }
   const access::WebSessions& sessions() const { return sessions_; }
   access::LoginLimiter& limiter() { return limiter_; }
+  /// Password guesses checked per class of client, each class together
+  /// (access/guess_budget.hpp): strangers (every address not below), the
+  /// addresses on access.control_networks, and browsers with a device cookie
+  /// (access/device_cookie.hpp). Strangers' guesses, from however many
+  /// addresses, never use the owner's budget.
+  enum class Guesser : std::uint8_t { kStranger, kListed, kDevice };
+  access::GuessBudget& budget(Guesser who) { return budgets_[static_cast<std::size_t>(who)]; }
 
   /// One line to the log (printf-style, no newline).
   void log(const char* format, ...) __attribute__((format(printf, 2, 3)));
@@ -91,12 +99,21 @@ class WebAuth {
     int status = 0;               ///< completed: the HTTP status to answer
     const char* message = "";     ///< completed: the error, or ""
     int new_session = -1;         ///< completed: the session whose cookie to set
+    bool trusted = false;         ///< kLogin from a listed address or a recognised browser
   };
   /// Whether a job is running or its response has not gone out yet.
   bool busy() const { return job_.kind != JobKind::kNone && !(job_.completed && job_.claimed); }
   /// Starts one; returns its ticket, 0 when busy or without crypto.
   std::uint32_t start(JobKind kind, std::string_view password, const access::PasswordHash& target,
                       const access::Peer& peer, int session);
+  /// A stranger's login being checked gives way to a trusted one (the owner
+  /// gets in during an attack): it is dropped, and its client answered 503
+  /// busy (Api::finish_pending). False when the job is not a stranger's login.
+  bool preempt_for_trusted() {
+    if (job_.kind != JobKind::kLogin || job_.trusted || job_.completed) return false;
+    job_ = Job{};
+    return true;
+  }
   /// Runs up to `iterations` PBKDF2 iterations of the job (the port's slice).
   void step(std::uint32_t iterations);
   Job& job() { return job_; }
@@ -114,6 +131,7 @@ class WebAuth {
   Config config_;
   access::WebSessions sessions_;
   access::LoginLimiter limiter_;
+  access::GuessBudget budgets_[3];
   access::Pbkdf2 pbkdf2_;
   Job job_;
   std::uint32_t next_ticket_ = 1;
