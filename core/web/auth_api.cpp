@@ -255,7 +255,7 @@ void Api::complete_job() {
       // A password too long to be the one counts as a wrong guess.
       const unsigned row = auth_.limiter().failed(job.peer, transport_now_);
       count_auth_failure(true);
-      auth_.log("rotord: failed web login from %s (%u in a row)", who, row);
+      auth_.refused(job.peer, "rotord: failed web login from %s (%u in a row)", who, row);
       job.status = 401;
       job.message = "wrong password";
     } else {
@@ -271,7 +271,7 @@ void Api::complete_job() {
     if (!match) {
       const unsigned row = auth_.limiter().failed(job.peer, transport_now_);
       count_auth_failure(true);
-      auth_.log("rotord: failed web login from %s (%u in a row)", who, row);
+      auth_.refused(job.peer, "rotord: failed web login from %s (%u in a row)", who, row);
       job.status = 401;
       job.message = "wrong password";
       return;

@@ -246,6 +246,7 @@ void Api::write_status(JsonWriter& w) const {
 
 void Api::poll(Millis transport_now) {
   transport_now_ = transport_now;
+  auth_.flush_log(transport_now);
   access::ControlLock& lock = ctx_.controller.control_lock();
   if (lock.held() && transport_now >= lock.until()) {
     lock.release();
@@ -462,7 +463,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
     if (caller.kind == Caller::Kind::kBadToken) {
       count_auth_failure(false);
       char address[16];
-      auth_.log("rotord: unknown bearer token from %s refused", peer_text(peer, address));
+      auth_.refused(peer, "rotord: unknown bearer token from %s refused", peer_text(peer, address));
       send_error(out, 401, "unknown or revoked token", o);
       return Outcome::kDone;
     }

@@ -10,6 +10,7 @@
 #include "access/api_token.hpp"
 #include "access/control_lock.hpp"
 #include "access/guess_budget.hpp"
+#include "access/log_gate.hpp"
 #include "access/login_limiter.hpp"
 #include "access/password_hash.hpp"
 #include "access/pbkdf2.hpp"
@@ -81,8 +82,16 @@ class WebAuth {
   enum class Guesser : std::uint8_t { kStranger, kListed, kDevice };
   access::GuessBudget& budget(Guesser who) { return budgets_[static_cast<std::size_t>(who)]; }
 
-  /// One line to the log (printf-style, no newline).
+  /// One line to the log (printf-style, no newline), within the log's
+  /// budget of lines a minute (access/log_gate.hpp).
   void log(const char* format, ...) __attribute__((format(printf, 2, 3)));
+  /// A refusal or error caused by `from` (a wrong password, an unknown
+  /// token): the first in a minute is written, the rest summed up in one
+  /// line when the minute ends, so no client can flood the log.
+  void refused(const access::Peer& from, const char* format, ...)
+      __attribute__((format(printf, 3, 4)));
+  /// The port's clock, and the summaries that are due (Api::poll).
+  void flush_log(Millis now);
 
   // --- The slow-hash job (one at a time) ---
   enum class JobKind : std::uint8_t { kNone, kLogin, kSetPassword };
@@ -128,10 +137,16 @@ class WebAuth {
   void count_refused() { ++refused_requests_; }
 
  private:
+  void write_line(const char* format, std::va_list args) __attribute__((format(printf, 2, 0)));
+  void write_summary(const access::LogGate::Summary& s);
+  void print(const char* format, ...) __attribute__((format(printf, 2, 3)));
+
   Config config_;
   access::WebSessions sessions_;
   access::LoginLimiter limiter_;
   access::GuessBudget budgets_[3];
+  access::LogGate gate_;
+  Millis now_ = 0;
   access::Pbkdf2 pbkdf2_;
   Job job_;
   std::uint32_t next_ticket_ = 1;
