@@ -51,7 +51,9 @@ class TcpServer::Connection final : public protocol::ByteSink,
       : server_(server), socket_(std::move(socket)), info_(info) {
     std::error_code ignored;
     socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
-    if (metrics::Registry* m = server_.config_.metrics)
+    // A stop-only exchange is counted as refused (or not at all when it was
+    // STOP), not as a client: /metrics' connection counts stay the slots'.
+    if (metrics::Registry* m = server_.config_.metrics; m != nullptr && !info_.stop_only)
       m->protocol(server_.config_.protocol).on_accept();
     if (log::enabled(log::Level::kDebug)) {
       client_ = describe(socket_);
@@ -105,7 +107,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
   void close() {
     if (closing_) return;
     closing_ = true;
-    if (metrics::Registry* m = server_.config_.metrics)
+    if (metrics::Registry* m = server_.config_.metrics; m != nullptr && !info_.stop_only)
       m->protocol(server_.config_.protocol).on_close();
     if (!client_.empty())
       log::debug("%s: %s disconnected", server_.name().c_str(), client_.c_str());
@@ -164,7 +166,11 @@ class TcpServer::Connection final : public protocol::ByteSink,
   void refuse_and_close() {
     if (metrics::Registry* m = server_.config_.metrics)
       m->protocol(server_.config_.protocol).on_refuse();
-    write(server_.config_.reject_message);
+    // Not a reply of the protocol's (no error count), as for a refusal outright.
+    if (!closing_) {
+      pending_.append(server_.config_.reject_message);
+      flush();
+    }
     close_after_flush();
   }
 

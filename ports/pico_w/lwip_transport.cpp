@@ -92,7 +92,8 @@ struct TcpServer::Glue {
     if (session == nullptr) return reject(*server, pcb);
 
     ++server->stats_.accepted;
-    if (metrics::Registry* m = server->config_.metrics)
+    // A stop-only exchange is counted as refused (or not at all), not as a client.
+    if (metrics::Registry* m = server->config_.metrics; m != nullptr && !info.stop_only)
       m->protocol(server->config_.protocol).on_accept();
     c->server_ = server;
     c->pcb_ = pcb;
@@ -192,6 +193,11 @@ void TcpServer::Connection::write(std::string_view bytes) {
   if (pcb_ == nullptr || overflow_ || bytes.empty()) return;
   if (metrics::Registry* m = server_->config_.metrics)
     m->on_reply(server_->config_.protocol, bytes);
+  write_uncounted(bytes);
+}
+
+void TcpServer::Connection::write_uncounted(std::string_view bytes) {
+  if (pcb_ == nullptr || overflow_ || bytes.empty()) return;
   const auto immutable = server_->config_.is_immutable;
   if (bytes.size() >= kMinReferenceBytes && immutable != nullptr &&
       immutable(bytes.data(), bytes.size())) {
@@ -384,7 +390,7 @@ void TcpServer::after_input(Connection& c) {
 void TcpServer::end_exchange(Connection& c, bool refused) {
   if (refused) {
     if (metrics::Registry* m = config_.metrics) m->protocol(config_.protocol).on_refuse();
-    c.write(config_.reject_message);
+    c.write_uncounted(config_.reject_message);  // not a reply of the protocol's
   }
   c.close_requested_ = true;  // settle() closes once the reply is out
 }
@@ -427,7 +433,8 @@ err_t TcpServer::drop(Connection& c) {
 void TcpServer::release(Connection& c) {
   if (c.session_ != nullptr) {
     sessions_.release(c.index_);
-    if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_close();
+    if (config_.metrics != nullptr && !c.info_.stop_only)
+      config_.metrics->protocol(config_.protocol).on_close();
   }
   c.session_ = nullptr;
   c.pcb_ = nullptr;

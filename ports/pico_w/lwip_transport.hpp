@@ -140,6 +140,8 @@ class TcpServer {
       const char* data = nullptr;  ///< nullptr: the next bytes of out_
       std::size_t size = 0;
     };
+    /// write() without counting it as the protocol's reply (/metrics).
+    void write_uncounted(std::string_view bytes);
     bool push_chunk(const char* data, std::size_t size);
     void flush();
     /// A session with a reply longer than lwIP's send buffer (the HTTP
