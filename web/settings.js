@@ -199,6 +199,36 @@
   const calibration = rotordCalibration.create({ box: $('calibration'), msg, report, reload,
     values: () => values });
 
+  // What start-up could not read from the stored settings (GET /api/status
+  // settings_load): each dropped value by name, and whether the controller
+  // failed closed because its access settings were among them.
+  function showLoadProblems(status) {
+    const box = $('load-problems');
+    const load = status && status.settings_load;
+    box.hidden = !load;
+    if (!load) return;
+    box.replaceChildren();
+    const head = document.createElement('p');
+    const strong = document.createElement('strong');
+    strong.textContent = load.access_unreadable
+      ? 'The access settings could not be read: the controller obeys only STOP and answers status, on every port, until the stored settings are fixed.'
+      : 'Some stored settings could not be read and run on their defaults:';
+    head.append(strong);
+    box.append(head);
+    const list = document.createElement('ul');
+    for (const d of load.dropped) {
+      const li = document.createElement('li');
+      li.textContent = (d.key ? d.key + ': ' : '') + d.reason;
+      list.append(li);
+    }
+    if (load.more > 0) {
+      const li = document.createElement('li');
+      li.textContent = load.more + ' more';
+      list.append(li);
+    }
+    box.append(list);
+  }
+
   async function start() {
     const [s, v, st] = await Promise.all([rotord.get('/api/settings/schema'),
       rotord.get('/api/settings'), rotord.get('/api/status')]);
@@ -213,6 +243,7 @@
     const target = location.hash && $(decodeURIComponent(location.hash.slice(1)));
     if (target) { target.scrollIntoView({ block: 'center' }); target.focus(); }
     if (st.status === 200) calibration.update(st.body);
+    if (st.status === 200) showLoadProblems(st.body);
     rotordAccess.wire(msg);
     rotordAccess.card($('access'));
     rotord.live((status) => calibration.update(status));

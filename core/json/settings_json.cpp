@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "json/settings_member.hpp"
+
 namespace rotord::web {
 namespace {
 
@@ -29,6 +31,10 @@ class BufferSink final : public protocol::ByteSink {
   std::size_t length_ = 0;
   bool overflow_ = false;
 };
+
+}  // namespace
+
+namespace detail {
 
 /// Checks one member against its row and stores it in `candidate`; returns
 /// the reason on failure.
@@ -88,7 +94,10 @@ int stored_version(std::string_view json) {
   return 1;
 }
 
-}  // namespace
+}  // namespace detail
+
+using detail::apply_member;
+using detail::read_version;
 
 void SettingErrors::add(std::string_view key, const char* reason) {
   if (count_ == kMax) {
@@ -246,53 +255,6 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
     }
   }
   outcome.named = seen;
-  return outcome;
-}
-
-LoadOutcome load_settings(hal::Storage& storage, const settings::Settings& base,
-                          LegacyBaseGuess* guess, settings::Settings& target,
-                          settings::Settings& scratch, char* buf, std::size_t capacity) {
-  LoadOutcome outcome;
-  target = base;
-  const long n = storage.load(buf, capacity);
-  if (n == -1) return outcome;
-  if (n < 0 || static_cast<std::size_t>(n) > capacity) {
-    outcome.status = LoadOutcome::kCorrupt;
-    outcome.reason = "the stored settings cannot be read or are too large";
-    return outcome;
-  }
-  const std::string_view document(buf, static_cast<std::size_t>(n));
-  // A version-1 file holds every setting as it was in force, profile values
-  // included: read it over the table's defaults, and keep as the user's what
-  // differs from the base it was saved over. A version-2 file is the user's
-  // layer itself, checked over the base it now sits on.
-  const bool legacy = stored_version(document) < settings::kStoredVersion;
-  if (legacy) target.reset_to_defaults();
-  SettingErrors errors;
-  const ApplyOutcome applied = apply_settings_json(document, target, scratch, errors);
-  if (applied.status == ApplyOutcome::kApplied && legacy) {
-    const settings::Settings& saved_over = guess != nullptr ? guess->base_of(target) : base;
-    const settings::KeySet keys = applied.named & settings::user_layer(target, saved_over);
-    const settings::Rejection rule =
-        settings::apply_user_layer(base, target, keys, scratch, target);
-    if (rule.error != Error::kOk) {
-      target = base;
-      outcome.status = LoadOutcome::kCorrupt;
-      outcome.reason = rule.reason;  // points into scratch, which outlives the outcome's use
-      return outcome;
-    }
-    outcome.status = LoadOutcome::kLoaded;
-    outcome.migrated = true;
-    return outcome;
-  }
-  if (applied.status == ApplyOutcome::kApplied) {
-    outcome.status = LoadOutcome::kLoaded;
-    return outcome;
-  }
-  target = base;
-  outcome.status = LoadOutcome::kCorrupt;
-  outcome.reason = applied.message;
-  if (errors.size() > 0) std::strcpy(outcome.key, errors[0].key);
   return outcome;
 }
 

@@ -91,12 +91,49 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
 /// 7.5 KB since the 16 presets (issue 26); a flash slot holds 8 KB.
 inline constexpr std::size_t kMaxSettingsDocumentBytes = 7680;
 
+/// What start-up reading dropped from the stored document, for the log and
+/// the settings page (GET /api/status "settings_load"). Fixed storage: the
+/// Pico keeps one statically.
+class LoadReport {
+ public:
+  static constexpr std::size_t kMax = 6;
+  struct Entry {
+    char key[41];     ///< the member's key (cut at 40 bytes), or "" for the whole file
+    char reason[88];  ///< why it was dropped
+  };
+  void add(std::string_view key, std::string_view reason);
+  void clear() { count_ = 0, more_ = 0, access_unreadable = false; }
+  std::size_t size() const { return count_; }
+  const Entry& operator[](std::size_t i) const { return entries_[i]; }
+  /// Problems past kMax, counted but not kept.
+  std::size_t more() const { return more_; }
+  bool empty() const { return count_ == 0 && more_ == 0 && !access_unreadable; }
+
+  /// The access settings (settings::is_access_rule) could not all be read:
+  /// the controller fails closed (settings::Settings::access_unreadable).
+  bool access_unreadable = false;
+
+ private:
+  Entry entries_[kMax];
+  std::size_t count_ = 0;
+  std::size_t more_ = 0;
+};
+
 /// The outcome of reading the stored document at start-up.
 struct LoadOutcome {
-  enum Status : unsigned char { kNothingStored, kLoaded, kCorrupt } status = kNothingStored;
-  const char* reason = "";                            ///< kCorrupt: why (first error)
-  char key[JsonObjectReader::kMaxKeyBytes + 1] = "";  ///< kCorrupt: the offending key, if any
-  bool migrated = false;  ///< kLoaded: a version-1 file (every setting in it) was read
+  enum Status : unsigned char {
+    kNothingStored,
+    kLoaded,    ///< every value read
+    kRepaired,  ///< the valid values read, the bad ones dropped (LoadReport names them)
+    kCorrupt,   ///< nothing could be read: `target` holds the base
+  } status = kNothingStored;
+  const char* reason = "";                            ///< kRepaired, kCorrupt: the first problem
+  char key[JsonObjectReader::kMaxKeyBytes + 1] = "";  ///< its key, if any
+  bool migrated = false;  ///< a version-1 file (every setting in it) was read
+  /// The access settings could not all be read (kCorrupt always: the
+  /// document was there but unreadable): the controller fails closed, and
+  /// `target` says so (settings::Settings::access_unreadable).
+  bool access_unreadable = false;
 };
 
 /// Picks the base a version-1 file was saved over, from the values it holds:
@@ -109,15 +146,24 @@ class LegacyBaseGuess {
   virtual const settings::Settings& base_of(const settings::Settings& file_values) = 0;
 };
 
-/// Loads the stored user's layer over `base` into `target`. A version-1
-/// document is read over the table's defaults, and the settings it holds
-/// that differ from `guess`'s base (or `base`) become the user's layer, so a
-/// migrated file loses no value the user changed. A corrupt or invalid
-/// document leaves `target` holding `base`; the caller reports it and must
-/// not overwrite the stored copy on its own.
+/// Loads the stored user's layer over `base` into `target`
+/// (json/settings_load.cpp). A version-1 document is read over the table's
+/// defaults, and the settings it holds that differ from `guess`'s base (or
+/// `base`) become the user's layer, so a migrated file loses no value the
+/// user changed.
+///
+/// A damaged document fails closed, not open: every valid value is kept and
+/// only the bad ones are dropped (a value out of range, an unknown key, a
+/// wrong type, a key given twice, values that break a rule across settings,
+/// the part of a truncated file after its last whole member), each named in
+/// `report` when given. When an access setting is among them (or an unknown
+/// key that looks like one, or nothing could be read at all), `target` is
+/// marked access_unreadable. The caller reports it and must not overwrite
+/// the stored copy on its own.
 LoadOutcome load_settings(hal::Storage& storage, const settings::Settings& base,
                           LegacyBaseGuess* guess, settings::Settings& target,
-                          settings::Settings& scratch, char* buf, std::size_t capacity);
+                          settings::Settings& scratch, char* buf, std::size_t capacity,
+                          LoadReport* report = nullptr);
 
 /// Serialises the user's layer of `values` over `base` into buf (pretty, one
 /// setting per line, secrets revealed, settings::kVersionKey first) and saves

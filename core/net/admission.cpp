@@ -39,6 +39,7 @@ Millis Admission::idle_evict_ms() const {
 
 bool Admission::control_listed(const access::Peer& peer) const {
   if (settings_ == nullptr || peer.kind != access::Peer::Kind::kIpv4) return false;
+  if (settings_->access_unreadable()) return false;  // the list itself is unknown
   // An empty list makes every client a controller (access control off), so
   // nobody is protected by it: an idle stranger must not hold a slot forever.
   const std::string_view networks = settings_->text(settings::Id::kAccessControlNetworks);
@@ -53,13 +54,30 @@ std::size_t Admission::idlest(const ClientList& clients, const Address* only, bo
   Millis best_since = 0;
   for (std::size_t i = 0; i < clients.size(); ++i) {
     const ClientInfo* c = clients.at(i);
-    if (c == nullptr || c->event_stream) continue;
+    if (c == nullptr || c->event_stream || c->stop_only) continue;
     if (only != nullptr && !(c->address == *only)) continue;
-    if (!c->between_requests && now - c->last_receive_ms < threshold) continue;
+    if (!c->between_requests && now - c->last_useful_ms < threshold) continue;
     if (!any_listed && control_listed(c->peer)) continue;
-    if (best == kNone || c->last_receive_ms < best_since) {
+    if (best == kNone || c->last_useful_ms < best_since) {
       best = i;
-      best_since = c->last_receive_ms;
+      best_since = c->last_useful_ms;
+    }
+  }
+  return best;
+}
+
+std::size_t Admission::least_useful(const ClientList& clients, bool listed) const {
+  std::size_t best = kNone;
+  Millis best_since = 0;
+  for (std::size_t i = 0; i < clients.size(); ++i) {
+    const ClientInfo* c = clients.at(i);
+    if (c == nullptr || c->event_stream || c->stop_only) continue;
+    if (control_listed(c->peer) != listed) continue;
+    // A keep-alive connection between requests has nothing in progress.
+    const Millis since = c->between_requests ? -1 : c->last_useful_ms;
+    if (best == kNone || since < best_since) {
+      best = i;
+      best_since = since;
     }
   }
   return best;
@@ -75,6 +93,28 @@ std::size_t Admission::oldest_stream(const ClientList& clients, std::size_t exce
   return best;
 }
 
+Admission::Decision Admission::stop_only_or(const ClientList& clients, const ClientInfo& newcomer,
+                                            Decision::Kind refusal) {
+  std::size_t taken = 0;
+  bool same_host = false;
+  for (std::size_t i = 0; i < clients.size(); ++i) {
+    const ClientInfo* c = clients.at(i);
+    if (c == nullptr || !c->stop_only) continue;
+    ++taken;
+    same_host = same_host || c->address == newcomer.address;
+  }
+  if (taken < limits_.stop_only_slots && !same_host) {
+    ++counters_.stop_only;
+    return {Decision::Kind::kStopOnly, kNone};
+  }
+  if (refusal == Decision::Kind::kRefusePerAddress) {
+    ++counters_.refused_per_address;
+  } else {
+    ++counters_.refused_full;
+  }
+  return {refusal, kNone};
+}
+
 Admission::Decision Admission::admit(const ClientList& clients, const ClientInfo& newcomer,
                                      Millis now) {
   std::size_t requests = 0;
@@ -82,7 +122,7 @@ Admission::Decision Admission::admit(const ClientList& clients, const ClientInfo
   std::size_t same_host = 0;
   for (std::size_t i = 0; i < clients.size(); ++i) {
     const ClientInfo* c = clients.at(i);
-    if (c == nullptr) continue;
+    if (c == nullptr || c->stop_only) continue;
     if (c->event_stream) {
       ++streams;
       continue;
@@ -94,23 +134,24 @@ Admission::Decision Admission::admit(const ClientList& clients, const ClientInfo
   Decision d;
   if (same_host >= per_address_cap()) {
     d.evict = idlest(clients, &newcomer.address, true, now);
-    if (d.evict == kNone) {
-      ++counters_.refused_per_address;
-      return {Decision::Kind::kRefusePerAddress, kNone};
-    }
+    if (d.evict == kNone) return stop_only_or(clients, newcomer, Decision::Kind::kRefusePerAddress);
     ++counters_.evicted_idle;
   } else if (requests >= limits_.max_clients || requests + streams >= limits_.slots) {
     // Every static slot taken but requests have room: a view gives way first.
     if (requests < limits_.max_clients && streams > 0) {
       d.evict = oldest_stream(clients, kNone);
       ++counters_.evicted_event_stream;
-    } else {
-      d.evict = idlest(clients, nullptr, false, now);
-      if (d.evict == kNone) {
-        ++counters_.refused_full;
-        return {Decision::Kind::kRefuseFull, kNone};
-      }
+    } else if ((d.evict = idlest(clients, nullptr, false, now)) != kNone) {
       ++counters_.evicted_idle;
+    } else if (control_listed(newcomer.peer)) {
+      // The owner first: a stranger gives way, however busy; among listed
+      // clients only, the one least recently useful.
+      d.evict = least_useful(clients, false);
+      if (d.evict == kNone) d.evict = least_useful(clients, true);
+      if (d.evict == kNone) return stop_only_or(clients, newcomer, Decision::Kind::kRefuseFull);
+      ++counters_.evicted_for_listed;
+    } else {
+      return stop_only_or(clients, newcomer, Decision::Kind::kRefuseFull);
     }
   }
   ++counters_.accepted;

@@ -12,6 +12,10 @@ class Settings;
 
 namespace rotord::net {
 
+/// How long a stop-only exchange (Admission::Decision::Kind::kStopOnly) waits
+/// for its one command before the port's busy refusal and the close.
+inline constexpr Millis kStopOnlyExchangeMs = 2000;
+
 /// A client's network address, the key of the per-address cap: IPv6 as it
 /// is, IPv4 as ::ffff:a.b.c.d (so a v4-mapped client of a v6 socket is the
 /// same host as a plain IPv4 one).
@@ -32,8 +36,15 @@ struct ClientInfo {
   /// progress, so it makes room at once (a browser opens another when it
   /// needs one), without waiting for net.idle_evict_s.
   bool between_requests = false;
+  /// Admitted over capacity for one exchange in which only STOP is obeyed
+  /// (Decision::Kind::kStopOnly); counted apart from every other limit.
+  bool stop_only = false;
   Millis opened_ms = 0;
   Millis last_receive_ms = 0;  ///< the last byte from the client, or opened_ms
+  /// The last command the protocol knew (protocol::Session::commands), or
+  /// opened_ms: what "idle" and "least recently useful" are measured by. Bare
+  /// line ends and unknown words keep a connection warm, not used.
+  Millis last_useful_ms = 0;
 };
 
 /// The open connections of one server, as the transport holds them.
@@ -54,6 +65,8 @@ struct ConnectionCounters {
   std::uint32_t evicted_idle = 0;          ///< dropped for a newcomer after net.idle_evict_s
   std::uint32_t evicted_event_stream = 0;  ///< oldest event stream dropped (HTTP only)
   std::uint32_t dropped_backlog = 0;       ///< stopped reading; its output overflowed
+  std::uint32_t stop_only = 0;             ///< admitted over capacity for one STOP-only exchange
+  std::uint32_t evicted_for_listed = 0;    ///< a busy client dropped for an allow-listed newcomer
 };
 
 /// The fixed limits of one server; the rest is read from the settings at
@@ -66,20 +79,32 @@ struct Limits {
   std::size_t slots = SIZE_MAX;
   /// Event streams apart from max_clients; 0: the protocol has none.
   std::size_t max_event_streams = 0;
+  /// Stop-only exchanges at once, apart from the rest (one per host). The
+  /// Pico has one extra static slot per server for them.
+  std::size_t stop_only_slots = 0;
 };
 
 /// Who gets a connection slot, shared by every transport (Linux asio, the Pico
-/// W's lwIP) so "STOP is never locked out" holds the same everywhere:
+/// W's lwIP) so "STOP is never locked out" holds the same everywhere
+/// (docs/security.md, "Availability"):
 ///
-/// - only clients doing something count: a full port makes room by dropping
-///   the client idle longest, when it has been idle (no byte received) for
-///   net.idle_evict_s and is not on access.control_networks; otherwise the
-///   newcomer is refused in the protocol's own way, as before;
+/// - only clients doing something count: "idle" is measured from the last
+///   command the protocol knew (ClientInfo::last_useful_ms), so a client that
+///   only sends line ends is idle. A full port makes room by dropping the
+///   client idle longest, when it has been idle for net.idle_evict_s and is
+///   not on access.control_networks;
+/// - an allow-listed newcomer is served before strangers: it drops the
+///   stranger least recently useful, however busy; with no stranger left,
+///   the listed client least recently useful gives way;
 /// - one host holds at most net.max_per_address of the request/line slots,
 ///   and never all of them (the cap is kept below max_clients); at its cap a
 ///   host's newcomer replaces that host's own client idle longest, allowed
 ///   or not (a host that lost its connections without a close, e.g. a
-///   rebooted PC, gets back in); else it is refused;
+///   rebooted PC, gets back in);
+/// - a newcomer that still finds no room is not refused outright: it gets
+///   one short exchange (kStopOnly, kStopOnlyExchangeMs) in which only STOP
+///   is obeyed, within Limits::stop_only_slots and one per host; only when
+///   those are taken too is it refused, in the protocol's own way;
 /// - HTTP event streams do not count against max_clients nor the per-address
 ///   cap; they have their own limit, and a newer stream, or a newcomer
 ///   finding every static slot taken, drops the oldest stream first.
@@ -88,7 +113,7 @@ struct Limits {
 class Admission {
  public:
   struct Decision {
-    enum class Kind : std::uint8_t { kAdmit, kRefuseFull, kRefusePerAddress };
+    enum class Kind : std::uint8_t { kAdmit, kStopOnly, kRefuseFull, kRefusePerAddress };
     Kind kind = Kind::kAdmit;
     /// kAdmit only: the entry to drop first to make room, or kNone.
     std::size_t evict = kNone;
@@ -121,6 +146,12 @@ class Admission {
   /// `only` when given; allow-listed ones only when `any_listed`.
   std::size_t idlest(const ClientList& clients, const Address* only, bool any_listed,
                      Millis now) const;
+  /// The request/line client least recently useful, however recently,
+  /// among the allow-listed ones (`listed`) or the others.
+  std::size_t least_useful(const ClientList& clients, bool listed) const;
+  /// No room: a stop-only exchange if one is free for this host, else `refusal`.
+  Decision stop_only_or(const ClientList& clients, const ClientInfo& newcomer,
+                        Decision::Kind refusal);
   std::size_t oldest_stream(const ClientList& clients, std::size_t except) const;
 
   Limits limits_;

@@ -5,6 +5,8 @@
 namespace rotord::access {
 
 bool may_control(const settings::Settings& settings, const Peer& peer) {
+  // Failed closed: the rules that would say who may are unknown.
+  if (settings.access_unreadable()) return false;
   switch (peer.kind) {
     case Peer::Kind::kUnknown:
       return true;

@@ -13,6 +13,8 @@ namespace rotord::access {
 /// anyone allowed to connect may stop the rotator. Read from the settings at
 /// each command, so a changed allow-list applies to connected clients at once.
 ///
+/// - the access settings could not be read at start-up
+///   (Settings::access_unreadable): nobody, on any port;
 /// - access.control_networks empty: every client controls (the default, as
 ///   before access control);
 /// - otherwise a network client controls when its IPv4 address is in one of

@@ -121,9 +121,14 @@ void EasycommSession::handle_line(std::string_view line, ByteSink& out) {
   LineRequest request;
   {
     std::string_view rest = line;
+    bool any = false;
+    bool only_stops = true;
     for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
       if (!parse_token(token, rest, request, out)) return;
+      any = true;
+      only_stops = only_stops && (text::iequals(token, "SA") || text::iequals(token, "SE"));
     }
+    if (any && !command_arrives(only_stops)) return;
   }
   std::string_view rest = line;
   for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest))

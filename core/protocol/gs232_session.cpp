@@ -260,6 +260,11 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
   if (line.empty()) return;
   const char letter = upper(line[0]);
   const std::string_view rest = text::slice(line, 1);
+  for (const Command& c : kCommands) {
+    if (c.letter != letter) continue;
+    if (!command_arrives(letter == 'S' || letter == 'A' || letter == 'E')) return;
+    break;
+  }
   // A read-only client (access.control_networks, the control lock) is
   // refused every letter that can change something, before its argument is
   // looked at: M, W, R, L, U, D, X, T, O, F and P. S, A and E (stop) work.

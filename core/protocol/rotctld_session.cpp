@@ -248,6 +248,7 @@ std::string_view RotctldSession::arg(std::size_t i) const {
 void RotctldSession::run(ByteSink& out) {
   const Command& command = *command_;
   reply_.clear();
+  if (!command_arrives(command.op == rotctld::Op::kStop)) return end_command();
   if (extended_) {
     // First record: the command's long name and its arguments as typed.
     reply_.format("%s:", command.name);

@@ -87,6 +87,7 @@ void SeedSession::handle_line(std::string_view line, ByteSink& out) {
     if (!text::iequals(fields[0], c.name)) continue;
     known = true;
     if (count != c.args + 1u) continue;
+    if (!command_arrives(c.run == &SeedSession::disable)) return;
     if (c.changes_state && !may_control(controller_)) return error(out, "DENIED");
     return (this->*c.run)(fields[1], out);
   }

@@ -50,7 +50,35 @@ class Session {
   /// stream for the continuity rule (rotator/goto_stream.hpp).
   CommandSource source() const { return source_of(this); }
 
+  /// Over capacity (net::Admission's kStopOnly): the connection is one short
+  /// exchange in which only STOP is obeyed. The transport says so before the
+  /// first byte; it ends the exchange after the first command, or at its
+  /// deadline (net::kStopOnlyExchangeMs).
+  void set_stop_only() { stop_only_ = true; }
+  bool stop_only() const { return stop_only_; }
+  /// Stop-only: the command came, the exchange is over; the transport closes
+  /// once the reply is out, after the port's busy refusal when it was not
+  /// STOP (exchange_refused: the session then neither acted nor replied).
+  bool exchange_over() const { return exchange_over_; }
+  bool exchange_refused() const { return exchange_refused_; }
+  /// Commands (HTTP requests) this client sent that the protocol knows:
+  /// what makes a connection "used" for the admission rule
+  /// (net::ClientInfo::last_useful_ms). Line ends alone do not count, so a
+  /// client that only keeps a connection warm stays idle.
+  std::uint32_t commands() const { return commands_; }
+
  protected:
+  /// A recognised command arrived; `is_stop` when it is the protocol's STOP.
+  /// False: a stop-only exchange refuses it (the session must do nothing).
+  bool command_arrives(bool is_stop) {
+    ++commands_;
+    if (!stop_only_) return true;
+    if (exchange_over_) return false;
+    exchange_over_ = true;
+    exchange_refused_ = !is_stop;
+    return is_stop;
+  }
+
   /// Whether this client may change anything: its network is allowed
   /// (access::may_control) and nobody holds the control lock (a line client
   /// never can: the lock is taken through the web or REST). Line protocols
@@ -59,6 +87,10 @@ class Session {
 
  private:
   access::Peer peer_;
+  std::uint32_t commands_ = 0;
+  bool stop_only_ = false;
+  bool exchange_over_ = false;
+  bool exchange_refused_ = false;
 };
 
 /// Sends all of a session's pending reply at once: for transports that

@@ -153,6 +153,7 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
   const std::string_view arg = text::trim(rest);
   for (const Command& c : kCommands) {
     if (!text::iequals(name, c.name) || (c.arg == Arg::kRequired && arg.empty())) continue;
+    if (!command_arrives(c.run == &WrcSession::stop)) return;
     // A read-only client (access.control_networks, the control lock) is
     // refused before its argument is looked at.
     if (c.changes_state && !may_control(controller_)) return send(out, "ERROR NOT ALLOWED");

@@ -39,6 +39,10 @@ std::optional<Id> find(std::string_view key) {
   return std::nullopt;
 }
 
+bool is_access_rule(Id id) {
+  return std::string_view(def(id).group) == "Access" || id == Id::kMqttControl;
+}
+
 int choice_count(Id id) {
   if (def(id).type != Type::kEnum) return 0;
   const char* choices = def(id).choices;

@@ -109,6 +109,11 @@ inline bool is_text(Id id) {
 inline bool is_secret(Id id) {
   return (def(id).flags & kSecret) != 0;
 }
+/// The access rules and the credentials (the "Access" group, and
+/// mqtt.control, which lets the broker command): when one of them cannot be
+/// read from the stored settings, the controller fails closed.
+bool is_access_rule(Id id);
+
 /// Whether a line protocol (rotctld `C`, Easycomm `CW`) may write the row:
 /// not secrets, not the access rules.
 inline bool line_writable(Id id) {
@@ -178,6 +183,16 @@ class Settings {
   Rejection save_from_text(Id id, std::string_view text);
 
   void reset_to_defaults();
+
+  /// The access settings (is_access_rule) could not be read at start-up
+  /// (json/settings_load.hpp): the controller fails closed. Every network
+  /// and line client is then read-only (STOP and status only: may_control,
+  /// the web API, the MQTT commands), nobody is on the allow-list, until the
+  /// owner fixes the stored settings and restarts. Not a setting: never
+  /// stored, and only load_settings sets it.
+  bool access_unreadable() const { return access_unreadable_; }
+  void set_access_unreadable(bool unreadable) { access_unreadable_ = unreadable; }
+
   /// Bumps on every change; the controller re-derives its configuration when it moves.
   std::uint32_t revision() const { return revision_; }
 
@@ -198,6 +213,7 @@ class Settings {
   double values_[kCount];
   char text_[kTextBytes > 0 ? kTextBytes : 1] = {};
   std::uint32_t revision_ = 0;
+  bool access_unreadable_ = false;
   // The text of the last rule that names keys and values, e.g. "pins.btn_cw
   // and pins.az_ma3 both use GPIO 2" (the core has no mutable globals).
   mutable char detail_[160] = {};

@@ -1,10 +1,13 @@
 // The access-control endpoints of the REST API (docs/web_api.md#access-control):
 // login and logout, the web password, bearer tokens and the control lock.
 // Gating every other route is in web_api.cpp (its route table).
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
+#include "access/device_cookie.hpp"
 #include "json/json_reader.hpp"
+#include "settings/network_list.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord::web {
@@ -134,20 +137,35 @@ Api::Outcome Api::login(const HttpRequest& request, protocol::ByteSink& out,
     send_error(out, 503, "this build has no cryptography", options);
     return Outcome::kDone;
   }
-  const Millis wait = auth_.limiter().wait_ms(peer, transport_now_);
-  if (wait > 0) {
+  // Who guesses: a browser that logged in before (its device cookie), an
+  // address on the allow-list, or a stranger; each class has a budget of its
+  // own, so strangers guessing from many addresses never lock the owner out.
+  const bool device = access::DeviceCookie::valid(*ctx_.crypto, stored, request.cookie);
+  const std::string_view networks = values.text(Id::kAccessControlNetworks);
+  const bool listed = !device && peer.kind == access::Peer::Kind::kIpv4 && !networks.empty() &&
+                      !values.access_unreadable() && settings::in_network_list(networks, peer.ipv4);
+  const WebAuth::Guesser who = device   ? WebAuth::Guesser::kDevice
+                               : listed ? WebAuth::Guesser::kListed
+                                        : WebAuth::Guesser::kStranger;
+  // A recognised browser is exempt from its address's lock-out (OWASP).
+  const Millis wait = device ? 0 : auth_.limiter().wait_ms(peer, transport_now_);
+  const Millis budget_wait = auth_.budget(who).wait_ms(transport_now_);
+  if (wait > 0 || budget_wait > 0) {
     count_auth_failure(false);
     char retry[40];
     char message[96];
-    const long seconds = static_cast<long>((wait + 999) / 1000);
+    const long seconds = static_cast<long>((std::max(wait, budget_wait) + 999) / 1000);
     std::snprintf(retry, sizeof retry, "Retry-After: %ld\r\n", seconds);
-    std::snprintf(message, sizeof message, "too many failed logins: try again in %ld s", seconds);
+    std::snprintf(message, sizeof message, "%s: try again in %ld s",
+                  wait > 0 ? "too many failed logins" : "too many logins being tried", seconds);
     ResponseOptions o = options;
     o.extra_headers = retry;
     send_error(out, 429, message, o);
     return Outcome::kDone;
   }
-  // One hash at a time: a second login waits its turn by retrying.
+  // One hash at a time: a second login waits its turn by retrying, except
+  // the owner's, which a stranger's gives way to.
+  if (who != WebAuth::Guesser::kStranger) auth_.preempt_for_trusted();
   if (auth_.start(WebAuth::JobKind::kLogin, fields[0].too_long ? "" : fields[0].text, stored, peer,
                   -1) == 0) {
     ResponseOptions o = options;
@@ -155,6 +173,8 @@ Api::Outcome Api::login(const HttpRequest& request, protocol::ByteSink& out,
     send_error(out, 503, "busy checking another login: try again in a second", o);
     return Outcome::kDone;
   }
+  auth_.budget(who).spend(transport_now_);
+  auth_.job().trusted = who != WebAuth::Guesser::kStranger;
   if (fields[0].too_long) auth_.job().failed = auth_.job().computed = true;
   return Outcome::kPending;
 }
@@ -235,7 +255,7 @@ void Api::complete_job() {
       // A password too long to be the one counts as a wrong guess.
       const unsigned row = auth_.limiter().failed(job.peer, transport_now_);
       count_auth_failure(true);
-      auth_.log("rotord: failed web login from %s (%u in a row)", who, row);
+      auth_.refused(job.peer, "rotord: failed web login from %s (%u in a row)", who, row);
       job.status = 401;
       job.message = "wrong password";
     } else {
@@ -251,7 +271,7 @@ void Api::complete_job() {
     if (!match) {
       const unsigned row = auth_.limiter().failed(job.peer, transport_now_);
       count_auth_failure(true);
-      auth_.log("rotord: failed web login from %s (%u in a row)", who, row);
+      auth_.refused(job.peer, "rotord: failed web login from %s (%u in a row)", who, row);
       job.status = 401;
       job.message = "wrong password";
       return;
@@ -297,7 +317,10 @@ bool Api::finish_pending(std::uint32_t ticket, protocol::ByteSink& out,
                          const ResponseOptions& options) {
   WebAuth::Job& job = auth_.job();
   if (job.ticket != ticket || job.claimed) {
-    send_error(out, 500, "the request was lost", options);
+    // Dropped for the owner's login (WebAuth::preempt_for_trusted).
+    ResponseOptions o = options;
+    o.extra_headers = "Retry-After: 1\r\n";
+    send_error(out, 503, "busy checking another login: try again in a second", o);
     return true;
   }
   if (!job.completed) return false;
@@ -308,10 +331,30 @@ bool Api::finish_pending(std::uint32_t ticket, protocol::ByteSink& out,
   }
   char cookie[160];
   char id[access::WebSessions::kIdTextBytes + 1];
+  char headers[400];
   ResponseOptions o = options;
   if (job.new_session >= 0) {
     auth_.sessions().id_text(job.new_session, id);
-    o.extra_headers = session_cookie(cookie, id, session_seconds(settings()));
+    const std::string_view session = session_cookie(cookie, id, session_seconds(settings()));
+    // The browser that logged in is recognised from now on (its device
+    // cookie, for as long as this password stands).
+    access::PasswordHash stored;
+    char device[access::DeviceCookie::kTextBytes + 1];
+    int n = -1;
+    if (ctx_.crypto != nullptr &&
+        access::parse_password_hash(settings().text(Id::kWebPassword), stored) &&
+        access::DeviceCookie::make(*ctx_.crypto, stored, device)) {
+      n = std::snprintf(headers, sizeof headers,
+                        "%.*sSet-Cookie: %.*s=%s; Path=/; Max-Age=%ld; HttpOnly; "
+                        "SameSite=Strict\r\n",
+                        static_cast<int>(session.size()), session.data(),
+                        static_cast<int>(access::DeviceCookie::kCookieName.size()),
+                        access::DeviceCookie::kCookieName.data(), device,
+                        access::DeviceCookie::kMaxAgeSeconds);
+    }
+    o.extra_headers = n > 0 && static_cast<std::size_t>(n) < sizeof headers
+                          ? std::string_view(headers, static_cast<std::size_t>(n))
+                          : session;
   }
   const bool password = job.kind == WebAuth::JobKind::kSetPassword;
   send_json(out, 200, o, [password](JsonWriter& w) {

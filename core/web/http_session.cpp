@@ -34,6 +34,12 @@ void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
       break;
     }
     const HttpRequest& request = parser_.request();
+    // Over capacity only POST /api/stop is served (net::Admission's
+    // kStopOnly); the transport answers anything else with its 503.
+    if (!command_arrives(request.method == Method::kPost && request.path == "/api/stop")) {
+      close_ = true;
+      break;
+    }
     // Only the last request of what arrived may go out in windows: the
     // parser must keep it until then. A transport that takes everything
     // (Linux) gets it directly.
@@ -52,7 +58,7 @@ void HttpSession::receive(std::string_view bytes, protocol::ByteSink& out) {
     } else {
       handle(request, out);
     }
-    request_done(request.keep_alive);
+    request_done(request.keep_alive && !stop_only());
   }
   // What is left is the start of the next request: its deadline begins now.
   if (parser_.in_progress() && !request_timed_) request_timed_ = request_start_pending_ = true;

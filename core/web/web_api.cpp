@@ -218,6 +218,21 @@ void Api::write_status(JsonWriter& w) const {
   w.key("lock");
   write_lock(w, nullptr);
   write_beam(w, s);
+  // Only when something is wrong: a status every 100 ms stays short.
+  const LoadReport* load = ctx_.load_report;
+  if (values.access_unreadable() || (load != nullptr && !load->empty())) {
+    w.key("settings_load").begin_object();
+    w.member("access_unreadable", values.access_unreadable());
+    w.key("dropped").begin_array();
+    for (std::size_t n = 0; load != nullptr && n < load->size(); ++n)
+      w.begin_object()
+          .member("key", (*load)[n].key)
+          .member("reason", (*load)[n].reason)
+          .end_object();
+    w.end_array();
+    w.member("more", static_cast<long long>(load != nullptr ? load->more() : 0));
+    w.end_object();
+  }
   w.key("az");
   write_axis(w, s.az, values.i(Id::kAzSensor));
   w.key("el");
@@ -231,6 +246,7 @@ void Api::write_status(JsonWriter& w) const {
 
 void Api::poll(Millis transport_now) {
   transport_now_ = transport_now;
+  auth_.flush_log(transport_now);
   access::ControlLock& lock = ctx_.controller.control_lock();
   if (lock.held() && transport_now >= lock.until()) {
     lock.release();
@@ -447,7 +463,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
     if (caller.kind == Caller::Kind::kBadToken) {
       count_auth_failure(false);
       char address[16];
-      auth_.log("rotord: unknown bearer token from %s refused", peer_text(peer, address));
+      auth_.refused(peer, "rotord: unknown bearer token from %s refused", peer_text(peer, address));
       send_error(out, 401, "unknown or revoked token", o);
       return Outcome::kDone;
     }
@@ -466,6 +482,15 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       send_error(out, 403, "tokens cannot do this: it needs the web login", options);
       return Outcome::kDone;
     }
+  }
+  // Failed closed (the access settings could not be read at start-up):
+  // STOP, login and logout, and reading only, from anyone, until fixed.
+  if (settings().access_unreadable() && route->post && route->need != Need::kPublic) {
+    send_error(out, 503,
+               "the access settings in the stored settings cannot be read: only STOP and status "
+               "until they are fixed (docs/security.md)",
+               options);
+    return Outcome::kDone;
   }
   const access::ControlLock& held = ctx_.controller.control_lock();
   if (route->locked && held.held() && (!caller.can_hold_lock() || !held.held_by(caller.holder))) {

@@ -67,6 +67,9 @@ struct ApiContext {
   /// poll() afterwards (the Pico W keeps both small: ~3 ms each).
   int passes_request_budget = 200000;
   int passes_poll_budget = 50;
+  /// What reading the stored settings dropped at start-up (GET /api/status
+  /// "settings_load", shown on the settings page); nullptr: nothing.
+  const LoadReport* load_report = nullptr;
 };
 
 /// The REST API (docs/web_api.md) on the controller's command API. One per

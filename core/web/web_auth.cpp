@@ -84,18 +84,59 @@ Caller WebAuth::identify(const HttpRequest& request, const settings::Settings& s
   return caller;
 }
 
-void WebAuth::log(const char* format, ...) {
-  if (config_.log == nullptr) return;
+void WebAuth::write_line(const char* format, std::va_list args) {
   char line[160];
-  std::va_list args;
-  va_start(args, format);
   const int n = std::vsnprintf(line, sizeof line - 1, format, args);
-  va_end(args);
   if (n <= 0) return;
   std::size_t len =
       static_cast<std::size_t>(n) < sizeof line - 1 ? static_cast<std::size_t>(n) : sizeof line - 2;
   line[len++] = '\n';
   config_.log->write(std::string_view(line, len));
+}
+
+void WebAuth::write_summary(const access::LogGate::Summary& s) {
+  char address[16];
+  if (s.source.kind == access::Peer::Kind::kUnknown) {
+    print("rotord: %lu more log lines in the last minute, over the log's budget",
+          static_cast<unsigned long>(s.count));
+  } else {
+    print("rotord: %lu more from %s in the last minute", static_cast<unsigned long>(s.count),
+          peer_text(s.source, address));
+  }
+}
+
+void WebAuth::print(const char* format, ...) {
+  std::va_list args;
+  va_start(args, format);
+  write_line(format, args);
+  va_end(args);
+}
+
+void WebAuth::log(const char* format, ...) {
+  if (config_.log == nullptr || !gate_.admit_line(now_)) return;
+  std::va_list args;
+  va_start(args, format);
+  write_line(format, args);
+  va_end(args);
+}
+
+void WebAuth::refused(const access::Peer& from, const char* format, ...) {
+  if (config_.log == nullptr) return;
+  access::LogGate::Summary evicted;
+  const bool write = gate_.admit(from, now_, evicted);
+  if (evicted.count > 0) write_summary(evicted);
+  if (!write) return;
+  std::va_list args;
+  va_start(args, format);
+  write_line(format, args);
+  va_end(args);
+}
+
+void WebAuth::flush_log(Millis now) {
+  now_ = now;
+  if (config_.log == nullptr) return;
+  for (access::LogGate::Summary s = gate_.next_due(now); s.count > 0; s = gate_.next_due(now))
+    write_summary(s);
 }
 
 std::uint32_t WebAuth::start(JobKind kind, std::string_view password,

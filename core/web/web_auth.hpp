@@ -9,6 +9,8 @@
 
 #include "access/api_token.hpp"
 #include "access/control_lock.hpp"
+#include "access/guess_budget.hpp"
+#include "access/log_gate.hpp"
 #include "access/login_limiter.hpp"
 #include "access/password_hash.hpp"
 #include "access/pbkdf2.hpp"
@@ -72,9 +74,24 @@ class WebAuth {
   access::WebSessions& sessions() { return sessions_; }
   const access::WebSessions& sessions() const { return sessions_; }
   access::LoginLimiter& limiter() { return limiter_; }
+  /// Password guesses checked per class of client, each class together
+  /// (access/guess_budget.hpp): strangers (every address not below), the
+  /// addresses on access.control_networks, and browsers with a device cookie
+  /// (access/device_cookie.hpp). Strangers' guesses, from however many
+  /// addresses, never use the owner's budget.
+  enum class Guesser : std::uint8_t { kStranger, kListed, kDevice };
+  access::GuessBudget& budget(Guesser who) { return budgets_[static_cast<std::size_t>(who)]; }
 
-  /// One line to the log (printf-style, no newline).
+  /// One line to the log (printf-style, no newline), within the log's
+  /// budget of lines a minute (access/log_gate.hpp).
   void log(const char* format, ...) __attribute__((format(printf, 2, 3)));
+  /// A refusal or error caused by `from` (a wrong password, an unknown
+  /// token): the first in a minute is written, the rest summed up in one
+  /// line when the minute ends, so no client can flood the log.
+  void refused(const access::Peer& from, const char* format, ...)
+      __attribute__((format(printf, 3, 4)));
+  /// The port's clock, and the summaries that are due (Api::poll).
+  void flush_log(Millis now);
 
   // --- The slow-hash job (one at a time) ---
   enum class JobKind : std::uint8_t { kNone, kLogin, kSetPassword };
@@ -91,12 +108,21 @@ class WebAuth {
     int status = 0;               ///< completed: the HTTP status to answer
     const char* message = "";     ///< completed: the error, or ""
     int new_session = -1;         ///< completed: the session whose cookie to set
+    bool trusted = false;         ///< kLogin from a listed address or a recognised browser
   };
   /// Whether a job is running or its response has not gone out yet.
   bool busy() const { return job_.kind != JobKind::kNone && !(job_.completed && job_.claimed); }
   /// Starts one; returns its ticket, 0 when busy or without crypto.
   std::uint32_t start(JobKind kind, std::string_view password, const access::PasswordHash& target,
                       const access::Peer& peer, int session);
+  /// A stranger's login being checked gives way to a trusted one (the owner
+  /// gets in during an attack): it is dropped, and its client answered 503
+  /// busy (Api::finish_pending). False when the job is not a stranger's login.
+  bool preempt_for_trusted() {
+    if (job_.kind != JobKind::kLogin || job_.trusted || job_.completed) return false;
+    job_ = Job{};
+    return true;
+  }
   /// Runs up to `iterations` PBKDF2 iterations of the job (the port's slice).
   void step(std::uint32_t iterations);
   Job& job() { return job_; }
@@ -111,9 +137,16 @@ class WebAuth {
   void count_refused() { ++refused_requests_; }
 
  private:
+  void write_line(const char* format, std::va_list args) __attribute__((format(printf, 2, 0)));
+  void write_summary(const access::LogGate::Summary& s);
+  void print(const char* format, ...) __attribute__((format(printf, 2, 3)));
+
   Config config_;
   access::WebSessions sessions_;
   access::LoginLimiter limiter_;
+  access::GuessBudget budgets_[3];
+  access::LogGate gate_;
+  Millis now_ = 0;
   access::Pbkdf2 pbkdf2_;
   Job job_;
   std::uint32_t next_ticket_ = 1;

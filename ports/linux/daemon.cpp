@@ -157,7 +157,7 @@ bool Daemon::load_settings(const sim::Profile* profile) {
   if (profile != nullptr) guess = std::make_unique<LegacyProfileGuess>(*profile);
   // Through the saver, so it knows what the file holds.
   const web::LoadOutcome r = web::load_settings(*saver_, defaults_, guess.get(), settings_,
-                                                *scratch, buf.data(), buf.size());
+                                                *scratch, buf.data(), buf.size(), &load_report_);
   saver_->begin();  // only later changes are saved; a damaged file stays as it is
   switch (r.status) {
     case web::LoadOutcome::kNothingStored:
@@ -174,9 +174,23 @@ bool Daemon::load_settings(const sim::Profile* profile) {
             from != nullptr ? from->name : "");
       }
       break;
+    case web::LoadOutcome::kRepaired:
+      // Keep every valid value, and the file as it is: it may hold hours of
+      // calibration besides the one wrong character.
+      for (std::size_t n = 0; n < load_report_.size(); ++n)
+        log::error("settings file %s: %s%s%s: dropped, running on the default",
+                   storage_->path().c_str(), load_report_[n].key,
+                   load_report_[n].key[0] != '\0' ? ": " : "", load_report_[n].reason);
+      if (load_report_.more() > 0)
+        log::error("settings file %s: %zu more values dropped", storage_->path().c_str(),
+                   load_report_.more());
+      log::error(
+          "settings file %s: every other value loaded. The file is left as it is; "
+          "the next save keeps it as %s.bad",
+          storage_->path().c_str(), storage_->path().c_str());
+      storage_->keep_backup_before_next_save();
+      break;
     case web::LoadOutcome::kCorrupt:
-      // Keep running on the defaults, and keep the file: it may hold hours of
-      // calibration that one wrong character made unreadable.
       log::error(
           "settings file %s is invalid (%s%s%s%s%s); running on the defaults. "
           "The file is left as it is; the next save keeps it as %s.bad",
@@ -186,6 +200,11 @@ bool Daemon::load_settings(const sim::Profile* profile) {
       storage_->keep_backup_before_next_save();
       break;
   }
+  if (r.access_unreadable)
+    log::error(
+        "settings file %s: the access settings cannot be read, so rotord fails closed: every "
+        "port obeys only STOP and answers status until the file is fixed and rotord restarted",
+        storage_->path().c_str());
   return true;
 }
 
@@ -217,6 +236,7 @@ bool Daemon::start_controller() {
   metrics_.clock = &steady_clock_;
   web::ApiContext api_context{*controller_,   saver_.get(), &defaults_,         this,
                               ROTORD_VERSION, &wall_clock_, host_name_.c_str(), &metrics_};
+  api_context.load_report = &load_report_;
   if (crypto_.ready()) {
     api_context.crypto = &crypto_;
   } else {
@@ -519,7 +539,7 @@ void Daemon::on_tick() {
   } else {
     advance_simulation(wall_ms);
   }
-  serve(wall_ms);
+  serve(network_ms());
 }
 
 void Daemon::serve(Millis wall_ms) {
@@ -589,7 +609,8 @@ Millis Daemon::advance_manual_clock(Millis ms) {
   // GS-232 timed list or a settings save falls on the tick it belongs to.
   for (Millis done = 0; done < ms && controller_ && !reboot_pending_; done += kTickMs) {
     tick_simulation();
-    serve(wall_ms());
+    network_skip_ms_ += kTickMs;
+    serve(network_ms());
   }
   return now_ms_;
 }

@@ -84,6 +84,10 @@ class Daemon final : private web::RebootHook {
   /// Work every wake-up does whatever the clock: sessions, saving, reboot.
   void serve(Millis wall_ms);
   Millis wall_ms() const;
+  /// The network's clock (sessions' timeouts, admission, logins): the wall
+  /// clock, plus under --clock manual every ms the manual clock was advanced,
+  /// so a test can run a timeout out without waiting for it.
+  Millis network_ms() const { return wall_ms() + network_skip_ms_; }
   /// Stops the motors (safe_stop.hpp), saves a pending change and ends the loop.
   void stop();
   /// The outputs the simulator or the GPIO lines were last given, for the exit log.
@@ -130,6 +134,8 @@ class Daemon final : private web::RebootHook {
   } access_log_;
   settings::Settings defaults_;  ///< table defaults + the profile: what a reset restores
   std::unique_ptr<FileStorage> storage_;
+  /// What reading the settings file dropped (the log, GET /api/status).
+  web::LoadReport load_report_;
   std::vector<char> saver_buf_;
   /// Between the REST API and storage_; saves settings changed by protocols.
   std::unique_ptr<SettingsSaver> saver_;
@@ -137,6 +143,7 @@ class Daemon final : private web::RebootHook {
   std::unique_ptr<GpiodRotator> gpio_;           ///< --hw gpiod, instead of sim_
   std::unique_ptr<ClockControl> clock_control_;  ///< --clock manual
   int exit_code_ = 0;
+  Millis network_skip_ms_ = 0;  ///< see network_ms()
   std::unique_ptr<Controller> controller_;
   std::unique_ptr<web::Api> api_;
   std::unique_ptr<MqttClient> mqtt_;  ///< mqtt.enabled: on the station's broker

@@ -65,7 +65,7 @@ bool apply_profile(const sim::Profile& profile, settings::Settings& settings, st
 
 web::LoadOutcome load_file_settings(FileStorage& storage, const sim::Profile* profile,
                                     const settings::Settings& base, settings::Settings& out,
-                                    std::string& storage_error) {
+                                    std::string& storage_error, web::LoadReport* report) {
   out = base;
   storage_error = storage.unusable_reason();
   if (!storage_error.empty()) return {};
@@ -73,7 +73,8 @@ web::LoadOutcome load_file_settings(FileStorage& storage, const sim::Profile* pr
   std::vector<char> buf(web::Api::kMaxDocumentBytes);
   std::unique_ptr<LegacyProfileGuess> guess;
   if (profile != nullptr) guess = std::make_unique<LegacyProfileGuess>(*profile);
-  return web::load_settings(storage, base, guess.get(), out, *scratch, buf.data(), buf.size());
+  return web::load_settings(storage, base, guess.get(), out, *scratch, buf.data(), buf.size(),
+                            report);
 }
 
 int print_config(const Options& options, const std::set<std::string>& given, std::FILE* out) {
@@ -109,7 +110,8 @@ int print_config(const Options& options, const std::set<std::string>& given, std
                settings_path_origin(options));
   auto effective = std::make_unique<settings::Settings>();
   std::string why;
-  const web::LoadOutcome r = load_file_settings(storage, profile, *base, *effective, why);
+  web::LoadReport report;
+  const web::LoadOutcome r = load_file_settings(storage, profile, *base, *effective, why, &report);
   if (!why.empty()) {
     std::fprintf(out, "%s; rotord refuses to start\n", why.c_str());
     return 2;
@@ -123,6 +125,14 @@ int print_config(const Options& options, const std::set<std::string>& given, std
       std::fprintf(out, "loaded%s\n",
                    r.migrated ? " (an old file holding every setting: read as changes)" : "");
       break;
+    case web::LoadOutcome::kRepaired:
+      std::fprintf(out, "DAMAGED: rotord runs on its valid values and drops these:\n");
+      for (std::size_t n = 0; n < report.size(); ++n)
+        std::fprintf(out, "#   %s%s%s\n", report[n].key, report[n].key[0] != '\0' ? ": " : "",
+                     report[n].reason);
+      if (report.more() > 0) std::fprintf(out, "#   and %zu more\n", report.more());
+      code = 1;
+      break;
     case web::LoadOutcome::kCorrupt:
       std::fprintf(out, "INVALID (%s%s%s%s%s): rotord runs on the defaults\n", r.key,
                    r.key[0] != '\0' ? ": " : "", r.reason, storage.last_error().empty() ? "" : ": ",
@@ -130,6 +140,10 @@ int print_config(const Options& options, const std::set<std::string>& given, std
       code = 1;
       break;
   }
+  if (r.access_unreadable)
+    std::fprintf(out,
+                 "# the access settings cannot be read: every port obeys only STOP and answers "
+                 "status until the file is fixed (docs/security.md)\n");
   const settings::KeySet from_file = settings::user_layer(*effective, *base);
   const settings::KeySet from_profile = settings::user_layer(*base, *table);
   const std::string profile_label =

@@ -30,11 +30,13 @@ bool apply_profile(const sim::Profile& profile, settings::Settings& settings, st
 
 /// Reads the settings file the daemon would read into `out` (which holds the
 /// base: the table's defaults and the profile, if any) the way the daemon
-/// does: an invalid file leaves `out` at the base. `storage_error` says why
-/// the file is unusable ("is a FIFO..."): nothing is read then.
+/// does: a damaged file keeps its valid values, an unreadable one leaves
+/// `out` at the base; `report` (if given) names what was dropped.
+/// `storage_error` says why the file is unusable ("is a FIFO..."): nothing
+/// is read then.
 web::LoadOutcome load_file_settings(FileStorage& storage, const sim::Profile* profile,
                                     const settings::Settings& base, settings::Settings& out,
-                                    std::string& storage_error);
+                                    std::string& storage_error, web::LoadReport* report = nullptr);
 
 /// Writes the report to `out`. `given`: the long names of the options given
 /// on the command line ("--hw"). Returns the exit code: 0, 1 when the file

@@ -51,7 +51,9 @@ class TcpServer::Connection final : public protocol::ByteSink,
       : server_(server), socket_(std::move(socket)), info_(info) {
     std::error_code ignored;
     socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
-    if (metrics::Registry* m = server_.config_.metrics)
+    // A stop-only exchange is counted as refused (or not at all when it was
+    // STOP), not as a client: /metrics' connection counts stay the slots'.
+    if (metrics::Registry* m = server_.config_.metrics; m != nullptr && !info_.stop_only)
       m->protocol(server_.config_.protocol).on_accept();
     if (log::enabled(log::Level::kDebug)) {
       client_ = describe(socket_);
@@ -62,6 +64,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
   void start(std::unique_ptr<protocol::Session> session) {
     session_ = std::move(session);
     session_->set_peer(info_.peer);
+    if (info_.stop_only) session_->set_stop_only();
     read();
   }
 
@@ -87,6 +90,11 @@ class TcpServer::Connection final : public protocol::ByteSink,
 
   void poll(Millis now) {
     if (closing_) return;
+    if (info_.stop_only && !close_requested_ && now - info_.opened_ms >= net::kStopOnlyExchangeMs) {
+      // The stop-only exchange's command never came.
+      refuse_and_close();
+      return;
+    }
     in_session_ = true;
     session_->poll(now, *this);
     protocol::drain_output(*session_, *this);
@@ -99,7 +107,7 @@ class TcpServer::Connection final : public protocol::ByteSink,
   void close() {
     if (closing_) return;
     closing_ = true;
-    if (metrics::Registry* m = server_.config_.metrics)
+    if (metrics::Registry* m = server_.config_.metrics; m != nullptr && !info_.stop_only)
       m->protocol(server_.config_.protocol).on_close();
     if (!client_.empty())
       log::debug("%s: %s disconnected", server_.name().c_str(), client_.c_str());
@@ -124,6 +132,18 @@ class TcpServer::Connection final : public protocol::ByteSink,
                               protocol::drain_output(*session_, *this);
                               in_session_ = false;
                               flush();
+                              if (session_->commands() != commands_seen_) {
+                                commands_seen_ = session_->commands();
+                                info_.last_useful_ms = server_.now_;
+                              }
+                              if (session_->exchange_over()) {
+                                if (session_->exchange_refused()) {
+                                  refuse_and_close();
+                                } else {
+                                  close_after_flush();
+                                }
+                                return;
+                              }
                               if (!stream_seen_ && session_->is_event_stream()) {
                                 stream_seen_ = true;
                                 server_.stream_started(this);
@@ -139,6 +159,19 @@ class TcpServer::Connection final : public protocol::ByteSink,
   void close_after_flush() {
     close_requested_ = true;
     if (!writing_) close();
+  }
+
+  /// A stop-only exchange that was not STOP: the port's busy refusal, as a
+  /// client refused outright gets, then the close.
+  void refuse_and_close() {
+    if (metrics::Registry* m = server_.config_.metrics)
+      m->protocol(server_.config_.protocol).on_refuse();
+    // Not a reply of the protocol's (no error count), as for a refusal outright.
+    if (!closing_) {
+      pending_.append(server_.config_.reject_message);
+      flush();
+    }
+    close_after_flush();
   }
 
   void flush() {
@@ -172,7 +205,8 @@ class TcpServer::Connection final : public protocol::ByteSink,
   bool writing_ = false;
   bool closing_ = false;
   bool close_requested_ = false;
-  bool stream_seen_ = false;  ///< the session has become an event stream
+  bool stream_seen_ = false;         ///< the session has become an event stream
+  std::uint32_t commands_seen_ = 0;  ///< session_->commands() at the last receive
   /// Inside a session's receive or poll: its writes (a reply is often several,
   /// rotctld's `p` two lines) are gathered and sent once it returns, as one
   /// segment, instead of the first going out alone and the rest waiting a
@@ -201,7 +235,12 @@ TcpServer::TcpServer(asio::io_context& io, const asio::ip::address& bind, Servic
     : io_(io),
       acceptor_(io),
       config_(std::move(config)),
-      admission_({config_.max_clients, SIZE_MAX, config_.max_event_streams}, config_.settings) {
+      // Stop-only exchanges, one per host, each 2 s at most: room for more
+      // hosts than the port has slots (docs/security.md says what more
+      // hosts than that can still do).
+      admission_({config_.max_clients, SIZE_MAX, config_.max_event_streams,
+                  config_.settings != nullptr ? kStopOnlyPerClient * config_.max_clients : 0},
+                 config_.settings) {
   const asio::ip::tcp::endpoint endpoint(bind, config_.port);
   acceptor_.open(endpoint.protocol());
   acceptor_.set_option(asio::ip::tcp::acceptor::reuse_address(true));
@@ -234,10 +273,11 @@ void TcpServer::admit(asio::ip::tcp::socket socket) {
   net::ClientInfo info;
   info.peer = peer_of(socket);
   info.address = address_of(socket);
-  info.opened_ms = info.last_receive_ms = now_;
+  info.opened_ms = info.last_receive_ms = info.last_useful_ms = now_;
   const Snapshot snapshot(connections_);
   const net::Admission::Decision d = admission_.admit(snapshot, info, now_);
-  if (d.kind != net::Admission::Decision::Kind::kAdmit) {
+  info.stop_only = d.kind == net::Admission::Decision::Kind::kStopOnly;
+  if (d.kind != net::Admission::Decision::Kind::kAdmit && !info.stop_only) {
     if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_refuse();
     if (log::enabled(log::Level::kDebug))
       log::debug("%s: %s refused, %zu clients already", config_.name.c_str(),

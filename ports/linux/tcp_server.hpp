@@ -48,6 +48,8 @@ class TcpServer {
  public:
   static constexpr std::size_t kMaxBacklogBytes = 256 * 1024;
   static constexpr std::size_t kReadChunkBytes = 4096;
+  /// Stop-only exchanges at once (net/admission.hpp), per client slot.
+  static constexpr std::size_t kStopOnlyPerClient = 4;
 
   TcpServer(asio::io_context& io, const asio::ip::address& bind, ServiceConfig config);
   ~TcpServer();

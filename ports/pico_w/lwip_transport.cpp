@@ -73,7 +73,7 @@ struct TcpServer::Glue {
     net::ClientInfo info;
     info.peer = peer_of(pcb);
     info.address = address_of(pcb);
-    info.opened_ms = info.last_receive_ms = server->now_;
+    info.opened_ms = info.last_receive_ms = info.last_useful_ms = server->now_;
     // Whether each client waits between two HTTP requests, as of now: such a
     // keep-alive connection makes room at once (net/admission.hpp), as on Linux.
     for (Connection& s : server->slots_) {
@@ -81,7 +81,9 @@ struct TcpServer::Glue {
     }
     const net::Admission::Decision d =
         server->admission_.admit(SlotList(server->slots_), info, server->now_);
-    if (d.kind != net::Admission::Decision::Kind::kAdmit) return reject(*server, pcb);
+    info.stop_only = d.kind == net::Admission::Decision::Kind::kStopOnly;
+    if (d.kind != net::Admission::Decision::Kind::kAdmit && !info.stop_only)
+      return reject(*server, pcb);
     // The one making room gets a FIN, no message (no protocol has one). What
     // close() returns concerns that pcb, not this callback's.
     if (d.evict != net::Admission::kNone) server->close(server->slots_[d.evict]);
@@ -90,13 +92,16 @@ struct TcpServer::Glue {
     if (session == nullptr) return reject(*server, pcb);
 
     ++server->stats_.accepted;
-    if (metrics::Registry* m = server->config_.metrics)
+    // A stop-only exchange is counted as refused (or not at all), not as a client.
+    if (metrics::Registry* m = server->config_.metrics; m != nullptr && !info.stop_only)
       m->protocol(server->config_.protocol).on_accept();
     c->server_ = server;
     c->pcb_ = pcb;
     c->session_ = session;
     c->info_ = info;
+    c->commands_seen_ = 0;
     session->set_peer(info.peer);
+    if (info.stop_only) session->set_stop_only();
     c->reset_output();
     // Replies are small and clients (Gpredict) wait for each one: no Nagle
     // delay, like TCP_NODELAY on Linux.
@@ -148,6 +153,7 @@ struct TcpServer::Glue {
     }
     tcp_recved(pcb, p->tot_len);
     pbuf_free(p);
+    c->server_->after_input(*c);
     if (!c->stream_seen_ && c->session_->is_event_stream()) {
       c->stream_seen_ = true;
       c->server_->stream_started(*c);
@@ -187,6 +193,11 @@ void TcpServer::Connection::write(std::string_view bytes) {
   if (pcb_ == nullptr || overflow_ || bytes.empty()) return;
   if (metrics::Registry* m = server_->config_.metrics)
     m->on_reply(server_->config_.protocol, bytes);
+  write_uncounted(bytes);
+}
+
+void TcpServer::Connection::write_uncounted(std::string_view bytes) {
+  if (pcb_ == nullptr || overflow_ || bytes.empty()) return;
   const auto immutable = server_->config_.is_immutable;
   if (bytes.size() >= kMinReferenceBytes && immutable != nullptr &&
       immutable(bytes.data(), bytes.size())) {
@@ -283,9 +294,10 @@ TcpServer::TcpServer(ServerConfig config, SessionPool& sessions, std::span<Conne
     : config_(config),
       sessions_(sessions),
       slots_(slots),
-      admission_(
-          {std::min(config.max_clients, slots.size()), slots.size(), config.max_event_streams},
-          config.settings) {
+      admission_({std::min(config.max_clients, slots.size() - config.stop_only_slots),
+                  slots.size() - config.stop_only_slots, config.max_event_streams,
+                  config.settings != nullptr ? config.stop_only_slots : 0},
+                 config.settings) {
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     slots_[i].server_ = this;
     slots_[i].index_ = i;
@@ -334,6 +346,9 @@ void TcpServer::poll(Millis now) {
   now_ = now;
   for (Connection& c : slots_) {
     if (c.pcb_ == nullptr) continue;
+    if (c.info_.stop_only && !c.close_requested_ &&
+        now - c.info_.opened_ms >= net::kStopOnlyExchangeMs)
+      end_exchange(c, true);  // its command never came
     c.session_->poll(now, c);
     c.flush();
     c.continue_reply();
@@ -360,6 +375,24 @@ void TcpServer::stream_started(Connection& c) {
   c.info_.event_stream = true;
   const std::size_t victim = admission_.stream_started(SlotList(slots_), c.index_);
   if (victim != net::Admission::kNone) close(slots_[victim]);
+}
+
+void TcpServer::after_input(Connection& c) {
+  if (c.session_ == nullptr) return;
+  if (c.session_->commands() != c.commands_seen_) {
+    c.commands_seen_ = c.session_->commands();
+    c.info_.last_useful_ms = now_;
+  }
+  if (c.session_->exchange_over() && !c.close_requested_)
+    end_exchange(c, c.session_->exchange_refused());
+}
+
+void TcpServer::end_exchange(Connection& c, bool refused) {
+  if (refused) {
+    if (metrics::Registry* m = config_.metrics) m->protocol(config_.protocol).on_refuse();
+    c.write_uncounted(config_.reject_message);  // not a reply of the protocol's
+  }
+  c.close_requested_ = true;  // settle() closes once the reply is out
 }
 
 err_t TcpServer::settle(Connection& c) {
@@ -400,7 +433,8 @@ err_t TcpServer::drop(Connection& c) {
 void TcpServer::release(Connection& c) {
   if (c.session_ != nullptr) {
     sessions_.release(c.index_);
-    if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_close();
+    if (config_.metrics != nullptr && !c.info_.stop_only)
+      config_.metrics->protocol(config_.protocol).on_close();
   }
   c.session_ = nullptr;
   c.pcb_ = nullptr;

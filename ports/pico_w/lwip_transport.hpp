@@ -86,6 +86,10 @@ struct ServerConfig {
   /// HTTP: event streams apart from max_clients. They share the static slots,
   /// so a newcomer finding every slot taken drops the oldest stream first.
   std::size_t max_event_streams = 0;
+  /// Of the slots given, how many are kept for stop-only exchanges (a
+  /// newcomer to a full port may still say STOP: net/admission.hpp).
+  /// StaticService sets it.
+  std::size_t stop_only_slots = 0;
   /// Where connections, refusals and error replies are counted (GET
   /// /metrics), under `protocol`; nullptr counts nothing.
   metrics::Registry* metrics = nullptr;
@@ -136,6 +140,8 @@ class TcpServer {
       const char* data = nullptr;  ///< nullptr: the next bytes of out_
       std::size_t size = 0;
     };
+    /// write() without counting it as the protocol's reply (/metrics).
+    void write_uncounted(std::string_view bytes);
     bool push_chunk(const char* data, std::size_t size);
     void flush();
     /// A session with a reply longer than lwIP's send buffer (the HTTP
@@ -150,7 +156,8 @@ class TcpServer {
     tcp_pcb* pcb_ = nullptr;
     protocol::Session* session_ = nullptr;
     net::ClientInfo info_;
-    bool stream_seen_ = false;  ///< the session has become an event stream
+    bool stream_seen_ = false;         ///< the session has become an event stream
+    std::uint32_t commands_seen_ = 0;  ///< session_->commands() at the last receive
     std::size_t index_ = 0;
     std::array<char, kOutputBytes> out_{};
     std::size_t out_len_ = 0;
@@ -198,6 +205,11 @@ class TcpServer {
   /// or a requested close. Returns what the callback must return (ERR_ABRT
   /// once the pcb is gone).
   std::int8_t settle(Connection& c);
+  /// After the session took input: stamps a known command as use, and ends
+  /// a stop-only exchange whose command came (with the busy refusal when it
+  /// was not STOP) or whose time ran out.
+  void after_input(Connection& c);
+  void end_exchange(Connection& c, bool refused);
   std::int8_t close(Connection& c);
   std::int8_t drop(Connection& c);
   void release(Connection& c);
@@ -213,17 +225,23 @@ class TcpServer {
 };
 
 /// A server with its own session pool and connection slots, meant for static
-/// storage (the firmware's composition root).
-template <typename S, std::size_t N, typename Make>
+/// storage (the firmware's composition root): N for clients and StopOnly more
+/// for stop-only exchanges (each a Connection and an S: their RAM is counted
+/// in ports/pico_w/README.md).
+template <typename S, std::size_t N, typename Make, std::size_t StopOnly = 0>
 class StaticService {
  public:
   StaticService(ServerConfig config, Make make)
-      : pool_(std::move(make)), server_(config, pool_, slots_) {}
+      : pool_(std::move(make)), server_(with_stop_only(config), pool_, slots_) {}
   TcpServer& server() { return server_; }
 
  private:
-  std::array<TcpServer::Connection, N> slots_{};
-  StaticSessionPool<S, N, Make> pool_;
+  static ServerConfig with_stop_only(ServerConfig config) {
+    config.stop_only_slots = StopOnly;
+    return config;
+  }
+  std::array<TcpServer::Connection, N + StopOnly> slots_{};
+  StaticSessionPool<S, N + StopOnly, Make> pool_;
   TcpServer server_;  // last: constructed after, destroyed before its storage
 };
 

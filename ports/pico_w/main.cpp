@@ -150,6 +150,9 @@ settings::Settings g_scratch;  // load_settings' working copy
 // keeps a build's Wi-Fi credentials).
 settings::Settings g_defaults;
 char g_boot_document[web::kMaxSettingsDocumentBytes];
+// What loading dropped, for the log and the settings page (about 800 bytes).
+web::LoadReport g_load_report;
+static_assert(sizeof(web::LoadReport) <= 800, "the load report's RAM (docs/security.md)");
 Reboot g_reboot;
 PicoFlash g_flash;
 FlashSlots g_storage(g_flash);
@@ -254,7 +257,7 @@ void apply_wifi_secrets(settings::Settings& s) {
 web::LoadOutcome load_stored_settings() {
   if (!g_flash.region_free()) return {};
   return web::load_settings(g_saver, g_defaults, nullptr, g_settings, g_scratch, g_boot_document,
-                            sizeof g_boot_document);
+                            sizeof g_boot_document, &g_load_report);
 }
 
 /// What the loop's settings saver did, on the USB console.
@@ -280,11 +283,22 @@ void report_settings(const web::LoadOutcome& r) {
           static_cast<unsigned long>(g_storage.newest()->sequence),
           r.migrated ? "; every setting stored: the next save keeps only your changes" : "");
       break;
+    case web::LoadOutcome::kRepaired:
+      for (std::size_t n = 0; n < g_load_report.size(); ++n)
+        std::printf("rotord: settings in flash: %s%s%s: dropped, running on the default\n",
+                    g_load_report[n].key, g_load_report[n].key[0] != '\0' ? ": " : "",
+                    g_load_report[n].reason);
+      std::printf("rotord: every other setting loaded from flash\n");
+      break;
     case web::LoadOutcome::kCorrupt:
       std::printf("rotord: the settings in flash are invalid (%s%s%s); running on the defaults\n",
                   r.key, r.key[0] != '\0' ? ": " : "", r.reason);
       break;
   }
+  if (r.access_unreadable)
+    std::printf(
+        "rotord: the access settings cannot be read: every port obeys only STOP and answers "
+        "status until they are fixed (erase the settings flash: docs/security.md)\n");
 }
 
 /// The pin of `id`, or kNoPin for a role the axis does not have.
@@ -459,7 +473,7 @@ const char* restart_reason() {
   // still runs (USB logs, safety rules, the USB protocol port).
   static LogPortSink log_port(g_log);
   network_start(NetworkDeps{controller, settings, &g_defaults, storage, registry, log_port,
-                            [] { g_reboot.request(); }},
+                            [] { g_reboot.request(); }, &g_load_report},
                 now_ms());
 #endif
 

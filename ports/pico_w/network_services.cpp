@@ -59,9 +59,14 @@ struct MakeSession {
     return protocol::SessionOf<P>::make(*deps);
   }
 };
+// Each line port has one more slot, for a newcomer to a full port to say
+// STOP (a stop-only exchange, net/admission.hpp): a Connection (1.1 KB, its
+// output buffer) and a session each, about 9 KB for the five
+// (ports/pico_w/README.md). The web has none: an HTTP session is ~6 KB.
+constexpr std::size_t kStopOnlySlots = 1;
 template <Personality P>
-using LineService =
-    lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>, MakeSession<P>>;
+using LineService = lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>,
+                                             MakeSession<P>, kStopOnlySlots>;
 constexpr std::uint16_t kHttpPort = 80;
 // A browser holds a page connection and the event stream, plus short API
 // requests; each HTTP session is ~6 KB of RAM (request head and body buffers).
@@ -220,6 +225,7 @@ void network_start(const NetworkDeps& d, Millis now) {
   api_context.pbkdf2_iterations = kPbkdf2Iterations;
   api_context.pbkdf2_slice = kPbkdf2SliceIterations;
   api_context.log = &d.log;
+  api_context.load_report = d.load_report;
   // Tracking: UTC from SNTP (refused until it has answered), one target
   // evaluation (about 3 ms) per tick for the pass search and the plan, and
   // GET /api/passes a slice per loop. The TLEs in their flash slots; a PUT

@@ -13,6 +13,10 @@
 #include "util/byte_sink.hpp"
 #include "util/time.hpp"
 
+namespace rotord::web {
+class LoadReport;
+}
+
 namespace rotord::pico_w {
 
 /// What the network services take from the rest of the firmware.
@@ -27,6 +31,8 @@ struct NetworkDeps {
   protocol::ByteSink& log;
   /// POST /api/reboot: the loop reboots once the answer is out.
   void (*request_reboot)();
+  /// What reading the settings flash dropped (GET /api/status "settings_load").
+  const web::LoadReport* load_report = nullptr;
 };
 
 /// Starts the Wi-Fi chip (blocking: its firmware load), then Wi-Fi and every

@@ -50,8 +50,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const LoadOutcome first =
       rotord::web::load_settings(storage, base, nullptr, target, scratch, buf, sizeof buf);
   if (target.check_consistency().error != rotord::Error::kOk) std::abort();
-  if (first.status != LoadOutcome::kLoaded) {
-    if (!same_everywhere(target, base)) std::abort();  // refused: the base, untouched
+  if (first.status == LoadOutcome::kNothingStored) return 0;
+  if (first.status == LoadOutcome::kCorrupt) {
+    // Nothing read: the base, untouched, and failed closed.
+    if (!same_everywhere(target, base) || !target.access_unreadable()) std::abort();
     return 0;
   }
   // What was accepted survives a save and a load unchanged.
@@ -59,6 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   rotord::settings::Settings again;
   const LoadOutcome second =
       rotord::web::load_settings(storage, base, nullptr, again, scratch, buf, sizeof buf);
+  // (kRepaired too: what was kept is a clean document of its own.)
   if (second.status != LoadOutcome::kLoaded || !same_everywhere(again, target)) std::abort();
   return 0;
 }

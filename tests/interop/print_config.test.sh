@@ -41,14 +41,25 @@ grep -q "^# settings file $dir/state/settings.json (from \$STATE_DIRECTORY (syst
 [ "$(line park.az_deg)" = "park.az_deg 0 # default" ] || fail "the XDG file leaked in"
 [ "$(line az.max_deg)" = "az.max_deg 450 # default" ] || fail "a profile under --hw gpiod"
 
-# --config wins; an invalid file: exit 1, said so, the defaults shown.
-printf '{"park.az_deg": 9999}\n' >"$dir/bad.json"
+# --config wins; a file with a bad value: exit 1, the value named and
+# dropped, every valid value kept.
+printf '{"park.az_deg": 9999, "park.el_deg": 30}\n' >"$dir/bad.json"
 out=$(STATE_DIRECTORY="$dir/state" "$ROTORD" --print-config --config "$dir/bad.json")
 rc=$?
 [ "$rc" -eq 1 ] || fail "exit code $rc for an invalid file"
-grep -q "^# settings file $dir/bad.json (from --config): INVALID (park.az_deg" <<<"$out" ||
-  fail "the invalid file is not named: $(grep '^# settings file' <<<"$out")"
+grep -q "^# settings file $dir/bad.json (from --config): DAMAGED" <<<"$out" ||
+  fail "the damaged file is not named: $(grep '^# settings file' <<<"$out")"
+grep -q "^#   park.az_deg: outside the allowed range" <<<"$out" || fail "the bad value is not named"
 [ "$(line park.az_deg)" = "park.az_deg 0 # default" ] || fail "invalid value shown"
+[ "$(line park.el_deg)" = "park.el_deg 30 # file" ] ||
+  fail "a valid value was lost: $(line park.el_deg)"
+
+# A file cut short: what reads is kept, and the access settings count as
+# unreadable (rotord fails closed).
+printf '{"park.el_deg": 30,\n "web.password": "pbkdf2' >"$dir/torn.json"
+out=$("$ROTORD" --print-config --config "$dir/torn.json")
+grep -q "the access settings cannot be read" <<<"$out" || fail "a torn file does not fail closed"
+[ "$(line park.el_deg)" = "park.el_deg 30 # file" ] || fail "a torn file lost its start"
 
 # A FIFO: refused like the daemon refuses it (exit 2), without blocking.
 mkfifo "$dir/fifo"

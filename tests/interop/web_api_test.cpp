@@ -303,17 +303,25 @@ TEST_F(WebApi, StatusHasTheUtcTimeFromTheSystemClock) {
   EXPECT_GE(std::atoi(utc.c_str()), 2024) << utc;
 }
 
-TEST_F(WebApi, ACorruptFileIsReportedKeptAndTheDefaultsRun) {
+TEST_F(WebApi, ADamagedFileIsReportedKeptAndItsValidValuesRun) {
   fs::create_directories(config.parent_path());
-  const std::string garbage = "{\"park.az_deg\": 45, \"az.max_deg\": ";  // torn by hand
-  std::ofstream(config) << garbage;
+  const std::string damaged = "{\"park.az_deg\": 45, \"az.max_deg\": 99999}";  // edited by hand
+  std::ofstream(config) << damaged;
   start();
-  EXPECT_NE(daemon->output().find("is invalid"), std::string::npos) << daemon->output();
-  EXPECT_EQ(read_file(config), garbage);  // not overwritten
-  EXPECT_NE(http(port, "GET", "/api/settings").body.find("\"park.az_deg\":0,"), std::string::npos);
-  // An explicit save replaces it and keeps the bad one aside.
+  EXPECT_NE(daemon->output().find("az.max_deg: outside the allowed range: dropped"),
+            std::string::npos)
+      << daemon->output();
+  EXPECT_EQ(read_file(config), damaged);  // not overwritten
+  const std::string values = http(port, "GET", "/api/settings").body;
+  EXPECT_NE(values.find("\"park.az_deg\":45,"), std::string::npos) << values;  // kept
+  EXPECT_NE(values.find("\"az.max_deg\":450,"), std::string::npos) << values;  // dropped
+  // The settings page shows what was dropped.
+  EXPECT_NE(
+      status().find(R"("settings_load":{"access_unreadable":false,"dropped":[{"key":"az.max_deg")"),
+      std::string::npos);
+  // An explicit save replaces it and keeps the damaged one aside.
   ASSERT_EQ(http(port, "POST", "/api/settings", R"({"park.az_deg": 10})").status, 200);
-  EXPECT_EQ(read_file(config.string() + ".bad"), garbage);
+  EXPECT_EQ(read_file(config.string() + ".bad"), damaged);
   EXPECT_NE(read_file(config).find("\"park.az_deg\": 10"), std::string::npos);
 }
 

@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <thread>
@@ -29,6 +30,10 @@ extern "C" {
 #include "lwip/tcpip.h"
 #include "lwip/udp.h"
 }
+#include "protocol/easycomm_session.hpp"
+#include "protocol/gs232_session.hpp"
+#include "protocol/rotctld_session.hpp"
+#include "protocol/seed_session.hpp"
 #include "protocol/window_sink.hpp"
 #include "protocol/wrc_session.hpp"
 #include "settings/settings.hpp"
@@ -147,7 +152,9 @@ class TestSession final : public protocol::Session {
   void receive(std::string_view bytes, protocol::ByteSink& out) override {
     for (char ch : bytes) {
       if (ch == 'F') flood_left_ = kFloodBytes;
-      if (ch == 'P') out.write("PONG\n");
+      // A command, and (X) the protocol's STOP, for the admission rule.
+      if (ch == 'P' && command_arrives(false)) out.write("PONG\n");
+      if (ch == 'X' && command_arrives(true)) out.write("STOPPED\n");
       if (ch == 'S') {
         out.write("HEAD\n");
         out.write(std::string_view(kAsset.data(), kAsset.size()));
@@ -213,6 +220,8 @@ auto make_test_session() {
   return [] { return TestSession(); };
 }
 using TestService = StaticService<TestSession, 4, decltype(make_test_session())>;
+/// Two client slots and a stop-only one, as the Pico's line ports have.
+using StopOnlyService = StaticService<TestSession, 2, decltype(make_test_session()), 1>;
 
 ServerConfig test_config(std::size_t max_clients, std::string_view reject = "busy\r\n") {
   ServerConfig config;
@@ -749,6 +758,72 @@ DhcpReply parse_reply(const std::string& packet) {
   }
   r.ok = u8(d) == 2;
   return r;
+}
+
+// Issue 29 on the lwIP transport, the same rule as on Linux: a newcomer to
+// a full port gets one short exchange in which only STOP is obeyed, and a
+// client that sends bytes but no command is idle.
+TEST_F(LwipAdmissionTest, ANewcomerToAFullPortMaySayStopInItsOneExchange) {
+  ServerConfig config = test_config(2);
+  config.settings = &settings_;
+  StopOnlyService service(config, make_test_session());
+  auto served = serve(service.server());
+  Client& a = connect_from(1);
+  ASSERT_TRUE(pong(a));
+  Client& b = connect_from(2);
+  ASSERT_TRUE(pong(b));
+  Client& asks = connect_from(3);  // anything but STOP: the busy refusal
+  send(asks, "P");
+  EXPECT_TRUE(wait([&] { return asks.peer_closed || asks.reset; }));
+  EXPECT_EQ(asks.received, "busy\r\n");
+  Client& stops = connect_from(3);
+  send(stops, "X");
+  EXPECT_TRUE(wait([&] { return stops.peer_closed || stops.reset; }));
+  EXPECT_EQ(stops.received, "STOPPED\n");
+  EXPECT_TRUE(stops.peer_closed);
+  Client& silent = connect_from(3);  // nothing within the exchange's 2 s
+  EXPECT_TRUE(wait([&] { return service.server().client_count() == 3; }));
+  advance(2000);
+  EXPECT_TRUE(wait([&] { return silent.peer_closed || silent.reset; }));
+  EXPECT_EQ(silent.received, "busy\r\n");
+  EXPECT_TRUE(pong(a));
+  EXPECT_TRUE(pong(b));
+  CoreLock lock;
+  EXPECT_EQ(service.server().counters().stop_only, 3u);
+}
+
+TEST_F(LwipAdmissionTest, BytesThatAreNoCommandDoNotKeepASlot) {
+  ServerConfig config = test_config(2);
+  config.settings = &settings_;
+  StopOnlyService service(config, make_test_session());
+  auto served = serve(service.server());
+  Client& a = connect_from(1);
+  ASSERT_TRUE(pong(a));
+  Client& b = connect_from(2);
+  ASSERT_TRUE(pong(b));
+  advance(30000);
+  ASSERT_TRUE(pong(b));  // b asks: used
+  for (int n = 0; n < 6; ++n) {
+    send(a, "\n");  // a only keeps its connection warm
+    advance(5000);
+  }
+  Client& newcomer = connect_from(3);  // a: 60 s without a command
+  EXPECT_TRUE(pong(newcomer));
+  EXPECT_TRUE(wait([&] { return a.peer_closed; }));
+  EXPECT_TRUE(pong(b));
+}
+
+TEST(LwipStopOnlyRam, TheSlotOfAStopOnlyExchangeCostsAConnectionAndASession) {
+  // Measured on this 64-bit host: an upper bound of the Pico's 32-bit sizes
+  // (pointers and size_t are half as wide there). ports/pico_w/README.md.
+  const std::size_t connection = sizeof(TcpServer::Connection);
+  std::printf(
+      "[ measured ] a stop-only slot: TcpServer::Connection %zu B, and a session: WRC %zu B, "
+      "rotctld %zu B, GS-232 %zu B, Easycomm %zu B, seed %zu B\n",
+      connection, sizeof(protocol::WrcSession), sizeof(protocol::RotctldSession),
+      sizeof(protocol::Gs232Session), sizeof(protocol::EasycommSession),
+      sizeof(protocol::SeedSession));
+  EXPECT_LE(connection, TcpServer::kOutputBytes + 256);
 }
 
 class DhcpServerTest : public LwipTransportTest {

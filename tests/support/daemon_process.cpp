@@ -278,6 +278,18 @@ bool TcpClient::wait_closed(int timeout_ms) {
   }
 }
 
+bool TcpClient::closed_now() {
+  if (fd_ < 0) return true;
+  pollfd p{fd_, POLLIN, 0};
+  while (::poll(&p, 1, 0) > 0) {
+    char buf[4096];
+    const ssize_t n = ::recv(fd_, buf, sizeof(buf), 0);
+    if (n <= 0) return true;
+    buffer_.append(buf, static_cast<std::size_t>(n));
+  }
+  return false;
+}
+
 std::string TcpClient::ask(const std::string& command, int timeout_ms) {
   std::string line;
   if (!send(command)) return "<send failed>";

@@ -85,6 +85,8 @@ class TcpClient {
   std::string recv_once(int timeout_ms = 3000);
   /// Reads until the peer closes or timeout_ms passes; true if it closed.
   bool wait_closed(int timeout_ms = 3000);
+  /// Reads what has arrived, without waiting; true if the peer has closed.
+  bool closed_now();
   /// Sends `command` and returns the next line.
   std::string ask(const std::string& command, int timeout_ms = 3000);
   int fd() const { return fd_; }

@@ -24,7 +24,7 @@ class Slots final : public ClientList {
     const std::uint32_t ip = 0x0A000000u | host;
     c.peer = access::Peer::from_ipv4(ip);
     c.address = Address::from_ipv4(ip);
-    c.opened_ms = c.last_receive_ms = now;
+    c.opened_ms = c.last_receive_ms = c.last_useful_ms = now;
     c.event_stream = stream;
     for (std::size_t i = 0; i < entries.size(); ++i) {
       if (!open[i]) {
@@ -73,8 +73,8 @@ TEST_F(AdmissionTest, AFullPortOfBusyClientsRefusesTheNewcomerAsBefore) {
 TEST_F(AdmissionTest, AFullPortDropsTheClientIdleLongestOnceItIsIdleLongEnough) {
   Admission gate({8, SIZE_MAX, 0}, &settings);
   for (std::uint8_t h = 1; h <= 8; ++h) clients.add(h, 0);
-  for (std::size_t i = 0; i < 8; ++i) clients.entries[i].last_receive_ms = 1000 + Millis(i);
-  clients.entries[5].last_receive_ms = 500;  // idle longest, and past the 60 s
+  for (std::size_t i = 0; i < 8; ++i) clients.entries[i].last_useful_ms = 1000 + Millis(i);
+  clients.entries[5].last_useful_ms = 500;  // idle longest, and past the 60 s
   EXPECT_EQ(gate.admit(clients, newcomer(9), 60499).kind, Kind::kRefuseFull);
   const auto d = gate.admit(clients, newcomer(9), 60500);
   EXPECT_EQ(d.kind, Kind::kAdmit);
@@ -202,6 +202,69 @@ TEST_F(AdmissionTest, WithoutSettingsTheOldRuleHolds) {
   EXPECT_EQ(gate.admit(clients, newcomer(1), 0).kind, Kind::kAdmit);
   clients.add(1, 0);
   EXPECT_EQ(gate.admit(clients, newcomer(1), 1000000).kind, Kind::kRefuseFull);
+}
+
+TEST_F(AdmissionTest, AFullPortGivesANewcomerAStopOnlyExchangeOnePerHost) {
+  Admission gate({8, SIZE_MAX, 0, 2}, &settings);
+  for (std::uint8_t h = 1; h <= 8; ++h) clients.add(h, 0);
+  EXPECT_EQ(gate.admit(clients, newcomer(9), 1000).kind, Kind::kStopOnly);
+  ClientInfo first = newcomer(9);
+  first.stop_only = true;
+  clients.entries.push_back(first);
+  clients.open.push_back(true);
+  // One per host; another host gets the second; then the port refuses.
+  EXPECT_EQ(gate.admit(clients, newcomer(9), 1000).kind, Kind::kRefuseFull);
+  EXPECT_EQ(gate.admit(clients, newcomer(10), 1000).kind, Kind::kStopOnly);
+  ClientInfo second = newcomer(10);
+  second.stop_only = true;
+  clients.entries.push_back(second);
+  clients.open.push_back(true);
+  EXPECT_EQ(gate.admit(clients, newcomer(11), 1000).kind, Kind::kRefuseFull);
+  EXPECT_EQ(gate.counters().stop_only, 2u);
+  // Stop-only exchanges count against nothing else: the per-address cap,
+  // the slots, eviction.
+  clients.entries[0].last_useful_ms = -60000;
+  const auto d = gate.admit(clients, newcomer(12), 1000);
+  EXPECT_EQ(d.kind, Kind::kAdmit);
+  EXPECT_EQ(d.evict, 0u);
+}
+
+TEST_F(AdmissionTest, TheListedOwnerDropsTheStrangerLeastRecentlyUsefulHoweverBusy) {
+  ASSERT_EQ(settings.set_text(settings::Id::kAccessControlNetworks, "10.0.0.1").error, Error::kOk);
+  Admission gate({4, SIZE_MAX, 0, 4}, &settings);
+  for (std::uint8_t h = 2; h <= 5; ++h) clients.add(h, 0);
+  for (std::size_t i = 0; i < 4; ++i) clients.entries[i].last_useful_ms = 100 - Millis(i);
+  // Busy strangers (used within the minute): a stranger gets only STOP...
+  EXPECT_EQ(gate.admit(clients, newcomer(6), 1000).kind, Kind::kStopOnly);
+  // ...the listed owner a slot, the least recently useful stranger's.
+  const auto d = gate.admit(clients, newcomer(1), 1000);
+  EXPECT_EQ(d.kind, Kind::kAdmit);
+  EXPECT_EQ(d.evict, 3u);
+  EXPECT_EQ(gate.counters().evicted_for_listed, 1u);
+}
+
+TEST_F(AdmissionTest, AmongListedClientsTheLeastRecentlyUsefulGivesWay) {
+  ASSERT_EQ(settings.set_text(settings::Id::kAccessControlNetworks, "10.0.0.0/24").error,
+            Error::kOk);
+  Admission gate({3, SIZE_MAX, 0, 3}, &settings);
+  clients.add(2, 0);
+  clients.add(3, 0);
+  clients.add(4, 0);
+  clients.entries[0].last_useful_ms = 900;  // a tracking program, asking every second
+  clients.entries[1].last_useful_ms = 10;   // silent since it came
+  clients.entries[2].last_useful_ms = 500;
+  const auto d = gate.admit(clients, newcomer(1), 1000);
+  EXPECT_EQ(d.kind, Kind::kAdmit);
+  EXPECT_EQ(d.evict, 1u);
+}
+
+TEST_F(AdmissionTest, UnreadableAccessSettingsListNobody) {
+  ASSERT_EQ(settings.set_text(settings::Id::kAccessControlNetworks, "10.0.0.0/24").error,
+            Error::kOk);
+  Admission gate({8, SIZE_MAX, 0}, &settings);
+  EXPECT_TRUE(gate.control_listed(newcomer(1).peer));
+  settings.set_access_unreadable(true);
+  EXPECT_FALSE(gate.control_listed(newcomer(1).peer));
 }
 
 TEST(Address, AnIpv4MappedIpv6AddressIsTheSameHostAsItsIpv4) {

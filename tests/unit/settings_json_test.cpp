@@ -136,34 +136,89 @@ TEST(SettingsJson, LoadAppliesAValidDocument) {
   EXPECT_EQ(s.get(Id::kAzOffsetDeg), 4.5);
 }
 
-TEST(SettingsJson, CorruptOrInvalidDocumentsLeaveTheDefaultsAndAreNotRewritten) {
+TEST(SettingsJson, UnreadableDocumentsLeaveTheDefaultsFailClosedAndAreNotRewritten) {
+  for (const char* doc : {"{\"az.offset_deg\": 4.5", "\x00\x00\x00", "[1, 2]"}) {
+    MemoryStorage storage;
+    storage.has_document = true;
+    storage.document = doc;
+    settings::Settings s;
+    const settings::Settings before = s;
+    settings::Settings scratch;
+    char buf[256];
+    LoadReport report;
+    const LoadOutcome r = load_settings(storage, settings::Settings(), nullptr, s, scratch, buf,
+                                        sizeof(buf), &report);
+    EXPECT_EQ(r.status, LoadOutcome::kCorrupt) << doc;
+    EXPECT_STRNE(r.reason, "") << doc;
+    EXPECT_TRUE(r.access_unreadable) << doc;
+    EXPECT_TRUE(s.access_unreadable()) << doc;
+    EXPECT_TRUE(report.access_unreadable) << doc;
+    for (std::size_t n = 0; n < settings::kCount; ++n)
+      EXPECT_EQ(s.get(static_cast<Id>(n)), before.get(static_cast<Id>(n))) << doc;
+    EXPECT_EQ(storage.saves, 0);
+  }
+}
+
+TEST(SettingsJson, ADamagedDocumentKeepsEveryValidValueAndNamesTheBadOnes) {
   const struct {
     const char* doc;
-    const char* key;
+    const char* key;  // the member named as dropped
+    bool access;      // fails closed
   } cases[] = {
-      {"{\"az.offset_deg\": 4.5", ""},                                   // truncated (torn write)
-      {"\x00\x00\x00", ""},                                              // zeros
-      {"{\"az.offset_deg\": 4.5, \"az.max_deg\": 9000}", "az.max_deg"},  // out of range
-      {"{\"az.min_deg\": 300, \"az.max_deg\": 200}", "az.min_deg"},      // inconsistent
-      {"{\"az.offset\": 1}", "az.offset"},  // unknown (hand-edited) key
+      {R"({"az.offset_deg": 4.5, "az.max_deg": 99999})", "az.max_deg", false},   // out of range
+      {R"({"az.offset_deg": 4.5, "az.max_deg": "wide"})", "az.max_deg", false},  // wrong type
+      {R"({"az.offset_deg": 4.5, "az.offset": 1})", "az.offset", false},         // unknown key
+      {R"({"az.offset_deg": 4.5, "az.min_deg": 300, "az.max_deg": 200})", "az.min_deg", false},
+      {R"({"az.offset_deg": 4.5, "park.az_deg": 1, "park.az_deg": 2})", "park.az_deg", false},
+      // The access settings themselves: every valid value still read, but closed.
+      {R"({"az.offset_deg": 4.5, "access.control_networks": "10.0.0.0/33"})",
+       "access.control_networks", true},
+      {R"({"az.offset_deg": 4.5, "web.password": 12})", "web.password", true},
+      {R"({"az.offset_deg": 4.5, "access.control_network": "10.0.0.0/8"})",
+       "access.control_network", true},  // a typo: meant as a rule
+      // Cut short after a whole member: the start is read, the rest unknown.
+      {"{\"az.offset_deg\": 4.5,\n \"access.control_networks\": \"10.", "", true},
   };
   for (const auto& c : cases) {
     MemoryStorage storage;
     storage.has_document = true;
     storage.document = c.doc;
     settings::Settings s;
-    const settings::Settings before = s;
     settings::Settings scratch;
     char buf[256];
-    const LoadOutcome r =
-        load_settings(storage, settings::Settings(), nullptr, s, scratch, buf, sizeof(buf));
-    EXPECT_EQ(r.status, LoadOutcome::kCorrupt) << c.doc;
-    EXPECT_STRNE(r.reason, "") << c.doc;
-    EXPECT_STREQ(r.key, c.key) << c.doc;
-    for (std::size_t n = 0; n < settings::kCount; ++n)
-      EXPECT_EQ(s.get(static_cast<Id>(n)), before.get(static_cast<Id>(n))) << c.doc;
+    LoadReport report;
+    const LoadOutcome r = load_settings(storage, settings::Settings(), nullptr, s, scratch, buf,
+                                        sizeof(buf), &report);
+    EXPECT_EQ(r.status, LoadOutcome::kRepaired) << c.doc;
+    EXPECT_EQ(s.get(Id::kAzOffsetDeg), 4.5) << c.doc;  // the valid value is kept
+    ASSERT_GE(report.size(), 1u) << c.doc;
+    EXPECT_STREQ(report[0].key, c.key) << c.doc;
+    EXPECT_STRNE(report[0].reason, "") << c.doc;
+    EXPECT_EQ(r.access_unreadable, c.access) << c.doc;
+    EXPECT_EQ(s.access_unreadable(), c.access) << c.doc;
+    EXPECT_EQ(s.check_consistency().error, Error::kOk) << c.doc;
+    EXPECT_EQ(s.get(Id::kAzMaxDeg), settings::Settings().get(Id::kAzMaxDeg)) << c.doc;
+    EXPECT_TRUE(s.text(Id::kAccessControlNetworks).empty()) << c.doc;
     EXPECT_EQ(storage.saves, 0);
   }
+}
+
+TEST(SettingsJson, BothSidesOfABrokenRuleAreDroppedAndTheRestKept) {
+  MemoryStorage storage;
+  storage.has_document = true;
+  storage.document = R"({"az.min_deg": 300, "az.max_deg": 200, "park.el_deg": 12})";
+  settings::Settings s;
+  settings::Settings scratch;
+  char buf[256];
+  LoadReport report;
+  ASSERT_EQ(
+      load_settings(storage, settings::Settings(), nullptr, s, scratch, buf, sizeof(buf), &report)
+          .status,
+      LoadOutcome::kRepaired);
+  EXPECT_EQ(report.size(), 2u);
+  EXPECT_EQ(s.get(Id::kParkElDeg), 12.0);
+  EXPECT_EQ(s.get(Id::kAzMinDeg), settings::Settings().get(Id::kAzMinDeg));
+  EXPECT_FALSE(s.access_unreadable());
 }
 
 TEST(SettingsJson, LoadReportsADocumentTooLargeForTheBuffer) {

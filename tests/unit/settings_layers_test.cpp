@@ -97,14 +97,15 @@ TEST(SettingsLayers, AGeometryValueTheUserSetWinsOverEveryProfile) {
   EXPECT_EQ(load(storage, g5500_like()).values.get(Id::kAzMaxDeg), 400.0);
 }
 
-TEST(SettingsLayers, AUserLayerThatClashesWithTheNewBaseLeavesTheBase) {
+TEST(SettingsLayers, AUserValueThatClashesWithTheNewBaseIsDropped) {
   Settings base = g5500_like();
   Settings values = base;
   ASSERT_EQ(values.set(Id::kAzMinDeg, 360).error, Error::kOk);  // 360..450 is a range
   MemoryStorage storage;
   save(storage, values, base);
   const Loaded r = load(storage, ham4_like());  // 360..360 is not
-  EXPECT_EQ(r.outcome.status, web::LoadOutcome::kCorrupt);
+  EXPECT_EQ(r.outcome.status, web::LoadOutcome::kRepaired);
+  EXPECT_STREQ(r.outcome.key, "az.min_deg");
   EXPECT_EQ(r.values.get(Id::kAzMaxDeg), 360.0);
   EXPECT_EQ(r.values.get(Id::kAzMinDeg), Settings().get(Id::kAzMinDeg));
 }

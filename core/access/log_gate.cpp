@@ -1,0 +1,76 @@
+#include "access/log_gate.hpp"
+
+namespace rotord::access {
+namespace {
+
+bool same(const Peer& a, const Peer& b) {
+  return a.kind == b.kind && a.ipv4 == b.ipv4;
+}
+
+}  // namespace
+
+void LogGate::roll(Millis now) {
+  if (!started_) {
+    started_ = true;
+    window_start_ = now;
+  }
+  if (now - window_start_ < kWindowMs) return;
+  window_start_ = now;
+  lines_ = 0;
+  dropped_ += dropping_;
+  dropping_ = 0;
+}
+
+bool LogGate::admit_line(Millis now) {
+  roll(now);
+  if (lines_ >= kLinesPerWindow) {
+    ++dropping_;
+    return false;
+  }
+  ++lines_;
+  return true;
+}
+
+bool LogGate::admit(const Peer& source, Millis now, Summary& evicted) {
+  evicted = {};
+  roll(now);
+  Entry* slot = nullptr;
+  for (Entry& e : entries_) {
+    if (e.used && same(e.source, source)) slot = &e;
+  }
+  if (slot != nullptr && now - slot->since < kWindowMs) {
+    ++slot->quiet;  // its minute's first line is out: counted, summed up later
+    return false;
+  }
+  if (slot == nullptr) {
+    // A free entry, else the one whose minute began first gives way.
+    for (Entry& e : entries_) {
+      if (!e.used) {
+        slot = &e;
+        break;
+      }
+      if (slot == nullptr || e.since < slot->since) slot = &e;
+    }
+  }
+  if (slot->used && slot->quiet > 0) evicted = {slot->source, slot->quiet};
+  *slot = Entry{true, source, now, 0};
+  return admit_line(now);
+}
+
+LogGate::Summary LogGate::next_due(Millis now) {
+  roll(now);
+  for (Entry& e : entries_) {
+    if (!e.used || e.quiet == 0 || now - e.since < kWindowMs) continue;
+    const Summary s{e.source, e.quiet};
+    e.quiet = 0;
+    return s;
+  }
+  if (dropped_ > 0) {
+    const Summary s{Peer{}, dropped_};
+    dropped_ = 0;
+    return s;
+  }
+  return {};
+}
+
+}  // namespace rotord::access
