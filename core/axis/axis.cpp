@@ -39,6 +39,7 @@ void Axis::begin(Millis now) {
 }
 
 void Axis::update_position(Millis now) {
+  tracker_.set_moving(state_ != AxisState::kIdle && state_ != AxisState::kFault);
   const PositionTracker::Update u = tracker_.update(now);
   if (u.fault != AxisFault::kNone && state_ != AxisState::kFault) latch_fault(u.fault);
   if (u.frame_changed && request_.kind == RequestKind::kGoto) request_.kind = RequestKind::kNone;
@@ -296,6 +297,29 @@ Direction Axis::desired_direction() {
   return dir;
 }
 
+void Axis::check_motion(Millis now) {
+  if (std::fabs(pos_deg() - stall_ref_deg_) >= cfg_.stall_deg) {
+    stall_ref_deg_ = pos_deg();
+    stall_ref_t_ = now;
+  } else if (now - stall_ref_t_ >= cfg_.stall_ms) {
+    latch_fault(AxisFault::kStall);
+    return;
+  }
+  // A frozen sensor against a jam: the drive is on, the axis was seen
+  // turning at a good fraction of its speed, and then the raw value stopped
+  // changing in one step, noise and all. A jammed or braked rotator slows
+  // (the coast and the motor's inertia) and its sensor's noise goes on;
+  // only a dead sensor repeats the very same value.
+  if (tracker_.raw_changed_at() < drive_started_at_) return;  // judge this drive only
+  const float was_deg_s = std::fabs(tracker_.speed_at_last_change());
+  const float min_deg_s = 0.5f * expected_rate_deg_s(true);
+  if (was_deg_s < min_deg_s || was_deg_s <= 0.0f) return;
+  Millis wait_ms = static_cast<Millis>(3.0f * kCoarsestStepDeg * 1000.0f / was_deg_s);
+  if (wait_ms < kSensorStuckMs) wait_ms = kSensorStuckMs;
+  if (wait_ms < cfg_.stall_ms && now - tracker_.raw_changed_at() >= wait_ms)
+    latch_fault(AxisFault::kSensorStuck);
+}
+
 void Axis::begin_start(Direction dir, Millis now) {
   dir_ = dir;
   reversing_ = false;
@@ -305,6 +329,7 @@ void Axis::begin_start(Direction dir, Millis now) {
   ++moves_;
   stall_ref_t_ = now;
   stall_ref_deg_ = pos_deg();
+  drive_started_at_ = now;
   fast_at_ = now;  // the motor's speed is not settled yet
   seq_.start(make_start_sequence(cfg_), dir, now);
   seq_.run(now, out_);
@@ -415,12 +440,7 @@ void Axis::tick(Millis now) {
           break;
         }
         drive_moving(now);
-        if (std::fabs(pos_deg() - stall_ref_deg_) >= cfg_.stall_deg) {
-          stall_ref_deg_ = pos_deg();
-          stall_ref_t_ = now;
-        } else if (now - stall_ref_t_ >= cfg_.stall_ms) {
-          latch_fault(AxisFault::kStall);
-        }
+        check_motion(now);
         if (state_ == AxisState::kMoving &&
             now - move_started_ >= move_allowance_ms(move_distance_deg_))
           latch_fault(AxisFault::kTimeout);

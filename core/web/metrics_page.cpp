@@ -27,7 +27,7 @@ struct AxisView {
 
 bool is_sensor_fault(AxisFault f) {
   return f == AxisFault::kSensorLost || f == AxisFault::kSensorRange ||
-         f == AxisFault::kSensorJump || f == AxisFault::kNoSensor;
+         f == AxisFault::kSensorJump || f == AxisFault::kNoSensor || f == AxisFault::kSensorStuck;
 }
 
 void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s) {
@@ -88,6 +88,11 @@ void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s
   w.family("rotord_axis_moves_total", "counter",
            "Motor starts since the controller started (relay wear, hunting).");
   for (std::size_t n = 0; n < count; ++n) w.integer({{"axis", all[n].label}}, all[n].status->moves);
+  w.family("rotord_axis_sensor_readings_rejected_total", "counter",
+           "Position readings the robust filter turned away since the controller started "
+           "(noise bursts, spikes); a sensor going bad shows here before it latches a fault.");
+  for (std::size_t n = 0; n < count; ++n)
+    w.integer({{"axis", all[n].label}}, all[n].status->readings_rejected);
   w.family("rotord_axis_limit_active", "gauge",
            "1 while that direction is blocked by a limit switch or soft limit.");
   for (std::size_t n = 0; n < count; ++n) {
