@@ -26,6 +26,7 @@ void Axis::configure(const AxisConfig& cfg) {
   cfg_ = cfg;
   if (first) coast_s_ = cfg.coast_s;
   if (frame_moved && request_.kind == RequestKind::kGoto) request_.kind = RequestKind::kNone;
+  if (frame_moved) rest_valid_ = false;  // an offset moved the position, not the wind
 }
 
 void Axis::begin(Millis now) {
@@ -43,6 +44,7 @@ void Axis::update_position(Millis now) {
   const PositionTracker::Update u = tracker_.update(now);
   if (u.fault != AxisFault::kNone && state_ != AxisState::kFault) latch_fault(u.fault);
   if (u.frame_changed && request_.kind == RequestKind::kGoto) request_.kind = RequestKind::kNone;
+  if (u.frame_changed) rest_valid_ = false;  // a recalibration, not the wind
 }
 
 void Axis::shutdown() {
@@ -320,6 +322,40 @@ void Axis::check_motion(Millis now) {
     latch_fault(AxisFault::kSensorStuck);
 }
 
+void Axis::check_slip(Millis now) {
+  // Only at rest with every output off (a relay rotator's brake is then
+  // set): any motion now is the wind's, or gravity's, not the motor's.
+  if (state_ != AxisState::kIdle || !tracker_.have_position() || cfg_.slip_deg <= 0.0f ||
+      out_.any_on()) {
+    rest_valid_ = false;
+    slipping_ = false;
+    return;
+  }
+  const float pos = pos_deg();
+  if (!rest_valid_) {
+    rest_valid_ = true;
+    rest_deg_ = pos;
+    return;
+  }
+  if (!slipping_) {
+    if (std::fabs(pos - rest_deg_) < cfg_.slip_deg) return;
+    slipping_ = true;
+    ++slips_;
+    slip_quiet_deg_ = pos;
+    slip_quiet_at_ = now;
+    if (cfg_.slip_fault) latch_fault(AxisFault::kSlip);
+    return;
+  }
+  // One slip, however far it goes: over once the position has settled.
+  if (std::fabs(pos - slip_quiet_deg_) >= 0.5f * cfg_.slip_deg) {
+    slip_quiet_deg_ = pos;
+    slip_quiet_at_ = now;
+  } else if (now - slip_quiet_at_ >= kSlipQuietMs) {
+    slipping_ = false;
+    rest_deg_ = pos;  // the new rest
+  }
+}
+
 void Axis::begin_start(Direction dir, Millis now) {
   dir_ = dir;
   reversing_ = false;
@@ -460,6 +496,8 @@ void Axis::tick(Millis now) {
     }
   }
 
+  check_slip(now);
+
   // Interlock, whatever the state: never both directions at once.
   if (out_.on(OutputChannel::kRelayCw) && out_.on(OutputChannel::kRelayCcw)) out_.all_off();
   if (out_.on(OutputChannel::kPwmCw) && out_.on(OutputChannel::kPwmCcw)) out_.all_off();
@@ -483,6 +521,8 @@ void Axis::publish() {
   status_.fault = fault_;
   status_.coast_s = coast_s_;
   status_.moves = moves_;
+  status_.slips = slips_;
+  status_.slipping = slipping_;
   status_.outputs = out_;
 }
 

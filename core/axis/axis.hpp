@@ -28,6 +28,9 @@ class Axis {
   /// 0.35 deg): below a speed that crosses three of them in kSensorStuckMs
   /// the wait grows so a slow axis is not taken for a frozen sensor.
   static constexpr float kCoarsestStepDeg = 0.5f;
+  /// A slip is over once the position has stayed within half of slip.deg
+  /// for this long; the next one counts again.
+  static constexpr Millis kSlipQuietMs = 1000;
 
   Axis(AxisId id, const AxisIo& io);
   // The tracker refers to this axis's io and configuration.
@@ -88,6 +91,8 @@ class Axis {
   void latch_fault(AxisFault fault);
   /// The stall rule, and its sharper twin for a sensor that froze.
   void check_motion(Millis now);
+  /// Uncommanded motion while the outputs are off (slip.deg).
+  void check_slip(Millis now);
   void publish();
 
   AxisId id_;
@@ -123,6 +128,12 @@ class Axis {
   bool arrived_ = false;
   int starts_this_request_ = 0;
   std::uint32_t moves_ = 0;
+  bool rest_valid_ = false;  // rest_deg_ is where the axis came to rest
+  float rest_deg_ = 0.0f;
+  bool slipping_ = false;
+  float slip_quiet_deg_ = 0.0f;  // where a slip last moved to ...
+  Millis slip_quiet_at_ = 0;     // ... and when
+  std::uint32_t slips_ = 0;
 
   AxisStatus status_;
 };

@@ -19,6 +19,7 @@ enum class AxisFault : std::uint8_t {
   kTimeout,      ///< a single move took too long
   kNoSensor,     ///< the configured sensor is not fitted
   kSensorStuck,  ///< the reading froze while the motor drove the axis at speed
+  kSlip,         ///< moved at rest, outputs off (slip.fault on)
   kEstop,        ///< the emergency-stop input is (or was) active
 };
 /// Kinds of AxisFault, kNone included (kEstop must stay the last).
@@ -63,6 +64,10 @@ struct AxisStatus {
   /// Sensor readings the robust filter turned away since boot (bursts,
   /// spikes): a sensor going bad shows here before it latches a fault.
   std::uint32_t readings_rejected = 0;
+  /// Uncommanded motion at rest (slip.deg): events since boot, and whether
+  /// one is going on now.
+  std::uint32_t slips = 0;
+  bool slipping = false;
   DriveOutputs outputs;
 };
 

@@ -93,6 +93,13 @@ void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s
            "(noise bursts, spikes); a sensor going bad shows here before it latches a fault.");
   for (std::size_t n = 0; n < count; ++n)
     w.integer({{"axis", all[n].label}}, all[n].status->readings_rejected);
+  w.family("rotord_axis_slips_total", "counter",
+           "Slips since the controller started: the position moved slip.deg at rest with the "
+           "outputs off (wind against the brake).");
+  for (std::size_t n = 0; n < count; ++n) w.integer({{"axis", all[n].label}}, all[n].status->slips);
+  w.family("rotord_axis_slipping", "gauge", "1 while a slip goes on.");
+  for (std::size_t n = 0; n < count; ++n)
+    w.integer({{"axis", all[n].label}}, all[n].status->slipping ? 1 : 0);
   w.family("rotord_axis_limit_active", "gauge",
            "1 while that direction is blocked by a limit switch or soft limit.");
   for (std::size_t n = 0; n < count; ++n) {
