@@ -14,6 +14,7 @@
 #include "options.hpp"
 #include "protocol/console_session.hpp"
 #include "protocol/datagram_registry.hpp"
+#include "rotator/axis_events.hpp"
 #include "rotator/controller.hpp"
 #include "serial_transport.hpp"
 #include "service_notify.hpp"
@@ -138,6 +139,7 @@ class Daemon final : private web::RebootHook {
   std::unique_ptr<ClockControl> clock_control_;  ///< --clock manual
   int exit_code_ = 0;
   std::unique_ptr<Controller> controller_;
+  AxisEvents axis_events_;  // faults and slips, for the log
   std::unique_ptr<web::Api> api_;
   std::unique_ptr<MqttClient> mqtt_;  ///< mqtt.enabled: on the station's broker
   bool reboot_pending_ = false;
