@@ -190,7 +190,7 @@ PositionTracker::Update PositionTracker::update(Millis now) {
 }
 
 // Runs on the Pico every tick: a dozen float operations (soft float on the
-// M0+: about 1-2 us at 125 MHz), no heap.
+// M0+), no division, no heap.
 AxisFault PositionTracker::reject(Millis now, float speed_deg_s) {
   ++gated_;
   rejected_bits_ = static_cast<std::uint16_t>((rejected_bits_ << 1) | 1u);
