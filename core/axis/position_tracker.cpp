@@ -189,8 +189,6 @@ PositionTracker::Update PositionTracker::update(Millis now) {
   return u;
 }
 
-// Runs on the Pico every tick: a dozen float operations (soft float on the
-// M0+), no division, no heap.
 AxisFault PositionTracker::reject(Millis now, float speed_deg_s) {
   ++gated_;
   rejected_bits_ = static_cast<std::uint16_t>((rejected_bits_ << 1) | 1u);
@@ -203,10 +201,12 @@ AxisFault PositionTracker::reject(Millis now, float speed_deg_s) {
   return ++jump_rejects_ >= kJumpRejectLimit ? AxisFault::kSensorJump : AxisFault::kNone;
 }
 
+// Runs on the Pico every tick: a dozen float operations (soft float on the
+// M0+), no division, no heap.
 bool PositionTracker::plausible(float pos, Millis now, float speed_deg_s) {
   // Where the measured motion puts the antenna now, and how far a reading
-  // may sit from that: the sensor's own noise (learnt; never below its
-  // resolution or a quarter of the tolerance), plus what a change of speed
+  // may sit from that: the sensor's own noise (learnt; never below 1.5 x
+  // its resolution or half the tolerance), plus what a change of speed
   // could add since the last reading (up to the rated speed again, so a
   // start from rest is followed).
   Millis gap_ms = now - pos_t_;
