@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bounds.hpp"
+#include "care.hpp"
 #include "control_quality.hpp"
 #include "results.hpp"
 #include "tick_cost.hpp"
@@ -24,6 +25,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out_path = argv[++i];
+    if (std::strcmp(argv[i], "--care") == 0) {  // the day unattended alone
+      write_json(stdout, run_care_day());
+      return 0;
+    }
   }
   std::vector<Result> results;
   int rows = 0;
@@ -39,6 +44,7 @@ int main(int argc, char** argv) {
   for (Result& r : run_control_quality()) results.push_back(std::move(r));
   for (Result& r : run_tracking_error()) results.push_back(std::move(r));
   for (Result& r : run_tracking_mode()) results.push_back(std::move(r));
+  for (Result& r : run_care_day()) results.push_back(std::move(r));
   results.push_back(run_tick_cost());
   std::FILE* out = out_path ? std::fopen(out_path, "w") : stdout;
   if (out == nullptr) {

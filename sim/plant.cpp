@@ -78,7 +78,15 @@ void AxisPlant::integrate(double h_s) {
     w_deg_s_ = 0.0;  // nothing moves; phi and theta hold
     return;
   }
-  if (!applied_.brake_released) {
+  if (wind_slip_.active(t_s_) && !applied_.powered) {
+    // The wind turns the antenna, which drags the gear train behind it
+    // from the far flank of the play.
+    const double half_deg = 0.5 * params_.backlash_deg;
+    w_deg_s_ = 0.0;
+    theta_deg_ += wind_slip_deg_s_ * h_s;
+    if (theta_deg_ - phi_deg_ > half_deg) phi_deg_ = theta_deg_ - half_deg;
+    if (theta_deg_ - phi_deg_ < -half_deg) phi_deg_ = theta_deg_ + half_deg;
+  } else if (!applied_.brake_released) {
     integrate_brake(h_s);
   } else if (applied_.powered) {
     const double load = slip_.active(t_s_) ? slip_load_factor_ : 1.0;

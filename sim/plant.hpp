@@ -35,9 +35,17 @@ class AxisPlant {
     slip_load_factor_ = load_factor;
     slip_.start(t_s_, duration_s);
   }
+  /// Wind beating the brake (or the gear's hold, without one): while the
+  /// motor is unpowered the antenna turns at `speed_deg_s`. A powered motor
+  /// overrides it (its load is slip()'s business).
+  void wind_slip(double speed_deg_s, double duration_s) {
+    wind_slip_deg_s_ = speed_deg_s;
+    wind_slip_.start(t_s_, duration_s);
+  }
   void clear_faults() {
     jam_.clear();
     slip_.clear();
+    wind_slip_.clear();
   }
 
   double theta_deg() const { return theta_deg_; }  ///< output angle (what sensors see)
@@ -86,6 +94,8 @@ class AxisPlant {
   FaultWindow jam_;
   FaultWindow slip_;
   double slip_load_factor_ = 1.0;
+  FaultWindow wind_slip_;
+  double wind_slip_deg_s_ = 0.0;
   bool stalled_ = false;
 };
 

@@ -52,6 +52,10 @@ class SimRotator {
   void slip(AxisId axis, double load_factor, double duration_s) {
     plant(axis).slip(load_factor, duration_s);
   }
+  /// Wind turning the unpowered antenna against its brake (AxisPlant::wind_slip).
+  void wind_slip(AxisId axis, double speed_deg_s, double duration_s) {
+    plant(axis).wind_slip(speed_deg_s, duration_s);
+  }
   /// Position sensor lost: pot reads 0 counts, MA3 stops pulsing.
   void sensor_loss(AxisId axis, double duration_s);
   /// Position sensor noise raised to sigma_deg (converted to volts for a pot).

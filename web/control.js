@@ -104,6 +104,9 @@
     const faults = axes.filter(([, a]) => a.fault !== 'none').map(([n, a]) => `${n}: ${a.fault}`);
     $('faults').hidden = faults.length === 0;
     $('fault-text').textContent = faults.length ? 'Fault ' + faults.join(', ') : '';
+    // Looked after unattended (docs/care.md): slips and rejected readings.
+    $('care').textContent = axes.map(([n, a]) => `${n} ${a.slips} slip${a.slips === 1 ? '' : 's'}` +
+      (a.slipping ? ' (slipping now)' : '') + `, ${a.readings_rejected} rejected`).join(' · ');
     if (document.activeElement !== $('speed')) $('speed').value = s.speed_pct;
     // A relay drive has one speed: the slider would move and change nothing.
     const oneSpeed = s.speed_applies === false;

@@ -26,6 +26,7 @@ void Axis::configure(const AxisConfig& cfg) {
   cfg_ = cfg;
   if (first) coast_s_ = cfg.coast_s;
   if (frame_moved && request_.kind == RequestKind::kGoto) request_.kind = RequestKind::kNone;
+  if (frame_moved) rest_valid_ = false;  // an offset moved the position, not the wind
 }
 
 void Axis::begin(Millis now) {
@@ -39,9 +40,11 @@ void Axis::begin(Millis now) {
 }
 
 void Axis::update_position(Millis now) {
+  tracker_.set_moving(state_ != AxisState::kIdle && state_ != AxisState::kFault);
   const PositionTracker::Update u = tracker_.update(now);
   if (u.fault != AxisFault::kNone && state_ != AxisState::kFault) latch_fault(u.fault);
   if (u.frame_changed && request_.kind == RequestKind::kGoto) request_.kind = RequestKind::kNone;
+  if (u.frame_changed) rest_valid_ = false;  // a recalibration, not the wind
 }
 
 void Axis::shutdown() {
@@ -296,6 +299,62 @@ Direction Axis::desired_direction() {
   return dir;
 }
 
+void Axis::check_motion(Millis now) {
+  if (std::fabs(pos_deg() - stall_ref_deg_) >= cfg_.stall_deg) {
+    stall_ref_deg_ = pos_deg();
+    stall_ref_t_ = now;
+  } else if (now - stall_ref_t_ >= cfg_.stall_ms) {
+    latch_fault(AxisFault::kStall);
+    return;
+  }
+  // A frozen sensor against a jam: the drive is on, the axis was seen
+  // turning at a good fraction of its speed, and then the raw value stopped
+  // changing in one step, noise and all. A jammed or braked rotator slows
+  // (the coast and the motor's inertia) and its sensor's noise goes on;
+  // only a dead sensor repeats the very same value.
+  if (tracker_.raw_changed_at() < drive_started_at_) return;  // judge this drive only
+  const float was_deg_s = std::fabs(tracker_.speed_at_last_change());
+  const float min_deg_s = 0.5f * expected_rate_deg_s(true);
+  if (was_deg_s < min_deg_s || was_deg_s <= 0.0f) return;
+  Millis wait_ms = static_cast<Millis>(3.0f * kCoarsestStepDeg * 1000.0f / was_deg_s);
+  if (wait_ms < kSensorStuckMs) wait_ms = kSensorStuckMs;
+  if (wait_ms < cfg_.stall_ms && now - tracker_.raw_changed_at() >= wait_ms)
+    latch_fault(AxisFault::kSensorStuck);
+}
+
+void Axis::check_slip(Millis now) {
+  // Only at rest with every output off (a relay rotator's brake is then
+  // set): any motion now is the wind's, or gravity's, not the motor's.
+  if (state_ != AxisState::kIdle || !tracker_.have_position() || cfg_.slip_deg <= 0.0f ||
+      out_.any_on()) {
+    rest_valid_ = false;
+    slipping_ = false;
+    return;
+  }
+  const float pos = pos_deg();
+  if (!rest_valid_) {
+    rest_valid_ = true;
+    rest_deg_ = pos;
+    return;
+  }
+  if (!slipping_) {
+    if (std::fabs(pos - rest_deg_) < cfg_.slip_deg) return;
+    slipping_ = true;
+    ++slips_;
+    slip_quiet_deg_ = pos;
+    slip_quiet_at_ = now;
+    return;
+  }
+  // One slip, however far it goes: over once the position has settled.
+  if (std::fabs(pos - slip_quiet_deg_) >= 0.5f * cfg_.slip_deg) {
+    slip_quiet_deg_ = pos;
+    slip_quiet_at_ = now;
+  } else if (now - slip_quiet_at_ >= kSlipQuietMs) {
+    slipping_ = false;
+    rest_deg_ = pos;  // the new rest
+  }
+}
+
 void Axis::begin_start(Direction dir, Millis now) {
   dir_ = dir;
   reversing_ = false;
@@ -305,6 +364,7 @@ void Axis::begin_start(Direction dir, Millis now) {
   ++moves_;
   stall_ref_t_ = now;
   stall_ref_deg_ = pos_deg();
+  drive_started_at_ = now;
   fast_at_ = now;  // the motor's speed is not settled yet
   seq_.start(make_start_sequence(cfg_), dir, now);
   seq_.run(now, out_);
@@ -415,12 +475,7 @@ void Axis::tick(Millis now) {
           break;
         }
         drive_moving(now);
-        if (std::fabs(pos_deg() - stall_ref_deg_) >= cfg_.stall_deg) {
-          stall_ref_deg_ = pos_deg();
-          stall_ref_t_ = now;
-        } else if (now - stall_ref_t_ >= cfg_.stall_ms) {
-          latch_fault(AxisFault::kStall);
-        }
+        check_motion(now);
         if (state_ == AxisState::kMoving &&
             now - move_started_ >= move_allowance_ms(move_distance_deg_))
           latch_fault(AxisFault::kTimeout);
@@ -439,6 +494,8 @@ void Axis::tick(Millis now) {
         break;
     }
   }
+
+  check_slip(now);
 
   // Interlock, whatever the state: never both directions at once.
   if (out_.on(OutputChannel::kRelayCw) && out_.on(OutputChannel::kRelayCcw)) out_.all_off();
@@ -463,6 +520,8 @@ void Axis::publish() {
   status_.fault = fault_;
   status_.coast_s = coast_s_;
   status_.moves = moves_;
+  status_.slips = slips_;
+  status_.slipping = slipping_;
   status_.outputs = out_;
 }
 

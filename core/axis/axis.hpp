@@ -21,6 +21,16 @@ class Axis {
  public:
   /// Extra moves allowed to correct a go-to that ended outside tolerance.
   static constexpr int kMaxCorrections = 2;
+  /// A reading exactly unchanged this long while driven at speed is a frozen
+  /// sensor (SENSOR_STUCK), caught long before the stall rule (stall_ms).
+  static constexpr Millis kSensorStuckMs = 600;
+  /// The coarsest step a sensor's raw value moves in (a 10-bit MA3 code is
+  /// 0.35 deg): below a speed that crosses three of them in kSensorStuckMs
+  /// the wait grows so a slow axis is not taken for a frozen sensor.
+  static constexpr float kCoarsestStepDeg = 0.5f;
+  /// A slip is over once the position has stayed within half of slip.deg
+  /// for this long; the next one counts again.
+  static constexpr Millis kSlipQuietMs = 1000;
 
   Axis(AxisId id, const AxisIo& io);
   // The tracker refers to this axis's io and configuration.
@@ -79,6 +89,10 @@ class Axis {
   void drive_moving(Millis now);
   void finish_stop(Millis now);
   void latch_fault(AxisFault fault);
+  /// The stall rule, and its sharper twin for a sensor that froze.
+  void check_motion(Millis now);
+  /// Uncommanded motion while the outputs are off (slip.deg).
+  void check_slip(Millis now);
   void publish();
 
   AxisId id_;
@@ -103,6 +117,7 @@ class Axis {
   Millis move_started_ = 0;         // the request began (or its speed changed) then ...
   float move_distance_deg_ = 0.0f;  // ... with this far to go: sets its TIMEOUT allowance
   Millis stall_ref_t_ = 0;
+  Millis drive_started_at_ = 0;  // the motor was last started then
   float stall_ref_deg_ = 0.0f;
   float cut_deg_ = 0.0f;
   float cut_speed_deg_s_ = 0.0f;
@@ -113,6 +128,12 @@ class Axis {
   bool arrived_ = false;
   int starts_this_request_ = 0;
   std::uint32_t moves_ = 0;
+  bool rest_valid_ = false;  // rest_deg_ is where the axis came to rest
+  float rest_deg_ = 0.0f;
+  bool slipping_ = false;
+  float slip_quiet_deg_ = 0.0f;  // where a slip last moved to ...
+  Millis slip_quiet_at_ = 0;     // ... and when
+  std::uint32_t slips_ = 0;
 
   AxisStatus status_;
 };

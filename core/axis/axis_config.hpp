@@ -52,6 +52,7 @@ struct AxisConfig {
   float pwm_dead_band = 0.3f;     ///< H-bridge duty below which the motor does not turn
   float coast_s = 0.15f;
   bool coast_learn = true;
+  float slip_deg = 2.0f;  ///< uncommanded motion at rest counted as a slip (0 = off)
 };
 
 AxisConfig axis_config_from(const settings::Settings& s, AxisId axis);

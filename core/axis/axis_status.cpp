@@ -36,6 +36,8 @@ const char* axis_fault_name(AxisFault fault) {
       return "TIMEOUT";
     case AxisFault::kNoSensor:
       return "NO_SENSOR";
+    case AxisFault::kSensorStuck:
+      return "SENSOR_STUCK";
     case AxisFault::kEstop:
       return "ESTOP";
   }

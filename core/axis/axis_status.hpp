@@ -18,6 +18,7 @@ enum class AxisFault : std::uint8_t {
   kSensorJump,   ///< implausible jumps between readings
   kTimeout,      ///< a single move took too long
   kNoSensor,     ///< the configured sensor is not fitted
+  kSensorStuck,  ///< the reading froze while the motor drove the axis at speed
   kEstop,        ///< the emergency-stop input is (or was) active
 };
 /// Kinds of AxisFault, kNone included (kEstop must stay the last).
@@ -59,6 +60,13 @@ struct AxisStatus {
   bool t2 = false;
   float coast_s = 0.0f;     ///< learned coast time constant
   std::uint32_t moves = 0;  ///< motor starts since boot (relay wear, hunting checks)
+  /// Sensor readings the robust filter turned away since boot (bursts,
+  /// spikes): a sensor going bad shows here before it latches a fault.
+  std::uint32_t readings_rejected = 0;
+  /// Uncommanded motion at rest (slip.deg): events since boot, and whether
+  /// one is going on now.
+  std::uint32_t slips = 0;
+  bool slipping = false;
   DriveOutputs outputs;
 };
 

@@ -58,6 +58,7 @@ bool PositionTracker::configure(const AxisConfig& next) {
     if (chosen != nullptr) chosen->restart();
   }
   sensor_ = chosen;
+  resolution_deg_ = resolution_deg(next);
   // A new offset moves the reported position; shift the history with it so the
   // plausibility check does not take the change for a jump.
   if (!have_pos_ || offset_change == 0.0f) return false;
@@ -69,6 +70,24 @@ bool PositionTracker::configure(const AxisConfig& next) {
 void PositionTracker::clear_errors() {
   jump_rejects_ = 0;
   bad_since_ = -1;
+  rejected_bits_ = 0;
+  resync_ = true;
+}
+
+float PositionTracker::resolution_deg(const AxisConfig& c) const {
+  switch (c.sensor) {
+    case SensorType::kPot: {
+      const auto& lo = c.pot_cal.points[0];
+      const auto& hi = c.pot_cal.points[static_cast<std::size_t>(c.pot_cal.count - 1)];
+      const float counts = std::fabs(hi.counts - lo.counts);
+      return counts > 0.0f ? std::fabs(hi.deg - lo.deg) / counts : 0.1f;
+    }
+    case SensorType::kMa3:
+      return 360.0f / static_cast<float>(ma3_timing(c.ma3_bits).counts);
+    case SensorType::kMag:
+      return 0.1f;  // a heading from 12-16 bit field counts
+  }
+  return 0.1f;
 }
 
 void PositionTracker::read_switches() {
@@ -107,13 +126,21 @@ PositionTracker::Update PositionTracker::update(Millis now) {
   Update u;
   if (sensor_ == nullptr) return u;
   const PositionReading r = sensor_->read(now);
+  const float speed_deg_s = estimate_speed();  // of the readings taken so far
+  note_raw(r.raw, now, speed_deg_s);
   raw_ = r.raw;
   // A weak or distorted field still gives raw samples, which is what the
   // magnetometer calibration needs; only a silent chip gives none.
   mag_answered_ = r.ok || r.fault != SensorFault::kNoSignal;
   if (!r.ok) {
+    // A reading the sensor itself found implausible (a glitching PWM
+    // frame) counts towards a burst like one the gate turned away.
+    if (r.fault == SensorFault::kImplausible && have_pos_) {
+      const AxisFault f = reject(now, speed_deg_s);
+      if (f != AxisFault::kNone) u.fault = f;
+    }
     if (bad_since_ < 0) bad_since_ = now;
-    if (now - bad_since_ >= kSensorGraceMs) {
+    if (now - bad_since_ >= kSensorGraceMs && u.fault == AxisFault::kNone) {
       u.fault = r.fault == SensorFault::kOutOfRange    ? AxisFault::kSensorRange
                 : r.fault == SensorFault::kImplausible ? AxisFault::kSensorJump
                                                        : AxisFault::kSensorLost;
@@ -138,19 +165,78 @@ PositionTracker::Update PositionTracker::update(Millis now) {
     jump_rejects_ = 0;
     history_count_ = 0;  // the old samples are in the old frame
     u.frame_changed = true;
-  } else if (have_pos_ && std::fabs(pos - pos_deg_) > cfg_.jump_deg) {
-    // Reject the sample; a real rotator cannot move this far in one tick.
-    if (++jump_rejects_ >= kJumpRejectLimit) u.fault = AxisFault::kSensorJump;
+  } else if (resync_ || !have_pos_) {
+    // The first reading, or the first after a reset: no past to judge by.
+    // The gate starts wide (1.25 x the tolerance) and narrows to the
+    // sensor's noise as it learns it (a time constant of 64 readings).
+    if (!have_pos_) noise_abs_deg_ = 0.5f * kGateFloorOfTolerance * cfg_.tolerance_deg;
+    resync_ = false;
+  } else if (std::fabs(pos - pos_deg_) > cfg_.jump_deg || !plausible(pos, now, speed_deg_s)) {
+    // Reject the sample: a real rotator cannot move this far in one tick
+    // (jump_deg), nor this far off its measured motion (the gate).
+    u.fault = reject(now, speed_deg_s);
     return u;
   }
+  rejected_bits_ = static_cast<std::uint16_t>(rejected_bits_ << 1);
   jump_rejects_ = 0;
   sensor_deg_ = sensor_deg;
   pos_deg_ = pos;
+  pos_t_ = now;
   have_pos_ = true;
   history_[static_cast<std::size_t>(history_head_)] = {now, pos};
   history_head_ = (history_head_ + 1) % static_cast<int>(history_.size());
   if (history_count_ < static_cast<int>(history_.size())) ++history_count_;
   return u;
+}
+
+AxisFault PositionTracker::reject(Millis now, float speed_deg_s) {
+  ++gated_;
+  rejected_bits_ = static_cast<std::uint16_t>((rejected_bits_ << 1) | 1u);
+  if (moving_) {
+    const float carried_deg = speed_deg_s * static_cast<float>(now - pos_t_) * 0.001f;
+    pos_deg_ += carried_deg;
+    sensor_deg_ += carried_deg;
+    pos_t_ = now;
+  }
+  return ++jump_rejects_ >= kJumpRejectLimit ? AxisFault::kSensorJump : AxisFault::kNone;
+}
+
+// Runs on the Pico every tick: a dozen float operations (soft float on the
+// M0+), no division, no heap.
+bool PositionTracker::plausible(float pos, Millis now, float speed_deg_s) {
+  // Where the measured motion puts the antenna now, and how far a reading
+  // may sit from that: the sensor's own noise (learnt; never below 1.5 x
+  // its resolution or half the tolerance), plus what a change of speed
+  // could add since the last reading (up to the rated speed again, so a
+  // start from rest is followed).
+  Millis gap_ms = now - pos_t_;
+  if (gap_ms > kGateMaxGapMs) gap_ms = kGateMaxGapMs;
+  const float dt_s = static_cast<float>(now - pos_t_) * 0.001f;
+  const float predicted_deg = moving_ ? pos_deg_ + speed_deg_s * dt_s : pos_deg_;
+  const float innovation = pos - predicted_deg;
+  const float abs_innovation = std::fabs(innovation);
+  float noise_deg = kGateNoiseFactor * noise_abs_deg_;
+  float floor_deg = kGateFloorOfTolerance * cfg_.tolerance_deg;
+  if (floor_deg < 1.5f * resolution_deg_) floor_deg = 1.5f * resolution_deg_;
+  if (noise_deg < floor_deg) noise_deg = floor_deg;
+  const float gate_deg =
+      noise_deg + (std::fabs(speed_deg_s) + cfg_.speed_deg_s) * static_cast<float>(gap_ms) * 0.001f;
+  // In a burst nothing is taken, however close: a reading that lands near
+  // the prediction by chance is still noise.
+  if (__builtin_popcount(rejected_bits_) >= kBurstRejects) return false;
+  if (abs_innovation <= gate_deg) {
+    // Learn the noise slowly (1/64 per reading) from readings taken only,
+    // so a burst cannot open the gate for itself.
+    noise_abs_deg_ += (abs_innovation - noise_abs_deg_) * (1.0f / 64.0f);
+    return true;
+  }
+  return false;
+}
+
+void PositionTracker::note_raw(float raw, Millis now, float speed_deg_s) {
+  if (raw == raw_) return;
+  raw_changed_at_ = now;
+  speed_at_change_deg_s_ = speed_deg_s;
 }
 
 float PositionTracker::estimate_speed() const {
@@ -207,6 +293,7 @@ void PositionTracker::publish(AxisStatus& status) const {
       }
     }
   }
+  status.readings_rejected = gated_;
   status.switch_cw = sw_cw_;
   status.switch_ccw = sw_ccw_;
   status.limit_cw = sw_cw_ || (!cfg_.continuous && pos_deg_ >= cfg_.max_deg - cfg_.tolerance_deg);

@@ -1,5 +1,6 @@
 #pragma once
 #include <array>
+#include <cstdint>
 #include <optional>
 
 #include "axis/axis_config.hpp"
@@ -25,6 +26,20 @@ class PositionTracker {
   static constexpr Millis kSensorGraceMs = 250;
   /// Consecutive implausible readings tolerated (rejected) before a fault.
   static constexpr int kJumpRejectLimit = 5;
+  /// The gate never closes below this fraction of the go-to tolerance (nor
+  /// 1.5 x the sensor's resolution): a burst that gets through moves the
+  /// position by little, and the tails of a filtered sensor's noise, which
+  /// its mean absolute innovation underrates, still pass.
+  static constexpr float kGateFloorOfTolerance = 0.5f;
+  /// The gate opens to this many mean absolute innovations (~4 sigma).
+  static constexpr float kGateNoiseFactor = 5.0f;
+  /// Of the last 16 readings, this many off the gate is a burst: no reading
+  /// is taken until it has passed (the position is carried on at the
+  /// measured speed), and kJumpRejectLimit in a row latch SENSOR_JUMP.
+  static constexpr int kBurstRejects = 4;
+  /// The gate's allowance for a change of speed covers at most this long
+  /// without a reading taken; beyond it only agreeing readings re-acquire.
+  static constexpr Millis kGateMaxGapMs = 250;
 
   /// What a reading told the axis beyond the position itself.
   struct Update {
@@ -44,11 +59,23 @@ class PositionTracker {
   bool fitted() const { return sensor_ != nullptr; }
 
   void read_switches();
+  /// Whether the motor turns the axis now (driven or coasting): only then
+  /// is the position carried on at the measured speed past a rejected
+  /// reading; at rest the measured "speed" is the sensor's noise.
+  void set_moving(bool moving) { moving_ = moving; }
   Update update(Millis now);
   /// Degrees per second over the last ~300 ms of readings.
   float estimate_speed() const;
   /// A fault was cleared: count sensor trouble afresh.
   void clear_errors();
+
+  /// How long the sensor's raw value has been exactly the same (a live
+  /// sensor's noise or motion changes it), and the speed measured when it
+  /// last changed: the Axis tells a frozen sensor from a jam with them.
+  Millis raw_changed_at() const { return raw_changed_at_; }
+  float speed_at_last_change() const { return speed_at_change_deg_s_; }
+  /// Readings the gate rejected since start (bursts, spikes).
+  std::uint32_t gated_readings() const { return gated_; }
 
   bool have_position() const { return have_pos_; }
   float position_deg() const { return pos_deg_; }
@@ -67,6 +94,16 @@ class PositionTracker {
   };
 
   float initial_unwrap(float sensor_deg) const;
+  /// The robust filter: true when `pos` (user frame) at `now` fits the
+  /// axis's measured motion; learns the sensor's noise from the readings
+  /// it takes.
+  bool plausible(float pos, Millis now, float speed_deg_s);
+  /// A reading was not taken: carries the position on at the measured speed
+  /// (the motor keeps turning while the sensor is unreadable) and counts it.
+  AxisFault reject(Millis now, float speed_deg_s);
+  /// The finest step the configured sensor resolves, degrees.
+  float resolution_deg(const AxisConfig& c) const;
+  void note_raw(float raw, Millis now, float speed_deg_s);
   float reported_position_deg() const;
 
   const AxisIo& io_;
@@ -82,8 +119,17 @@ class PositionTracker {
   float raw_ = 0.0f;
   Millis bad_since_ = -1;
   int jump_rejects_ = 0;
-  bool recalibrated_ = false;  // the calibration changed: accept the next reading
-  bool mag_answered_ = false;  // the last read got a sample from the chip
+  bool recalibrated_ = false;        // the calibration changed: accept the next reading
+  bool mag_answered_ = false;        // the last read got a sample from the chip
+  Millis pos_t_ = 0;                 // when pos_deg_ was read
+  float noise_abs_deg_ = 0.0f;       // mean |innovation| of the readings taken
+  std::uint16_t rejected_bits_ = 0;  // the last 16 readings, 1 = not taken
+  float resolution_deg_ = 0.1f;
+  bool resync_ = false;  // a fault was reset: take the next reading
+  bool moving_ = false;
+  std::uint32_t gated_ = 0;
+  Millis raw_changed_at_ = 0;
+  float speed_at_change_deg_s_ = 0.0f;
   std::array<Sample, 32> history_{};
   int history_head_ = 0;
   int history_count_ = 0;

@@ -45,10 +45,12 @@ Error calibrate(Controller& controller, AxisId axis, CalPoint point) {
   if (!az && !controller.has_el()) return Error::kNotSupported;
   const RotatorStatus status = controller.status();
   const AxisStatus& a = az ? status.az : status.el;
-  // A raw value read from a lost or railed sensor would calibrate onto noise.
-  // (A jump fault keeps valid raw readings: recalibrating is how to fix one.)
+  // A raw value read from a lost, railed or frozen sensor would calibrate
+  // onto noise or an old angle. (A jump fault keeps valid raw readings:
+  // recalibrating is how to fix one.)
   if (!a.position_valid || a.fault == AxisFault::kSensorLost ||
-      a.fault == AxisFault::kSensorRange || a.fault == AxisFault::kNoSensor)
+      a.fault == AxisFault::kSensorRange || a.fault == AxisFault::kNoSensor ||
+      a.fault == AxisFault::kSensorStuck)
     return Error::kFaulted;
   settings::Settings& s = controller.settings();
   const AxisKeys& k = az ? kAz : kEl;

@@ -27,7 +27,7 @@ struct AxisView {
 
 bool is_sensor_fault(AxisFault f) {
   return f == AxisFault::kSensorLost || f == AxisFault::kSensorRange ||
-         f == AxisFault::kSensorJump || f == AxisFault::kNoSensor;
+         f == AxisFault::kSensorJump || f == AxisFault::kNoSensor || f == AxisFault::kSensorStuck;
 }
 
 void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s) {
@@ -88,6 +88,18 @@ void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s
   w.family("rotord_axis_moves_total", "counter",
            "Motor starts since the controller started (relay wear, hunting).");
   for (std::size_t n = 0; n < count; ++n) w.integer({{"axis", all[n].label}}, all[n].status->moves);
+  w.family("rotord_axis_sensor_readings_rejected_total", "counter",
+           "Position readings the robust filter turned away since the controller started "
+           "(noise bursts, spikes); a sensor going bad shows here before it latches a fault.");
+  for (std::size_t n = 0; n < count; ++n)
+    w.integer({{"axis", all[n].label}}, all[n].status->readings_rejected);
+  w.family("rotord_axis_slips_total", "counter",
+           "Slips since the controller started: the position moved slip.deg at rest with the "
+           "outputs off (wind against the brake).");
+  for (std::size_t n = 0; n < count; ++n) w.integer({{"axis", all[n].label}}, all[n].status->slips);
+  w.family("rotord_axis_slipping", "gauge", "1 while a slip goes on.");
+  for (std::size_t n = 0; n < count; ++n)
+    w.integer({{"axis", all[n].label}}, all[n].status->slipping ? 1 : 0);
   w.family("rotord_goto_continuity_total", "counter",
            "Go-tos of a tracker's stream put on the turn continuous with it instead of the "
            "literal one (track.continuity: a pass through north kept in the overlap).");

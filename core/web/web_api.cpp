@@ -78,7 +78,10 @@ void write_axis(JsonWriter& w, const AxisStatus& a, int sensor) {
       .member("switch_cw", a.switch_cw)
       .member("switch_ccw", a.switch_ccw)
       .member("coast_s", a.coast_s)
-      .member("moves", a.moves);
+      .member("moves", a.moves)
+      .member("readings_rejected", a.readings_rejected)
+      .member("slips", a.slips)
+      .member("slipping", a.slipping);
   w.key("outputs").begin_object();
   for (std::size_t n = 0; n < kOutputChannelCount; ++n)
     w.member(kOutputChannelNames[n], a.outputs.value[n]);

@@ -409,6 +409,7 @@ int Daemon::run() {
     stop();
   });
   controller_->begin(now_ms_);
+  axis_events_.begin(controller_->status());
   if (sim_) sim_->advance_to(now_ms_);
   wall_start_ = std::chrono::steady_clock::now();
   ticks_.start(steady_us());
@@ -543,6 +544,9 @@ void Daemon::on_tick() {
 }
 
 void Daemon::serve(Millis wall_ms) {
+  // Faults latched and slips, named, into the journal.
+  char event[192];
+  while (axis_events_.next(controller_->status(), event, sizeof event)) log::warn("%s", event);
   // Sessions time their clients on the wall clock: --speedup speeds up the
   // rotator, not the network's timeouts.
   if (api_) {

@@ -29,6 +29,7 @@
 #include "pico_hal.hpp"
 #include "protocol/console_session.hpp"
 #include "protocol/protocol_registry.hpp"
+#include "rotator/axis_events.hpp"
 #include "rotator/controller.hpp"
 #include "sensors/magnetometer.hpp"
 #include "settings/pin_rules.hpp"
@@ -429,6 +430,9 @@ const char* restart_reason() {
                 settings.b(Id::kEstopNormallyClosed) ? "normally-closed" : "normally-open");
   }
   controller.begin(now_ms());
+  // Faults latched and slips, named, for the log port (docs/care.md).
+  static AxisEvents axis_events;
+  axis_events.begin(controller.status());
 
   // 3. The USB protocol port: one session, fresh whenever a program opens
   // the port (usb_cdc_link.hpp).
@@ -497,6 +501,11 @@ const char* restart_reason() {
     if (ticks.poll(static_cast<std::int64_t>(time_us_64()))) {
       const Millis now = now_ms();
       controller.tick(now);
+      {
+        char event[160];
+        const RotatorStatus st = controller.status();
+        while (axis_events.next(st, event, sizeof event)) std::printf("rotord: %s\n", event);
+      }
       if (usb_link) usb_link->poll(now);
 #if ROTORD_PICO_NETWORK
       network_tick(now);

@@ -95,8 +95,11 @@ TEST_F(GpiodIoTest, RelaysFollowTheAxisAndALimitStopsThatDirectionOnly) {
   run_ms(c, *hw, 500);
   EXPECT_TRUE(board->output_active(kAzCw));
   EXPECT_FALSE(board->output_active(kAzCcw));
-  set_az_deg(201.0);  // the rotator turns
-  run_ms(c, *hw, 100);
+  for (double deg = 200.2; deg < 201.1; deg += 0.2) {  // the rotator turns, 20 deg/s
+    set_az_deg(deg);
+    run_ms(c, *hw, 10);
+  }
+  run_ms(c, *hw, 50);
 
   board->lines[kAzL2].active = true;  // CW end switch closes
   run_ms(c, *hw, 10);

@@ -29,10 +29,12 @@ class EasycommTest : public ::testing::Test {
   /// Turns the pot slowly (a sudden jump would be a sensor fault).
   void walk_az(float to_deg) {
     float deg = static_cast<float>(r.az.adc.counts) / 10.0f;
+    // 0.4 deg a tick (40 deg/s), each reading within the robust filter's
+    // gate (docs/care.md).
     while (deg != to_deg) {
-      deg = deg < to_deg ? std::min(deg + 1.0f, to_deg) : std::max(deg - 1.0f, to_deg);
+      deg = deg < to_deg ? std::min(deg + 0.4f, to_deg) : std::max(deg - 0.4f, to_deg);
       r.az.set_deg(deg);
-      r.run_ms(20);
+      r.run_ms(10);
     }
     r.run_ms(300);
   }

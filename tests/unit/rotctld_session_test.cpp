@@ -30,10 +30,12 @@ class RotctldTest : public ::testing::Test {
   const RotatorStatus status() const { return r.controller->status(); }
   /// Turns an axis by hand in small steps (a jump would latch a sensor fault).
   void walk(testing::FakeAxisHardware& axis, float from_deg, float to_deg) {
-    const float step = from_deg < to_deg ? 2.0f : -2.0f;
+    // 0.4 deg a tick (40 deg/s), each reading within the robust filter's
+    // gate (docs/care.md); a bigger step at once is a sensor fault.
+    const float step = from_deg < to_deg ? 0.4f : -0.4f;
     for (float deg = from_deg; (step > 0) ? deg < to_deg : deg > to_deg; deg += step) {
       axis.set_deg(deg);
-      r.run_ms(20);
+      r.run_ms(10);
     }
     axis.set_deg(to_deg);
     r.run_ms(100);

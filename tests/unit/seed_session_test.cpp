@@ -112,10 +112,11 @@ TEST_F(SeedTest, LimitsAndFaultsAreReported) {
   EXPECT_EQ(ask("$Q\n"), "$Q,100.0,20.0,100,E,STOP,STOP,STALL\r\n");
   EXPECT_EQ(ask("$R,cw\n"), "$ERR,FAULT\r\n");
   r.controller->reset();
-  for (float deg = 100; deg <= 450; deg += 1) {  // slowly, a jump would be a fault
+  for (float deg = 100; deg <= 450; deg += 0.4f) {  // slowly, a jump would be a fault
     r.az.set_deg(deg);
-    r.run_ms(20);
+    r.run_ms(10);
   }
+  r.az.set_deg(450);
   r.run_ms(300);
   EXPECT_EQ(ask("$R,cw\n"), "$ERR,LIMIT\r\n");
 }

@@ -90,9 +90,10 @@ TEST_F(UdpRotorTest, N1mmReportsTheHeadingEverySecondWhileTurningThenOnceStopped
   std::vector<std::string> reports;
   float az = 100.0f;
   for (int step = 0; step < 60; ++step) {
-    if (az < 130.0f) az += 2.0f;
-    r.az.set_deg(az);
     for (int tick = 0; tick < 10; ++tick) {
+      // 20 deg/s in steps of a tick: within the sensor filter's gate.
+      if (az < 130.0f) az += 0.2f;
+      r.az.set_deg(az);
       r.run_ms(10);
       out = {};
       if (n1mm.poll(out, to)) {

@@ -42,6 +42,8 @@ test('control page loads without console errors, phone and desktop, light and da
     const page = await openPage(browser, rotord.url + '/', { width, height, colorScheme: scheme });
     await page.waitForSelector('#conn.live');
     await until(async () => (await page.textContent('#az')).includes('°'), { what: 'azimuth' });
+    // What the axis has been through (docs/care.md): no slip, no rejected reading.
+    assert.equal(await page.textContent('#care'), 'az 0 slips, 0 rejected · el 0 slips, 0 rejected');
     const overflow = await page.evaluate(() => document.documentElement.scrollWidth > innerWidth);
     assert.equal(overflow, false, `horizontal scroll at ${width} px`);
     await screenshot(page, `control-${width}-${scheme}.png`);

@@ -1,0 +1,27 @@
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "rotator/controller.hpp"
+
+namespace rotord {
+
+/// What the log should say about the axes since it last asked: a fault
+/// latched (named: a frozen sensor, a burst, a stall), a slip
+/// (counted and published: an event, not a fault). The ports ask
+/// from their main loop, never from the control tick. No heap.
+class AxisEvents {
+ public:
+  /// Takes the counts as they are now: only later events are told.
+  void begin(const RotatorStatus& status);
+  /// Writes the next event into `line` (NUL-terminated), or returns false
+  /// when there is none. Call until false.
+  bool next(const RotatorStatus& status, char* line, std::size_t capacity);
+
+ private:
+  std::array<std::uint32_t, 2> slips_{};
+  std::array<AxisFault, 2> faults_{};
+};
+
+}  // namespace rotord
