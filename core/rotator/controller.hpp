@@ -5,6 +5,7 @@
 #include "axis/axis.hpp"
 #include "hal/wall_clock.hpp"
 #include "input/manual_buttons.hpp"
+#include "rotator/commissioning.hpp"
 #include "rotator/tracker.hpp"
 #include "settings/settings.hpp"
 #include "tracking/track_plan.hpp"
@@ -95,6 +96,15 @@ class Controller {
   /// computed for it (TrackError::kNoStation).
   bool station_set() const;
 
+  /// Starts self-commissioning of one axis (docs/commissioning.md) after a
+  /// stop; refused (reason in `why`) while tracking, without a sensor or
+  /// with a latched fault. STOP and any other command abort it.
+  Error commission(const Commissioning::Request& request, const char** why);
+  const Commissioning& commissioning() const { return commissioning_; }
+  /// Writes the finished run's proposal into the settings (validated as a
+  /// whole); the caller saves them as after any settings change.
+  settings::Rejection accept_commissioning();
+
   RotatorStatus status() const;
   Limits limits() const;
   bool has_el() const { return has_el_; }
@@ -133,6 +143,7 @@ class Controller {
   void read_estop();
   /// Counts each fault an axis latched since the last call.
   void count_faults();
+  Axis& commissioned_axis() { return commissioning_.axis() == AxisId::kEl ? el_ : az_; }
 
   settings::Settings& settings_;
   access::ControlLock control_lock_;
@@ -151,6 +162,7 @@ class Controller {
   bool auto_parked_ = false;     // parked for being idle; no command since
   const hal::WallClock* utc_clock_ = nullptr;
   Tracker tracker_;
+  Commissioning commissioning_;
   std::array<AxisFault, kMaxAxes> counted_fault_{};  // each axis's fault, as last counted
   std::array<std::array<std::uint32_t, kAxisFaultKinds>, kMaxAxes> faults_latched_{};
 };
