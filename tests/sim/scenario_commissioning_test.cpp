@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "rotator/controller.hpp"
 #include "sim/adc_scale.hpp"
@@ -44,15 +46,20 @@ double perturb(sim::Rng& rng, double value, double fraction) {
 }
 
 struct Bench {
-  Bench(const char* name, std::uint64_t seed) : profile(*sim::find_profile(name)) {
+  Bench(const char* name, std::uint64_t seed, bool perturb_pot = true)
+      : profile(*sim::find_profile(name)) {
     sim::Rng rng(seed * 7919 + 13);
     auto& plant = profile.az.plant;
     plant.v_max_deg_s = perturb(rng, plant.v_max_deg_s, 0.3);
     plant.tau_c_s = perturb(rng, plant.tau_c_s, 0.3);
     plant.backlash_deg = perturb(rng, plant.backlash_deg, 0.5);
     auto& pot = profile.az.pot;
-    pot.v_at_min_v = perturb(rng, pot.v_at_min_v + 0.1, 0.5);  // offset
-    pot.v_at_max_v = perturb(rng, pot.v_at_max_v, 0.08);       // span
+    const double v_min = perturb(rng, pot.v_at_min_v + 0.1, 0.5);  // offset
+    const double v_max = perturb(rng, pot.v_at_max_v, 0.08);       // span
+    if (perturb_pot) {
+      pot.v_at_min_v = v_min;
+      pot.v_at_max_v = v_max;
+    }
     swap_wires = rng.uniform() < 0.4;
     for (const auto& o : profile.overrides) settings.set(*settings::find(o.key), o.value);
     rotator = std::make_unique<sim::SimRotator>(profile, seed);
@@ -202,6 +209,125 @@ TEST(Commissioning, Ham4RecoversThePerturbedPlant) {
 }
 TEST(Commissioning, SpidRecoversThePerturbedPlant) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) commission_and_check("spid", seed);
+}
+
+// Nothing is written until the owner accepts; a step reruns alone on the
+// ends already found; accepted settings make the controller hit its targets.
+TEST(Commissioning, ProposesOnlyAndAStepRerunsAlone) {
+  Bench b("g5500", 1);
+  b.wiring->swapped = false;
+  const settings::Settings before = b.settings;
+  ASSERT_EQ(b.start(), Error::kOk);
+  b.run_until_finished(30LL * 60 * 1000);
+  const Commissioning& c = b.controller->commissioning();
+  ASSERT_EQ(c.state(), Commissioning::State::kDone) << c.reason();
+  for (std::size_t id = 0; id < settings::kCount; ++id)
+    EXPECT_TRUE(b.settings.same_value(static_cast<settings::Id>(id), before));
+  EXPECT_GT(c.sample_count(), 100u);
+  const float ccw = c.measured().ccw_reading;
+
+  ASSERT_EQ(b.start(Commissioning::Step::kSpeeds), Error::kOk);
+  const Millis speeds_ms = b.run_until_finished(10LL * 60 * 1000);
+  ASSERT_EQ(c.state(), Commissioning::State::kDone) << c.reason();
+  EXPECT_LT(speeds_ms, 60000);  // no second trip to the ends
+  EXPECT_EQ(c.measured().ccw_reading, ccw);
+  EXPECT_NEAR(c.measured().fast_deg_s, b.profile.az.plant.v_max_deg_s,
+              0.05 * b.profile.az.plant.v_max_deg_s);
+
+  ASSERT_EQ(b.controller->accept_commissioning().error, Error::kOk);
+  b.now += 10;  // the new calibration is the frame from the next tick on
+  b.rotator->advance_to(b.now);
+  b.controller->tick(b.now);
+  for (double target : {30.0, 200.0, 420.0}) {
+    ASSERT_EQ(b.controller->go_to(static_cast<float>(target), std::nullopt, AzTarget::kUnwrapped),
+              Error::kOk);
+    for (int n = 0; n < 15000; ++n) {
+      b.now += 10;
+      b.rotator->advance_to(b.now);
+      b.controller->tick(b.now);
+    }
+    const double tol = b.settings.get(settings::Id::kAzToleranceDeg);
+    std::printf("commissioned g5500: go to %.0f, at %.2f (tolerance %.2f)\n", target,
+                b.rotator->plant(AxisId::kAz).theta_deg(), tol);
+    EXPECT_NEAR(b.rotator->plant(AxisId::kAz).theta_deg(), target, tol + 0.3);
+  }
+}
+
+TEST(Commissioning, StopAbortsAndRestoresTheAxis) {
+  Bench b("ham4", 2, false);  // the pot as the settings have it
+  b.wiring->swapped = false;
+  ASSERT_EQ(b.start(), Error::kOk);
+  const Commissioning& c = b.controller->commissioning();
+  for (int n = 0; n < 1000; ++n) {  // into the seek of the CCW end
+    b.now += 10;
+    b.rotator->advance_to(b.now);
+    b.controller->tick(b.now);
+  }
+  ASSERT_TRUE(c.running());
+  b.controller->stop();
+  EXPECT_EQ(c.state(), Commissioning::State::kAborted);
+  EXPECT_STREQ(c.reason(), "STOP");
+  b.run_until_finished(1000);
+  for (int n = 0; n < 500; ++n) {
+    b.now += 10;
+    b.rotator->advance_to(b.now);
+    b.controller->tick(b.now);
+  }
+  EXPECT_FALSE(b.rotator->outputs(AxisId::kAz).any_on());
+  // The soft limits are the settings' again (commissioning had lifted
+  // them): a jog CCW stops at az.min_deg, short of the switch.
+  ASSERT_EQ(b.controller->move(AxisId::kAz, Direction::kCcw), Error::kOk);
+  for (int n = 0; n < 8000; ++n) {
+    b.now += 10;
+    b.rotator->advance_to(b.now);
+    b.controller->tick(b.now);
+  }
+  EXPECT_GT(b.rotator->plant(AxisId::kAz).theta_deg(), -0.5);
+  EXPECT_LT(b.rotator->plant(AxisId::kAz).theta_deg(), 2.0);
+  EXPECT_NE(b.controller->accept_commissioning().error, Error::kOk);
+}
+
+TEST(Commissioning, AStuckSensorAbortsTheRun) {
+  Bench b("g5500", 3);
+  b.wiring->swapped = false;
+  ASSERT_EQ(b.start(), Error::kOk);
+  for (int n = 0; n < 1500; ++n) {
+    b.now += 10;
+    b.rotator->advance_to(b.now);
+    b.controller->tick(b.now);
+  }
+  b.rotator->sensor_stuck(AxisId::kAz, 1e9);
+  b.run_until_finished(60000);
+  const Commissioning& c = b.controller->commissioning();
+  EXPECT_EQ(c.state(), Commissioning::State::kAborted);
+  EXPECT_NE(std::string(c.reason()).find("stopped changing"), std::string::npos) << c.reason();
+  EXPECT_FALSE(b.rotator->outputs(AxisId::kAz).any_on());
+}
+
+TEST(Commissioning, RefusedWithALatchedFaultOrWithoutASensor) {
+  Bench b("g5500", 1);
+  b.rotator->sensor_loss(AxisId::kAz, 1e9);
+  for (int n = 0; n < 100; ++n) {
+    b.now += 10;
+    b.rotator->advance_to(b.now);
+    b.controller->tick(b.now);
+  }
+  ASSERT_NE(b.controller->status().az.fault, AxisFault::kNone);
+  Commissioning::Request r;
+  const char* why = "";
+  EXPECT_EQ(b.controller->commission(r, &why), Error::kFaulted);
+  EXPECT_STREQ(why, "a fault is latched: clear it (RESET) first");
+
+  settings::Settings s;
+  AxisIo none;
+  Controller bare(s, none, none);
+  bare.begin(0);
+  bare.tick(10);
+  EXPECT_EQ(bare.commission(r, &why), Error::kNotSupported);
+  EXPECT_STREQ(why, "no position sensor is fitted or it gives no reading");
+  r.axis = AxisId::kEl;
+  EXPECT_EQ(bare.commission(r, &why), Error::kNotSupported);
+  EXPECT_STREQ(why, "this rotator has no elevation axis");
 }
 
 }  // namespace
