@@ -441,7 +441,10 @@ void Commissioning::finish(Axis& axis) {
 }
 
 void Commissioning::add(Id id, double value) {
-  if (proposals_n_ < kMaxProposals) proposals_[proposals_n_++] = {id, value};
+  // Three decimals: a measurement carries no more (and a float's tail
+  // would read as noise on the page).
+  if (proposals_n_ < kMaxProposals)
+    proposals_[proposals_n_++] = {id, std::round(value * 1000.0) / 1000.0};
 }
 
 void Commissioning::propose(const AxisConfig& base) {
