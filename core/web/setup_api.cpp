@@ -6,6 +6,7 @@
 #include "json/json_reader.hpp"
 #include "json/settings_json.hpp"
 #include "settings/rotator_models.hpp"
+#include "settings/settings_layers.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord::web {
@@ -27,6 +28,19 @@ void write_figure(JsonWriter& w, const settings::ModelSetting& row) {
 }
 
 }  // namespace
+
+Api::Outcome Api::get_setup(const Call& call) {
+  // "configured": some setting differs from the board's defaults, i.e. the
+  // owner saved something; the control page offers the set-up page when not.
+  settings::Settings& values = ctx_.controller.settings();
+  if (ctx_.defaults == nullptr) scratch_.reset_to_defaults();
+  const settings::Settings& base = ctx_.defaults != nullptr ? *ctx_.defaults : scratch_;
+  const settings::KeySet saved = settings::user_layer(values, base);
+  send_json(call.out, 200, call.options, [&](JsonWriter& w) {
+    w.begin_object().member("configured", saved.any()).end_object();
+  });
+  return Outcome::kDone;
+}
 
 Api::Outcome Api::get_models(const Call& call) {
   send_json(call.out, 200, call.options, [](JsonWriter& w) {

@@ -320,6 +320,9 @@ const Api::Route Api::kRoutes[] = {
     {"/api/reboot", true, N::kControl, true, true,
      [](Api& a, const Call& c) { return a.post_reboot(c); }, "restart the controller"},
     // Set-up (setup_api.cpp, docs/commissioning.md).
+    {"/api/setup", false, N::kRead, false, false,
+     [](Api& a, const Call& c) { return a.get_setup(c); },
+     "whether any setting was saved (the set-up page is offered when not)"},
     {"/api/models", false, N::kRead, false, false,
      [](Api& a, const Call& c) { return a.get_models(c); },
      "the rotator models, each figure with its source"},

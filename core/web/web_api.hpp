@@ -211,6 +211,7 @@ class Api {
   Outcome post_speed(const Call& call);
   Outcome post_reboot(const Call& call);
   // Set-up (setup_api.cpp).
+  Outcome get_setup(const Call& call);
   Outcome get_models(const Call& call);
   Outcome post_model(const Call& call);
   Outcome post_commission(const Call& call);
