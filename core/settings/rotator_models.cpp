@@ -19,7 +19,7 @@ constexpr ModelFigure fig(double value, const char* source) {
 // docs/rotator_models.md; a figure without one was not found, so applying
 // the model keeps the setting and self-commissioning measures it. Speeds:
 // the maker's time for a turn, as deg/s.
-constexpr std::array kModels{
+constexpr RotatorModel kModels[] = {
     RotatorModel{"yaesu-g5500", "Yaesu G-5500", fig(kRelay, "[Y6] R/U/L/D control lines"),
                  fig(kPot, "[Y4][Y5] 500 ohm pot"), fig(0, "[Y1][Y2] 0 = most CCW"),
                  fig(450, "[Y1][Y2] 450 deg"), fig(1, "[Y2] az/el"), fig(0, "[Y2] 0-180"),
