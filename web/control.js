@@ -245,4 +245,6 @@
     if (!drawQueued) { drawQueued = true; requestAnimationFrame(draw); }
   });
   rotord.get('/api/status').then((r) => { if (r.status === 200 && !last) { last = r.body; draw(); } });
+  // Nothing saved yet: offer the set-up page.
+  rotord.get('/api/setup').then((r) => { if (r.status === 200 && !r.body.configured) $('setup-offer').hidden = false; });
 })();

@@ -104,6 +104,8 @@ class ConsoleSession final : public Session {
   void export_settings(std::string_view args, ByteSink& out);
   void import_settings(std::string_view args, ByteSink& out);
   void calibrate(std::string_view args, ByteSink& out);
+  void setup(std::string_view args, ByteSink& out);       // console_setup.cpp
+  void commission(std::string_view args, ByteSink& out);  // console_setup.cpp
   void stop(std::string_view args, ByteSink& out);
   void reset(std::string_view args, ByteSink& out);
   void reboot(std::string_view args, ByteSink& out);

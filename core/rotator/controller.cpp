@@ -77,11 +77,16 @@ void Controller::read_estop() {
 
 void Controller::tick(Millis now) {
   now_ = now;
-  if (settings_.revision() != applied_revision_) apply_settings();
+  if (settings_.revision() != applied_revision_) {
+    // The commissioning frame is the settings' own: a change ends the run.
+    if (commissioning_.running()) commissioning_.abort(commissioned_axis(), "the settings changed");
+    apply_settings();
+  }
   read_estop();
   apply_buttons(now);
   az_.tick(now);
   if (has_el_) el_.tick(now);
+  if (commissioning_.running()) commissioning_.tick(now, commissioned_axis());
   tick_tracker(now);
   const RotatorStatus s = status();
   if (mode_ != Mode::kIdle && mode_ != Mode::kTrack && !s.moving() && !s.az.has_target &&
@@ -94,6 +99,9 @@ void Controller::tick(Millis now) {
 }
 
 void Controller::note_command() {
+  // Any other command ends self-commissioning, as it ends a track.
+  if (commissioning_.running())
+    commissioning_.abort(commissioned_axis(), "another command took over");
   last_activity_ms_ = now_;
   auto_parked_ = false;
   end_track();
@@ -280,6 +288,7 @@ Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman
 }
 
 void Controller::stop() {
+  if (commissioning_.running()) commissioning_.abort(commissioned_axis(), "STOP");
   note_command();
   stream_.interrupt();
   az_.stop();
@@ -342,6 +351,32 @@ RotatorStatus Controller::status() const {
   s.speed_pct = speed_pct_;
   s.limits = limits();
   return s;
+}
+
+}  // namespace rotord
+
+namespace rotord {
+
+Error Controller::commission(const Commissioning::Request& request, const char** why) {
+  if (request.axis == AxisId::kEl && !has_el_) {
+    *why = "this rotator has no elevation axis";
+    return Error::kNotSupported;
+  }
+  if (tracker_.armed()) {
+    *why = "a track is running: stop it first";
+    return Error::kBusy;
+  }
+  stop();
+  // Settings accepted just now (a swap) are the frame the run starts from.
+  if (settings_.revision() != applied_revision_) apply_settings();
+  Axis& axis = request.axis == AxisId::kEl ? el_ : az_;
+  return commissioning_.start(request, axis, why);
+}
+
+settings::Rejection Controller::accept_commissioning() {
+  if (commissioning_.state() != Commissioning::State::kDone)
+    return {Error::kInvalidArgument, "no finished self-commissioning to accept"};
+  return commissioning_.apply_proposal(settings_);
 }
 
 }  // namespace rotord

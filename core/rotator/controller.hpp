@@ -5,6 +5,7 @@
 #include "axis/axis.hpp"
 #include "hal/wall_clock.hpp"
 #include "input/manual_buttons.hpp"
+#include "rotator/commissioning.hpp"
 #include "rotator/goto_stream.hpp"
 #include "rotator/tracker.hpp"
 #include "settings/settings.hpp"
@@ -101,6 +102,15 @@ class Controller {
   /// computed for it (TrackError::kNoStation).
   bool station_set() const;
 
+  /// Starts self-commissioning of one axis (docs/commissioning.md) after a
+  /// stop; refused (reason in `why`) while tracking, without a sensor or
+  /// with a latched fault. STOP and any other command abort it.
+  Error commission(const Commissioning::Request& request, const char** why);
+  const Commissioning& commissioning() const { return commissioning_; }
+  /// Writes the finished run's proposal into the settings (validated as a
+  /// whole); the caller saves them as after any settings change.
+  settings::Rejection accept_commissioning();
+
   RotatorStatus status() const;
   Limits limits() const;
   bool has_el() const { return has_el_; }
@@ -148,6 +158,7 @@ class Controller {
   void read_estop();
   /// Counts each fault an axis latched since the last call.
   void count_faults();
+  Axis& commissioned_axis() { return commissioning_.axis() == AxisId::kEl ? el_ : az_; }
 
   settings::Settings& settings_;
   access::ControlLock control_lock_;
@@ -168,6 +179,7 @@ class Controller {
   Tracker tracker_;
   GotoStream stream_;                                // the continuity rule's view of the go-tos
   float az_shift_deg_ = 0.0f;                        // what it added to the last go-to
+  Commissioning commissioning_;
   std::array<AxisFault, kMaxAxes> counted_fault_{};  // each axis's fault, as last counted
   std::array<std::array<std::uint32_t, kAxisFaultKinds>, kMaxAxes> faults_latched_{};
 };

@@ -213,6 +213,13 @@ class Api {
   Outcome post_reset(const Call& call);
   Outcome post_speed(const Call& call);
   Outcome post_reboot(const Call& call);
+  // Set-up (setup_api.cpp).
+  Outcome get_setup(const Call& call);
+  Outcome get_models(const Call& call);
+  Outcome post_model(const Call& call);
+  Outcome post_commission(const Call& call);
+  Outcome get_commission(const Call& call);
+  Outcome post_commission_accept(const Call& call);
 
   void get_settings(protocol::ByteSink& out, const ResponseOptions& options);
   void post_settings(std::string_view body, protocol::ByteSink& out, const ResponseOptions& options,

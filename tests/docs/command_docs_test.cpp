@@ -20,6 +20,7 @@
 #include "protocol/rotctld_commands.hpp"
 #include "protocol/seed_session.hpp"
 #include "protocol/wrc_session.hpp"
+#include "settings/rotator_models.hpp"
 #include "web/web_api.hpp"
 
 namespace rotord {
@@ -212,6 +213,15 @@ TEST(CommandDocs, WebApiEndpointTableIsTheRouteTable) {
         << path;
     EXPECT_EQ(words(what[n]), words(std::string(r.help))) << path;
   }
+}
+
+TEST(CommandDocs, RotatorModelsPageListsExactlyTheModelRows) {
+  Names documented;  // "`hygain-ham4`" -> hygain-ham4
+  for (const std::string& cell : column(read_doc("docs/rotator_models.md"), "## The list", 0))
+    for (const std::string& code : codes(cell)) documented.insert(code);
+  Names rows;
+  for (const settings::RotatorModel& m : settings::rotator_models()) rows.insert(m.id);
+  EXPECT_EQ(documented, rows);
 }
 
 }  // namespace

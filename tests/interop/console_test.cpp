@@ -121,5 +121,23 @@ TEST_F(ConsoleInterop, ALongListingArrivesWhole) {
   EXPECT_GT(out.size(), 4000u);
 }
 
+// The set-up commands over the pty (docs/commissioning.md): a model fills
+// the settings, commissioning starts, reports and stops like any motion.
+TEST_F(ConsoleInterop, SetupModelAndCommissionThroughThePty) {
+  const std::string model = type("setup model yaesu-g5500\n");
+  EXPECT_NE(model.find("az.max_deg=450 [Y1][Y2] 450 deg\r\n"), std::string::npos) << model;
+  EXPECT_NE(model.find("ok Yaesu G-5500: 9 settings filled"), std::string::npos) << model;
+  const std::string started = type("commission az all -1 451\n");
+  EXPECT_EQ(started.rfind("ok commissioning az started", 0), 0u) << started;
+  ASSERT_GE(daemon->advance_ms(3000), 0);
+  const std::string running = type("commission status\n");
+  EXPECT_NE(running.find("commission az state=running step=direction"), std::string::npos)
+      << running;
+  const std::string stopped = type("stop\ncommission status\n");
+  EXPECT_NE(stopped.find("commission az state=aborted step=direction reason=STOP\r\n"),
+            std::string::npos)
+      << stopped;
+}
+
 }  // namespace
 }  // namespace rotord::testing

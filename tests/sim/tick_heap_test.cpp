@@ -137,6 +137,17 @@ TEST_P(TickHeap, NoTickAllocatesWhateverTheControllerDoes) {
   EXPECT_EQ(c.track_status().phase, TrackPhase::kTracking);
   c.stop();
   run_ms(1000);
+  // Self-commissioning, run from the tick: a whole run (spid: its creep is
+  // slow, so the run is aborted part-way), then STOP.
+  Commissioning::Request commission;
+  commission.ccw_stop_deg = limits.az_min_deg;
+  commission.cw_stop_deg = limits.az_max_deg;
+  const char* why = "";
+  ASSERT_EQ(c.commission(commission, &why), Error::kOk) << why;
+  run_ms(300000);
+  EXPECT_GT(c.commissioning().sample_count(), 200u) << c.commissioning().reason();
+  c.stop();
+  run_ms(1000);
 
   EXPECT_GT(ticks_, 15000);
   EXPECT_EQ(g_tick_allocations, 0) << "allocations inside Controller::tick";

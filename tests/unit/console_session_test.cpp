@@ -276,5 +276,52 @@ TEST_F(ConsoleTest, InputBeyondTheHoldDuringAListingIsReported) {
             std::string::npos);
 }
 
+TEST_F(ConsoleTest, SetupModelFillsThePublishedFiguresAndSaysWhereFrom) {
+  const std::string models = ask("setup models\n");
+  EXPECT_NE(models.find("hygain-ham4      Hy-Gain HAM IV\r\n"), std::string::npos) << models;
+  EXPECT_EQ(last_line(models), "ok");
+  values().set(Id::kAzSpeedDegS, 4.5);
+  const std::string reply = ask("setup model hygain-ham4\n");
+  EXPECT_NE(reply.find("az.max_deg=360 [HG3] 360 deg\r\n"), std::string::npos) << reply;
+  EXPECT_NE(reply.find("az.speed_deg_s=4.5 (not published: kept"), std::string::npos) << reply;
+  EXPECT_EQ(last_line(reply).rfind("ok Hy-Gain HAM IV: 6 settings filled", 0), 0u) << reply;
+  EXPECT_EQ(values().get(Id::kAzMaxDeg), 360);
+  EXPECT_TRUE(values().b(Id::kAzHasBrake));
+  EXPECT_EQ(ask("setup model g5500\n"), "error: unknown model (setup models lists them)\r\n");
+  EXPECT_EQ(ask("setup\n"), "error: usage: setup models | setup model <id>\r\n");
+}
+
+TEST_F(ConsoleTest, CommissionStartsReportsAndStopAbortsIt) {
+  EXPECT_EQ(ask("commission accept\n"),
+            "error: nothing changed: no finished self-commissioning to accept\r\n");
+  EXPECT_EQ(last_line(ask("commission az speeds\n")),
+            "error: the speeds step needs the direction and ends steps first");
+  EXPECT_EQ(ask("commission az sideways\n"),
+            "error: unknown step (all, direction, ends or speeds)\r\n");
+  EXPECT_EQ(ask("commission az all 10\n"),
+            "error: the ends are two numbers in degrees: ccw_deg cw_deg\r\n");
+  EXPECT_EQ(last_line(ask("commission az all 0 450\n")).rfind("ok commissioning az started", 0),
+            0u);
+  r.run_ms(100);
+  EXPECT_NE(ask("commission status\n").find("commission az state=running step=noise"),
+            std::string::npos);
+  EXPECT_EQ(ask("stop\n"), "ok stopped\r\n");
+  const std::string status = ask("commission status\n");
+  EXPECT_NE(status.find("commission az state=aborted step=noise reason=STOP\r\n"),
+            std::string::npos)
+      << status;
+  EXPECT_EQ(last_line(status), "ok");
+}
+
+TEST_F(ConsoleTest, AReadOnlyLineMayFollowCommissioningButNotStartIt) {
+  values().set(Id::kAccessLineControl, 0);
+  const std::string refused = ask("commission az\n");
+  EXPECT_EQ(refused.rfind("error: read-only", 0), 0u) << refused;
+  EXPECT_EQ(ask("commission accept\n"), refused);
+  EXPECT_EQ(ask("setup model hygain-ham4\n"), refused);
+  EXPECT_EQ(last_line(ask("commission status\n")), "ok");
+  EXPECT_FALSE(r.controller->commissioning().running());
+}
+
 }  // namespace
 }  // namespace rotord::protocol
