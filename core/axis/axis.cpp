@@ -343,6 +343,7 @@ void Axis::check_slip(Millis now) {
     ++slips_;
     slip_quiet_deg_ = pos;
     slip_quiet_at_ = now;
+    if (cfg_.slip_fault) latch_fault(AxisFault::kSlip);
     return;
   }
   // One slip, however far it goes: over once the position has settled.

@@ -110,7 +110,8 @@ AxisConfig axis_config_from(const settings::Settings& s, AxisId axis) {
   c.pwm_dead_band = s.f(k.pwm_dead_band);
   c.coast_s = s.f(k.coast_s);
   c.coast_learn = s.b(k.coast_learn);
-  c.slip_deg = static_cast<float>(s.i(Id::kSlipDeg));
+  c.slip_deg = s.f(Id::kSlipDeg);
+  c.slip_fault = s.b(Id::kSlipFault);
   if (axis == AxisId::kAz) {  // an elevation axis has none of these
     c.continuous = s.b(Id::kAzContinuous);
     c.has_brake = s.b(Id::kAzHasBrake);

@@ -53,6 +53,7 @@ struct AxisConfig {
   float coast_s = 0.15f;
   bool coast_learn = true;
   float slip_deg = 2.0f;  ///< uncommanded motion at rest counted as a slip (0 = off)
+  bool slip_fault = false;
 };
 
 AxisConfig axis_config_from(const settings::Settings& s, AxisId axis);

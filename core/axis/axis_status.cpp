@@ -38,6 +38,8 @@ const char* axis_fault_name(AxisFault fault) {
       return "NO_SENSOR";
     case AxisFault::kSensorStuck:
       return "SENSOR_STUCK";
+    case AxisFault::kSlip:
+      return "SLIP";
     case AxisFault::kEstop:
       return "ESTOP";
   }

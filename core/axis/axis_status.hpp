@@ -19,6 +19,7 @@ enum class AxisFault : std::uint8_t {
   kTimeout,      ///< a single move took too long
   kNoSensor,     ///< the configured sensor is not fitted
   kSensorStuck,  ///< the reading froze while the motor drove the axis at speed
+  kSlip,         ///< moved at rest, outputs off (slip.fault on)
   kEstop,        ///< the emergency-stop input is (or was) active
 };
 /// Kinds of AxisFault, kNone included (kEstop must stay the last).

@@ -8,8 +8,8 @@
 namespace rotord {
 
 /// What the log should say about the axes since it last asked: a fault
-/// latched (named: a frozen sensor, a burst, a stall), a slip
-/// (counted and published: an event, not a fault). The ports ask
+/// latched (named: a frozen sensor, a burst, a stall, a slip), a slip
+/// (counted and published whether or not slip.fault is on). The ports ask
 /// from their main loop, never from the control tick. No heap.
 class AxisEvents {
  public:

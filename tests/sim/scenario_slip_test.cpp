@@ -1,6 +1,6 @@
 // Slip and uncommanded motion (docs/care.md), on the physics simulator in
 // virtual time: with the outputs off and the brake set, wind that turns the
-// mast is an event (counted, published, shown, logged).
+// mast is an event (counted, published, shown), and with slip.fault a fault.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -32,7 +32,7 @@ TEST(Slip, ATwoDegreeSlipAgainstTheBrakeIsFlaggedWithinASecond) {
   ASSERT_GT(after_ms, 0);
   EXPECT_LE(after_ms, 1000);
   EXPECT_TRUE(r.az().slipping);
-  EXPECT_EQ(r.az().fault, AxisFault::kNone);  // an event, not a fault
+  EXPECT_EQ(r.az().fault, AxisFault::kNone);  // slip.fault is off by default
   // Over once the mast has stood still for a second; the axis still obeys.
   r.run_ms(2000);
   EXPECT_FALSE(r.az().slipping);
@@ -55,6 +55,21 @@ TEST(Slip, ALongSlipIsOneEvent) {
   r.sim().wind_slip(AxisId::kAz, -5.0, 1.0);
   r.run_ms(3000);
   EXPECT_EQ(r.az().slips, 2u);
+}
+
+TEST(Slip, WithSlipFaultOnASlipLatchesAFault) {
+  Rig r("g5500", 200.0);
+  r.settings().set(settings::Id::kSlipFault, 1);
+  r.run_ms(2000);
+  r.sim().wind_slip(AxisId::kAz, 3.0, 1.0);
+  r.run_ms(1500);
+  EXPECT_EQ(r.az().fault, AxisFault::kSlip);
+  EXPECT_EQ(r.controller().go_to(100.0f, std::nullopt), Error::kFaulted);
+  EXPECT_EQ(r.controller().faults_latched(AxisId::kAz, AxisFault::kSlip), 1u);
+  EXPECT_EQ(r.controller().reset(), Error::kOk);
+  r.run_ms(1000);
+  EXPECT_EQ(r.az().fault, AxisFault::kNone);
+  EXPECT_EQ(r.az().slips, 1u);
 }
 
 TEST(Slip, SmallMotionWithinTheSettingIsNoSlipAndZeroTurnsItOff) {
