@@ -177,8 +177,8 @@ class Controller {
   bool auto_parked_ = false;     // parked for being idle; no command since
   const hal::WallClock* utc_clock_ = nullptr;
   Tracker tracker_;
-  GotoStream stream_;                                // the continuity rule's view of the go-tos
-  float az_shift_deg_ = 0.0f;                        // what it added to the last go-to
+  GotoStream stream_;          // the continuity rule's view of the go-tos
+  float az_shift_deg_ = 0.0f;  // what it added to the last go-to
   Commissioning commissioning_;
   std::array<AxisFault, kMaxAxes> counted_fault_{};  // each axis's fault, as last counted
   std::array<std::array<std::uint32_t, kAxisFaultKinds>, kMaxAxes> faults_latched_{};
