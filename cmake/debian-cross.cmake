@@ -4,8 +4,9 @@
 # (scripts/install-deps.sh). Included by cmake/linux-arm64.cmake and
 # cmake/linux-armhf.cmake, which set ROTORD_CROSS_TRIPLET and
 # ROTORD_CROSS_QEMU. Tests run under qemu-user (CMAKE_CROSSCOMPILING_EMULATOR,
-# so binfmt_misc is not needed), which finds ARCH's loader and libraries
-# where multiarch installed them (/lib/ld-linux-*.so, /usr/lib/TRIPLET).
+# so binfmt_misc is not needed) with the cross toolchain's C and C++
+# libraries (-L /usr/TRIPLET: its loader; what is not there, such as
+# multiarch's /usr/lib/TRIPLET libraries, qemu finds at the host's path).
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_C_COMPILER ${ROTORD_CROSS_TRIPLET}-gcc)
 set(CMAKE_CXX_COMPILER ${ROTORD_CROSS_TRIPLET}-g++)
@@ -15,7 +16,7 @@ find_program(ROTORD_CROSS_QEMU_PATH ${ROTORD_CROSS_QEMU})
 if(NOT ROTORD_CROSS_QEMU_PATH)
   message(FATAL_ERROR "${ROTORD_CROSS_QEMU} not found: run scripts/install-deps.sh (qemu-user-static)")
 endif()
-set(CMAKE_CROSSCOMPILING_EMULATOR ${ROTORD_CROSS_QEMU_PATH})
+set(CMAKE_CROSSCOMPILING_EMULATOR ${ROTORD_CROSS_QEMU_PATH} -L /usr/${ROTORD_CROSS_TRIPLET})
 # Two architectures more to compile on a 2-core CI machine: ccache, where
 # installed, keeps the second run cheap (CCACHE_DIR under build/ is the
 # caller's choice).
