@@ -47,6 +47,10 @@ grep -q '^u rotord ' "$x/root/usr/lib/sysusers.d/rotord.conf" || fail "no rotord
 # The rotord user, then its hardware groups where they exist; not started.
 grep -q 'systemd-sysusers .*rotord.conf' "$x/control/postinst" || fail "postinst creates no user"
 grep -q 'for group in gpio i2c dialout' "$x/control/postinst" || fail "postinst adds no groups"
+# The devices' group applied before the install returns (tests/pi_vm):
+# the rules reloaded once the group exists, the events waited for.
+grep -q 'udevadm control --reload' "$x/control/postinst" || fail "postinst does not reload udev's rules"
+grep -q 'udevadm trigger --settle ' "$x/control/postinst" || fail "postinst does not settle udev"
 grep -q "deb-systemd-invoke start" "$x/control/postinst" && fail "the service starts on install"
 sh -n "$x/control/postinst" || fail "postinst syntax"
 dpkg-deb -f "$deb" Depends | grep -q 'libgpiod' || fail "Depends has no libgpiod"
