@@ -3,8 +3,12 @@
 # of the source tree in $DEB_BUILD_DIR (default build-deb), since debhelper
 # works inside the tree it builds and writes the .deb next to it:
 # $DEB_BUILD_DIR/rotord_<version>_<arch>.deb. Unsigned (-us -uc), binary
-# only (-b), for the build machine's architecture.
+# only (-b), for the build machine's architecture or, with DEB_HOST_ARCH
+# (`make deb ARCH=arm64`), cross-built for another one with Debian's cross
+# toolchain and the Build-Depends of that architecture (multiarch), which
+# scripts/install-deps.sh --deb ARCH installs.
 #   DEB_JOBS=N          parallel jobs (default: nproc)
+#   DEB_HOST_ARCH=A     the package's architecture (arm64, armhf; default: this machine's)
 #   ROTORD_PREBUILT=F   package the binary F instead of building one (CI)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,4 +27,11 @@ export DEB_BUILD_OPTIONS="${DEB_BUILD_OPTIONS:+$DEB_BUILD_OPTIONS }parallel=${DE
 if command -v ccache >/dev/null; then
   export CMAKE_CXX_COMPILER_LAUNCHER=ccache CMAKE_C_COMPILER_LAUNCHER=ccache
 fi
-dpkg-buildpackage -b -us -uc
+arch_opts=()
+if [ -n "${DEB_HOST_ARCH:-}" ] && [ "$DEB_HOST_ARCH" != "$(dpkg --print-architecture)" ]; then
+  # nocheck: nothing to run on this machine; the cross suites run the
+  # binaries under qemu-user instead (tests/cross).
+  export DEB_BUILD_OPTIONS="$DEB_BUILD_OPTIONS nocheck"
+  arch_opts=(-a "$DEB_HOST_ARCH")
+fi
+dpkg-buildpackage -b -us -uc "${arch_opts[@]}"
