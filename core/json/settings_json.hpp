@@ -89,7 +89,7 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
 /// The stored settings document (pretty-printed), with room to grow: the
 /// buffers that load, save or export it (web::Api, the Pico's boot buffer).
 /// 7.5 KB since the 16 presets (issue 26); a flash slot holds 8 KB.
-inline constexpr std::size_t kMaxSettingsDocumentBytes = 7680;
+inline constexpr std::size_t kMaxSettingsDocumentBytes = 8192;
 
 /// What start-up reading dropped from the stored document, for the log and
 /// the settings page (GET /api/status "settings_load"). Fixed storage: the

@@ -59,11 +59,13 @@ struct MakeSession {
     return protocol::SessionOf<P>::make(*deps);
   }
 };
-// Each line port has one more slot, for a newcomer to a full port to say
-// STOP (a stop-only exchange, net/admission.hpp): a Connection (1.1 KB, its
-// output buffer) and a session each, about 9 KB for the five
-// (ports/pico_w/README.md). The web has none: an HTTP session is ~6 KB.
-constexpr std::size_t kStopOnlySlots = 1;
+// A stop-only slot per line port (a newcomer to a full port may say STOP,
+// net/admission.hpp) costs a Connection (1.1 KB, its output buffer) and a
+// session each, about 9 KB for the five: with self-commissioning, presets and
+// the sensor gate the image no longer links with them (RAM overflowed by
+// 3,152 bytes), so the Pico W does not offer them yet (ports/pico_w/README.md,
+// docs/security.md). The transport supports them (lwip_transport_tests).
+constexpr std::size_t kStopOnlySlots = 0;
 template <Personality P>
 using LineService = lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>,
                                              MakeSession<P>, kStopOnlySlots>;

@@ -20,12 +20,13 @@
 namespace rotord::linux_port {
 namespace {
 
-/// 'P' answers PONG.
+/// 'P' answers PONG; it is a command the protocol knows (a client that
+/// sends it is in use), and not STOP.
 class PingSession final : public protocol::Session {
  public:
   void receive(std::string_view bytes, protocol::ByteSink& out) override {
     for (char c : bytes) {
-      if (c == 'P') out.write("PONG\n");
+      if (c == 'P' && command_arrives(false)) out.write("PONG\n");
     }
   }
 };
@@ -126,12 +127,16 @@ TEST_F(TcpServerAdmission, AFullPortServesANewcomerOnceAClientHasBeenIdleSixtySe
   for (const char* h : hosts) ASSERT_TRUE(ping(connect(h)));
   advance(30000);
   ASSERT_TRUE(ping(*clients[0]));  // the first one still talks
-  advance(29990);                  // the others: idle 60 s less a tick
+  advance(29990 - net::kStopOnlyExchangeMs);
 
+  // A newcomer to a full port first gets the STOP-only exchange
+  // (net/admission.hpp); silent, it is refused when that ends.
   Client& early = connect("127.0.0.5");
+  io.run_for(std::chrono::milliseconds(100));  // accepted
+  advance(net::kStopOnlyExchangeMs);           // the others: idle 60 s less a tick
   ASSERT_TRUE(run_until([&] { return early.closed; }));
   EXPECT_EQ(early.got, "BUSY\n");
-  EXPECT_EQ(server->counters().refused_full, 1u);
+  EXPECT_EQ(server->counters().stop_only, 1u);
 
   advance(10);  // 60 s
   Client& newcomer = connect("127.0.0.6");
@@ -147,10 +152,12 @@ TEST_F(TcpServerAdmission, AFullPortServesANewcomerOnceAClientHasBeenIdleSixtySe
 TEST_F(TcpServerAdmission, OneHostHoldsAtMostThreeOfFourAndItsNewcomerReplacesItsIdlest) {
   for (int n = 0; n < 3; ++n) ASSERT_TRUE(ping(connect("127.0.0.1")));
   Client& fourth = connect("127.0.0.1");
+  io.run_for(std::chrono::milliseconds(100));  // accepted
+  advance(net::kStopOnlyExchangeMs);           // its STOP-only exchange ends, silent
   ASSERT_TRUE(run_until([&] { return fourth.closed; }));
   EXPECT_EQ(fourth.got, "BUSY\n");
-  EXPECT_EQ(server->counters().refused_per_address, 1u);
-  EXPECT_TRUE(ping(connect("127.0.0.2")));  // another host still gets in
+  EXPECT_EQ(server->counters().stop_only, 1u);  // at its cap: the STOP-only exchange
+  EXPECT_TRUE(ping(connect("127.0.0.2")));      // another host still gets in
 
   // The host's old connections went quiet (say it rebooted): after 60 s its
   // newcomer replaces its own idlest, even with the port not full.
@@ -171,6 +178,8 @@ TEST_F(TcpServerAdmission, AClientOnTheAllowListIsNeverDroppedForAStranger) {
   EXPECT_TRUE(ping(stranger));
   EXPECT_TRUE(run_until([&] { return clients[3]->closed; }));  // 127.0.0.4, not listed
   Client& another = connect("127.0.0.10");
+  io.run_for(std::chrono::milliseconds(100));  // accepted
+  advance(net::kStopOnlyExchangeMs);           // its STOP-only exchange ends, silent
   ASSERT_TRUE(run_until([&] { return another.closed; }));
   EXPECT_EQ(another.got, "BUSY\n");  // the stranger is not idle yet, the rest listed
 }

@@ -253,7 +253,7 @@ TEST(TextSettings, LongestDocumentFitsTheApiBufferAndAFlashSlot) {
   // Room for about 30 more rows before Api::kMaxDocumentBytes must grow.
   EXPECT_LT(n + 1024, sizeof buf) << n << " bytes";
 
-  RamFlash flash(16 * 1024);  // two 8 KB slots, as ports/pico_w
+  RamFlash flash(32 * 1024);  // two 16 KB slots, as ports/pico_w
   FlashSlots slots(flash);
   ASSERT_TRUE(slots.usable());
   EXPECT_GE(slots.capacity(), sizeof buf);

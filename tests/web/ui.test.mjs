@@ -99,7 +99,13 @@ test('holding CW moves, releasing stops', async () => {
   const start = (await rotord.status()).az.position_deg;
   await holdCw(page);
   await until(async () => (await rotord.status()).az.jogging, { what: 'jogging' });
-  await rotord.advance(3000);  // the G-5500 turns about 6 deg/s
+  // The G-5500 turns about 6 deg/s. Advanced in steps with wall time
+  // between them: the dead-man runs on the network's clock, which the manual
+  // clock moves too, and the page renews it on the wall clock.
+  for (let step = 0; step < 30; step++) {
+    await rotord.advance(100);
+    await new Promise((resolve) => setTimeout(resolve, 150));
+  }
   const held = await rotord.status();
   assert.equal(held.az.jogging, true, 'jogging while held');
   assert.ok(held.az.position_deg > start + 5, `moved CW: ${start} -> ${held.az.position_deg}`);

@@ -21,11 +21,11 @@
 #define MEMP_NUM_PBUF 32
 
 // Connections: the static slots of network_services.cpp (web 4, WRC 4,
-// rotctld 3, GS-232 2, Easycomm 2, seed 2: 17), a stop-only exchange per line
-// port (5: net/admission.hpp), the MQTT broker's (1), plus 5 for refused
-// clients and pcbs in TIME_WAIT. Listeners: one per protocol port (web, WRC,
+// rotctld 3, GS-232 2, Easycomm 2, seed 2: 17), the MQTT broker's (1), plus 5
+// for refused clients and pcbs in TIME_WAIT (no stop-only slots on the Pico W
+// yet: network_services.cpp). Listeners: one per protocol port (web, WRC,
 // rotctld, GS-232, Easycomm, seed: 6).
-#define MEMP_NUM_TCP_PCB 28
+#define MEMP_NUM_TCP_PCB 23
 #define MEMP_NUM_TCP_PCB_LISTEN 6
 // UDP: DHCP client and server, DNS, SNTP, mDNS, and the two rotor
 // message ports (N1MM+, PstRotator; docs/protocols/udp.md).
