@@ -50,6 +50,9 @@ async function logInAsOwner(page) {
       return;
     }
     assert.match(await page.textContent('#msg'), /too many/);
+    // The guess budget refills on the daemon's wall clock (this rotord has
+    // no manual clock); the loop retries until the login succeeds, so the
+    // wait's length only paces it and never decides the result.
     await new Promise((resolve) => setTimeout(resolve, 1000));
   }
   assert.fail('the owner never got in');

@@ -102,6 +102,9 @@ test('holding CW moves, releasing stops', async () => {
   // The G-5500 turns about 6 deg/s. Advanced in steps with wall time
   // between them: the dead-man runs on the network's clock, which the manual
   // clock moves too, and the page renews it on the wall clock.
+  // The wait is the page's own renewal timing (a real browser's setInterval,
+  // which no daemon clock drives); each step only needs a renewal to land
+  // within the 700 ms hold, and the assertions below check the outcome.
   for (let step = 0; step < 30; step++) {
     await rotord.advance(100);
     await new Promise((resolve) => setTimeout(resolve, 150));
