@@ -67,13 +67,25 @@ mkdir -p "$x/stubs"
 for cmd in systemd-sysusers deb-systemd-helper deb-systemd-invoke udevadm; do
   printf '#!/bin/sh\nexit 0\n' >"$x/stubs/$cmd"
 done
-printf '#!/bin/sh\n[ "$1" = group ] && { [ "$2" = gpio ] || [ "$2" = dialout ]; }\n' >"$x/stubs/getent"
+printf '#!/bin/sh\n[ "$1" = passwd ] && [ "$2" = rotord ] && exit 0\n[ "$1" = group ] && { [ "$2" = gpio ] || [ "$2" = dialout ]; }\n' >"$x/stubs/getent"
 printf '#!/bin/sh\necho rotord\n' >"$x/stubs/id"
 printf '#!/bin/sh\necho "usermod $*" >>"%s/usermod.log"\n' "$x" >"$x/stubs/usermod"
 chmod +x "$x"/stubs/*
 PATH="$x/stubs:$PATH" sh "$x/control/postinst" configure || fail "postinst configure failed"
 [ "$(cat "$x/usermod.log")" = "usermod -a -G gpio rotord
 usermod -a -G dialout rotord" ] || fail "postinst groups: $(cat "$x/usermod.log" 2>/dev/null)"
+# The preinst makes the user and group before the udev rule is unpacked
+# (udevd drops a GROUP= it reads before the group exists), once only.
+sh -n "$x/control/preinst" || fail "preinst syntax"
+mkdir -p "$x/stubs-pre"
+printf '#!/bin/sh\necho "useradd $*" >>"%s/useradd.log"\n' "$x" >"$x/stubs-pre/useradd"
+printf '#!/bin/sh\nexit 2\n' >"$x/stubs-pre/getent"
+chmod +x "$x"/stubs-pre/*
+PATH="$x/stubs-pre:$PATH" sh "$x/control/preinst" install || fail "preinst install failed"
+grep -q -- '--system --user-group --home-dir /var/lib/rotord .* rotord$' "$x/useradd.log" ||
+  fail "preinst makes no rotord user: $(cat "$x/useradd.log" 2>/dev/null)"
+PATH="$x/stubs:$x/stubs-pre:$PATH" sh "$x/control/preinst" upgrade 1.0 || fail "preinst upgrade failed"
+[ "$(wc -l <"$x/useradd.log")" = 1 ] || fail "preinst made the user a second time"
 
 # 2. The unit: what the issue asks for, and systemd accepts it.
 for line in Type=notify WatchdogSec= Restart=on-failure User=rotord StateDirectory=rotord \
