@@ -349,7 +349,7 @@ void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
   if (!request.query_az && !request.query_el) return;
   RotatorStatus s = controller_.status();
   // A recognised flip pass reads in the flip frame the client sent.
-  frame_.read(s.az.position_deg, s.el.position_deg);
+  frame_.read(s.az.position_deg, s.el.position_deg, controller_.recognised_az_deg());
   // Easycomm reports a compass bearing: Hamlib's 0..360 limits and trackers
   // comparing it with the bearing they sent expect one, whatever the cable
   // wrap (the unwrapped position is on the web page, rotctld and WRC).

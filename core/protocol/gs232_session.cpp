@@ -509,7 +509,7 @@ Error Gs232Session::go_to_point(std::size_t index) {
 void Gs232Session::report(char what, ByteSink& out) {
   RotatorStatus s = controller_.status();
   // In this client's frame: a tracker's 002 that went to 362 reads 002.
-  frame_.read(s.az.position_deg, s.el.position_deg);
+  frame_.read(s.az.position_deg, s.el.position_deg, controller_.recognised_az_deg());
   const int az = gs232::report_az_deg(s.az.position_deg, range(), s.limits.az_continuous);
   // Without an elevation axis the elevation reads 0: C2 must still answer
   // (Hamlib's azimuth-only models 609 and 611 ask for it).

@@ -94,7 +94,8 @@ HamlibError RotctldSession::execute(const Command& command) {
     case Op::kGetPos: {
       RotatorStatus s = controller_.status();
       if (!s.az.position_valid || (s.el.present && !s.el.position_valid)) return HamlibError::kIo;
-      frame_.read(s.az.position_deg, s.el.position_deg);  // as this client sent it
+      frame_.read(s.az.position_deg, s.el.position_deg,
+                  controller_.recognised_az_deg());  // as this client sent it
       value("Azimuth", "%.2f", az_reading(s, 2));
       value("Elevation", "%.2f", s.el.present ? two_decimals(s.el.position_deg) : 0.0);
       return HamlibError::kOk;

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 #include "motion/angles.hpp"
 
 namespace rotord {
@@ -31,13 +33,28 @@ class ClientFrame {
   }
   /// The rotator's unwrapped azimuth in this client's frame.
   float az_deg(float position_deg) const {
+    // Following a recognised pass, a compass client's target is the
+    // object's 0..360 azimuth now, not the one it sent minutes ago: a
+    // compass reading agrees with it through north too.
+    if (recognised_ && sent_az_deg_ >= 0.0f && sent_az_deg_ <= 360.0f)
+      return wrap_360(position_deg);
     return shifted_ ? unwrap_near(position_deg, sent_az_deg_) : position_deg;
   }
   /// The rotator's position (unwrapped az, el) in this client's frame.
-  void read(float& az_deg, float& el_deg) const {
+  /// `object_az_deg`: while a recognised pass is followed, where the object
+  /// is now (0..360; Controller::recognised_az_deg()), which is what a
+  /// compass client compares the reading with.
+  void read(float& az_deg, float& el_deg, std::optional<float> object_az_deg) const {
     if (recognised_ && (el_deg > 90.0f) != (sent_el_deg_ > 90.0f)) {
       az_deg += 180.0f;
       el_deg = 180.0f - el_deg;
+    }
+    if (recognised_ && object_az_deg && sent_az_deg_ >= 0.0f && sent_az_deg_ <= 360.0f) {
+      // The turn nearest the client's own target now (the antenna may be
+      // a lag ahead of it across north: 0.3 while the client's is 359.8).
+      const float target = sent_el_deg_ > 90.0f ? *object_az_deg + 180.0f : *object_az_deg;
+      az_deg = unwrap_near(az_deg, wrap_360(target));
+      return;
     }
     az_deg = this->az_deg(az_deg);
   }

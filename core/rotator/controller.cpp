@@ -83,7 +83,8 @@ void Controller::tick(Millis now) {
     apply_settings();
   }
   read_estop();
-  if (recognition_.active && !settings_.b(Id::kTrackRecognise)) end_recognition(RecognitionEnd::kOff);
+  if (recognition_.active && !settings_.b(Id::kTrackRecognise))
+    end_recognition(RecognitionEnd::kOff);
   apply_buttons(now);
   az_.tick(now);
   if (has_el_) el_.tick(now);
@@ -168,7 +169,7 @@ void Controller::tick_tracker(Millis now) {
   // A recognised pass ends at LOS as the client's own: it decides what next.
   if (recognition_.active)
     return end_recognition(action == Tracker::Action::kFailed ? RecognitionEnd::kFailed
-                                                               : RecognitionEnd::kLos);
+                                                              : RecognitionEnd::kLos);
   switch (action) {
     case Tracker::Action::kPark:
       park();

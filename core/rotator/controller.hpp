@@ -164,6 +164,13 @@ class Controller {
   /// session that sent it reads the position in its own frame
   /// (rotator/client_frame.hpp).
   bool last_goto_recognised() const { return last_goto_recognised_; }
+  /// Where the recognised object is now (azimuth 0..360), while its pass is
+  /// followed: a client's frame reads the position on the turn nearest it.
+  std::optional<float> recognised_az_deg() const {
+    if (!recognition_.active || tracker_.status().phase != TrackPhase::kTracking)
+      return std::nullopt;
+    return tracker_.status().sky_az_deg;
+  }
 
   /// Resolves a compass azimuth to the literal unwrapped target go_to would
   /// use (without the continuity rule).

@@ -34,8 +34,7 @@ void Controller::consider_recognition(float az_deg, float el_deg, const GotoStre
                                         request.tle))
       return;
   } else {
-    request.kind =
-        v.candidate == stored ? tracking::TargetKind::kSun : tracking::TargetKind::kMoon;
+    request.kind = v.candidate == stored ? tracking::TargetKind::kSun : tracking::TargetKind::kMoon;
   }
   // The tracking mode's own follower, from where the antenna is: its plan
   // chooses the wrap and the flip for the rest of the pass. Until it has

@@ -68,8 +68,8 @@ bool GotoMatcher::load(int candidate, const tracking::TleCatalog* catalog,
   return target.set_satellite(tle) == tracking::Sgp4Error::kOk;
 }
 
-bool GotoMatcher::near(tracking::SkyTarget& target, float az_deg, float el_deg,
-                       std::int64_t utc_ms, const tracking::Observer& observer) {
+bool GotoMatcher::near(tracking::SkyTarget& target, float az_deg, float el_deg, std::int64_t utc_ms,
+                       const tracking::Observer& observer) {
   tracking::LookAngles look;
   if (target.look(utc_ms, observer, look) != tracking::Sgp4Error::kOk) return false;
   // The object's recent path as a straight segment through where it is now

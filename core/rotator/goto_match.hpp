@@ -73,8 +73,7 @@ class GotoMatcher {
   }
 
   /// Loads candidate `n` into `target`; false when it cannot be computed.
-  static bool load(int candidate, const tracking::TleCatalog* catalog,
-                   tracking::SkyTarget& target);
+  static bool load(int candidate, const tracking::TleCatalog* catalog, tracking::SkyTarget& target);
   /// Whether a go-to at `az_deg`, `el_deg` (sky direction) at `utc_ms` is
   /// within kToleranceDeg of `target`'s recent path.
   static bool near(tracking::SkyTarget& target, float az_deg, float el_deg, std::int64_t utc_ms,
