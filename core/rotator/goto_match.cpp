@@ -125,17 +125,23 @@ GotoMatcher::Verdict GotoMatcher::consider(float az_deg, float el_deg, std::int6
   // Every candidate missed: what the stream follows may rise later, or the
   // stream may turn to another object; compare afresh.
   if (!any_in) start(catalog);
+  bool any_unchecked = false;
+  for (int n = 0; n < count_; ++n) any_unchecked = any_unchecked || hits_[n] == kUnchecked;
+  // The sweep gets one evaluation of every go-to while it lasts, so a small
+  // budget is not spent on the candidates still in alone.
+  const int in_budget = any_unchecked ? budget - 1 : budget;
   Verdict v;
   // First the candidates still in: each must match this go-to to stay in.
-  for (int n = 0; n < count_ && v.evaluated < budget; ++n) {
+  for (int n = 0; n < count_ && v.evaluated < in_budget; ++n) {
     if (hits_[n] == kOut || hits_[n] == kUnchecked) continue;
     ++v.evaluated;
     const bool hit = load(n, catalog, scratch_) && near(scratch_, az_deg, el_deg, utc_ms, observer);
     hits_[n] = hit ? static_cast<std::uint8_t>(hits_[n] < 100 ? hits_[n] + 1 : 100) : kOut;
   }
   // Then the sweep of those not yet compared, as far as the budget goes.
-  for (int k = 0; k < count_ && v.evaluated < budget; ++k) {
-    const int n = (cursor_ + k) % count_;
+  const int from = cursor_;
+  for (int k = 0; k < count_ && v.evaluated < (budget > 0 ? budget : 1); ++k) {
+    const int n = (from + k) % count_;
     if (hits_[n] != kUnchecked) continue;
     ++v.evaluated;
     const bool hit = load(n, catalog, scratch_) && near(scratch_, az_deg, el_deg, utc_ms, observer);
