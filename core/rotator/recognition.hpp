@@ -24,7 +24,7 @@ enum class RecognitionEnd : std::uint8_t {
 const char* recognition_end_name(RecognitionEnd why);
 
 /// What the Controller recognised in a client's go-to stream, and when and
-/// why it ended (GET /api/state "recognised", /metrics, the log).
+/// why it ended (GET /api/status "recognised", /metrics, the log).
 struct Recognition {
   bool active = false;
   CommandSource source = kNoSource;  ///< the client whose stream it is

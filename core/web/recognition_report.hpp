@@ -6,7 +6,7 @@
 
 namespace rotord::web {
 
-/// GET /api/state "recognised": the object rotord follows in a client's
+/// GET /api/status "recognised": the object rotord follows in a client's
 /// go-to stream (docs/tracking.md, "Trackers through the protocols"), or
 /// the last one and when and why it ended; null when there never was one.
 void write_recognition(JsonWriter& w, const Recognition& r);

@@ -113,7 +113,7 @@ TEST_F(GotoMatchTest, RecognisedAfterThreeGotosInStepWithOneObject) {
   EXPECT_EQ(v.evaluated, 3);  // the ISS, the Sun, the Moon
   v = goto_iss(m, t0_ + 5000, all);
   EXPECT_FALSE(v.recognised);
-  EXPECT_EQ(v.evaluated, 1);  // only the candidate still in
+  EXPECT_EQ(v.evaluated, 1);                      // only the candidate still in
   v = goto_iss(m, t0_ + 10000, all, 0.0f, 3000);  // a client 3 s late
   EXPECT_TRUE(v.recognised);
   EXPECT_EQ(v.candidate, 0);
