@@ -129,11 +129,17 @@ struct ClientRun {
   double max_error_deg = 0;         ///< antenna to the ISS, once recognised, el < 80
 };
 
+/// The frame a client sends in.
+enum class Frame {
+  kPlain,   ///< az 0..360, el 0..90
+  kFlip,    ///< Gpredict with max el 180: az + 180, 180 - el, the whole pass
+  kMirror,  ///< the SatNOGS client: plain up to culmination, the flip frame after it
+};
+
 /// Gpredict as its source reads: a cycle of 1 s, `p`, then `P az el` with the
-/// ISS's 0..360 azimuth when off by more than `threshold_deg`. `flip`: as
-/// Gpredict with max el 180 sends it (az + 180, 180 - el). `each` runs after
-/// every go-to with its number and may end the run (false).
-ClientRun gpredict(Bench& b, protocol::RotctldSession& client, double threshold_deg, bool flip,
+/// ISS's 0..360 azimuth when off by more than `threshold_deg`, in `frame`.
+/// `each` runs after every go-to with its number and may end the run (false).
+ClientRun gpredict(Bench& b, protocol::RotctldSession& client, double threshold_deg, Frame frame,
                    const std::function<bool(int)>& each = nullptr) {
   tracking::Tle tle;
   EXPECT_TRUE(tracking::parse_tle(kIssLine1, kIssLine2, tle).ok());
@@ -143,6 +149,8 @@ ClientRun gpredict(Bench& b, protocol::RotctldSession& client, double threshold_
   ClientRun run;
   bool up = false;
   double sent_az = -1, sent_el = 0;
+  std::int64_t culmination_ms = 0;  // of this pass (max el 13.9 deg)
+  EXPECT_TRUE(tracking::parse_utc("2019-12-09T22:49:32Z", culmination_ms));
   for (int cycle = 0; cycle < 1200; ++cycle) {
     tracking::LookAngles look;
     EXPECT_EQ(sat.look(*b.unix_ms(), station, look), tracking::Sgp4Error::kOk);
@@ -153,7 +161,7 @@ ClientRun gpredict(Bench& b, protocol::RotctldSession& client, double threshold_
     }
     up = true;
     double az = look.az_deg, el = look.el_deg;
-    if (flip) {
+    if (frame == Frame::kFlip || (frame == Frame::kMirror && *b.unix_ms() >= culmination_ms)) {
       az = std::fmod(az + 180.0, 360.0);
       el = 180.0 - el;
     }
@@ -168,7 +176,7 @@ ClientRun gpredict(Bench& b, protocol::RotctldSession& client, double threshold_
       } else {
         run.max_readback_gap_deg = std::fmax(run.max_readback_gap_deg, gap);
       }
-      if (flip) {
+      if (sent_el > 90.0) {
         EXPECT_GT(read_el, 90.0 - 1.0) << "read back out of its flip frame";
       }
     }
@@ -198,7 +206,6 @@ ClientRun gpredict(Bench& b, protocol::RotctldSession& client, double threshold_
     }
     b.run_ms(1000);
   }
-  (void)sent_el;
   return run;
 }
 
@@ -208,7 +215,7 @@ TEST(RecognitionScenario, AnIssPassStreamIsRecognisedAndFollowedThroughNorth) {
   b.power_on();
   protocol::RotctldSession client(b.controller(), "test");
   client.set_peer(access::Peer::from_ipv4(0x7f000001));
-  const ClientRun run = gpredict(b, client, 5.0, false);
+  const ClientRun run = gpredict(b, client, 5.0, Frame::kPlain);
   std::printf(
       "[ recognition ] g5500, ISS through north, Gpredict threshold 5: recognised at go-to %d, "
       "%d go-tos, %d refused, az %.0f..%.0f, max error %.1f deg while recognised, read-back at "
@@ -240,7 +247,7 @@ TEST(RecognitionScenario, AFlipStreamIsRecognisedAndReadBackInItsFrame) {
   b.store_iss();
   b.power_on();
   protocol::RotctldSession client(b.controller(), "test");
-  const ClientRun run = gpredict(b, client, 5.0, true);
+  const ClientRun run = gpredict(b, client, 5.0, Frame::kFlip);
   std::printf(
       "[ recognition ] flip frame: recognised at go-to %d, %d go-tos, %d refused, max "
       "error %.1f deg, read-back at most %.1f deg from its target (%d 90+ off)\n",
@@ -253,9 +260,33 @@ TEST(RecognitionScenario, AFlipStreamIsRecognisedAndReadBackInItsFrame) {
   EXPECT_EQ(b.limit_ticks(), 0);
 }
 
+TEST(RecognitionScenario, TheSatnogsMirroredPassStaysRecognisedThroughCulmination) {
+  // The SatNOGS client (threshold 4) mirrors the pass at culmination: its
+  // azimuth jumps by 180 deg and its elevation goes over 90. The same
+  // object in the sky: still recognised, to LOS, nothing refused.
+  Bench b("g5500", 300.0, 0.0);
+  b.settings().set(Id::kElMaxDeg, 180.0);
+  b.store_iss();
+  b.power_on();
+  protocol::RotctldSession client(b.controller(), "test");
+  const ClientRun run = gpredict(b, client, 4.0, Frame::kMirror);
+  std::printf(
+      "[ recognition ] SatNOGS mirrored pass: recognised at go-to %d, %d go-tos, %d refused, max "
+      "error %.1f deg, read-back at most %.1f deg from its target (%d 90+ off), ended: %s\n",
+      run.recognised_at, run.commands, run.refused, run.max_error_deg, run.max_readback_gap_deg,
+      run.far_readings, recognition_end_name(b.recognition().ended));
+  ASSERT_GE(run.recognised_at, GotoMatcher::kMinHits);
+  EXPECT_EQ(b.recognition().begun, 1u);
+  EXPECT_EQ(b.recognition().ended, RecognitionEnd::kLos);
+  EXPECT_EQ(run.refused, 0);
+  EXPECT_LE(run.far_readings, 2);
+  EXPECT_LT(run.max_error_deg, 5.0);
+  EXPECT_EQ(b.limit_ticks(), 0);
+}
+
 /// Runs the ISS stream until recognised and a few go-tos more.
 void until_recognised(Bench& b, protocol::RotctldSession& client) {
-  gpredict(b, client, 5.0, false, [&](int) { return !b.recognition().active; });
+  gpredict(b, client, 5.0, Frame::kPlain, [&](int) { return !b.recognition().active; });
   ASSERT_TRUE(b.recognition().active);
   b.run_ms(20000);  // planned and following
   ASSERT_EQ(b.controller().status().mode, Mode::kTrack);
@@ -332,7 +363,7 @@ TEST(RecognitionScenario, NothingWithoutTlesOrWithoutAPositionOrWhenOff) {
     protocol::RotctldSession client(b.controller(), "test");
     // The client's stream is computed for Boulder; without a position the
     // controller has none to compare it with.
-    gpredict(b, client, 5.0, false, [&](int n) {
+    gpredict(b, client, 5.0, Frame::kPlain, [&](int n) {
       if (variant == 1 && n == 1) b.settings().set(Id::kStationLatDeg, 0.0);
       if (variant == 1 && n == 1) b.settings().set(Id::kStationLonDeg, 0.0);
       return n < 12;
@@ -381,7 +412,7 @@ TEST(RecognitionScenario, AZigZagOrTwoObjectsOnOneOrbitAreNotRecognised) {
     b.store_twin();
     b.power_on();
     protocol::RotctldSession client(b.controller(), "test");
-    gpredict(b, client, 5.0, false);
+    gpredict(b, client, 5.0, Frame::kPlain);
     EXPECT_EQ(b.recognition().begun, 0u);
     EXPECT_GT(b.max_az(), 400.0);  // the continuity rule alone
   }
