@@ -101,6 +101,14 @@
     $('tgt').textContent = targets.length ? targets.join(', ') : '–';
     const axes = s.el ? [['az', s.az], ['el', s.el]] : [['az', s.az]];
     $('state').textContent = s.mode + ' · ' + axes.map(([n, a]) => `${n} ${a.state}`).join(', ');
+    // A pass recognised in a client's go-tos (docs/tracking.md), or how the last one ended.
+    const r = s.recognised;
+    $('recognised-row').hidden = !r;
+    if (r) {
+      $('recognised').textContent = r.active
+        ? `following ${r.object} (recognised in a client's go-tos since ${r.since_utc})`
+        : `${r.object}: recognition ended (${r.ended}) at ${r.ended_utc}`;
+    }
     const faults = axes.filter(([, a]) => a.fault !== 'none').map(([n, a]) => `${n}: ${a.fault}`);
     $('faults').hidden = faults.length === 0;
     $('fault-text').textContent = faults.length ? 'Fault ' + faults.join(', ') : '';

@@ -341,10 +341,15 @@ void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
       // unless inside the travel.
       const Error e = controller_.go_to(request.set_az_deg, el, AzTarget::kCompass, source());
       if (e != Error::kOk) alarm(out, alarm_reason(e));
+      if (e == Error::kOk && request.set_az_deg)
+        frame_.note_goto(*request.set_az_deg, controller_.az_continuity_shift_deg(),
+                         controller_.last_goto_recognised(), el ? *el : 0.0f);
     }
   }
   if (!request.query_az && !request.query_el) return;
-  const RotatorStatus s = controller_.status();
+  RotatorStatus s = controller_.status();
+  // A recognised flip pass reads in the flip frame the client sent.
+  frame_.read(s.az.position_deg, s.el.position_deg, controller_.recognised_az_deg());
   // Easycomm reports a compass bearing: Hamlib's 0..360 limits and trackers
   // comparing it with the bearing they sent expect one, whatever the cable
   // wrap (the unwrapped position is on the web page, rotctld and WRC).

@@ -6,6 +6,7 @@
 #include "protocol/line_assembler.hpp"
 #include "protocol/line_reply.hpp"
 #include "protocol/session.hpp"
+#include "rotator/client_frame.hpp"
 #include "util/axis_id.hpp"
 #include "util/direction.hpp"
 
@@ -119,6 +120,7 @@ class EasycommSession final : public Session {
   Controller& controller_;
   const char* version_;
   LineAssembler<kMaxLineLength> lines_;
+  ClientFrame frame_;  // the frame this client sends in (a recognised flip pass)
 };
 
 }  // namespace rotord::protocol

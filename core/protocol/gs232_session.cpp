@@ -495,7 +495,9 @@ Error Gs232Session::go(int az_deg, std::optional<int> el_deg) {
   // go_to checks both axes before it moves either: a target outside the
   // travel moves nothing.
   const Error e = controller_.go_to(goal.az_deg, el, goal.mode, source());
-  if (e == Error::kOk) frame_.note_goto(goal.az_deg, controller_.az_continuity_shift_deg());
+  if (e == Error::kOk)
+    frame_.note_goto(goal.az_deg, controller_.az_continuity_shift_deg(),
+                     controller_.last_goto_recognised(), el ? *el : 0.0f);
   return e;
 }
 
@@ -505,10 +507,10 @@ Error Gs232Session::go_to_point(std::size_t index) {
 }
 
 void Gs232Session::report(char what, ByteSink& out) {
-  const RotatorStatus s = controller_.status();
+  RotatorStatus s = controller_.status();
   // In this client's frame: a tracker's 002 that went to 362 reads 002.
-  const int az =
-      gs232::report_az_deg(frame_.az_deg(s.az.position_deg), range(), s.limits.az_continuous);
+  frame_.read(s.az.position_deg, s.el.position_deg, controller_.recognised_az_deg());
+  const int az = gs232::report_az_deg(s.az.position_deg, range(), s.limits.az_continuous);
   // Without an elevation axis the elevation reads 0: C2 must still answer
   // (Hamlib's azimuth-only models 609 and 611 ask for it).
   const int el = s.el.present ? gs232::report_el_deg(s.el.position_deg) : 0;

@@ -86,13 +86,16 @@ HamlibError RotctldSession::execute(const Command& command) {
       std::optional<float> el_target;
       if (controller_.has_el()) el_target = el_deg;
       const Error e = controller_.go_to(az_deg, el_target, AzTarget::kUnwrapped, source());
-      if (e == Error::kOk) frame_.note_goto(az_deg, controller_.az_continuity_shift_deg());
+      if (e == Error::kOk)
+        frame_.note_goto(az_deg, controller_.az_continuity_shift_deg(),
+                         controller_.last_goto_recognised(), el_deg);
       return from(e);
     }
     case Op::kGetPos: {
       RotatorStatus s = controller_.status();
       if (!s.az.position_valid || (s.el.present && !s.el.position_valid)) return HamlibError::kIo;
-      s.az.position_deg = frame_.az_deg(s.az.position_deg);  // as this client sent it
+      frame_.read(s.az.position_deg, s.el.position_deg,
+                  controller_.recognised_az_deg());  // as this client sent it
       value("Azimuth", "%.2f", az_reading(s, 2));
       value("Elevation", "%.2f", s.el.present ? two_decimals(s.el.position_deg) : 0.0);
       return HamlibError::kOk;

@@ -83,6 +83,8 @@ void Controller::tick(Millis now) {
     apply_settings();
   }
   read_estop();
+  if (recognition_.active && !settings_.b(Id::kTrackRecognise))
+    end_recognition(RecognitionEnd::kOff);
   apply_buttons(now);
   az_.tick(now);
   if (has_el_) el_.tick(now);
@@ -108,6 +110,8 @@ void Controller::note_command() {
 }
 
 void Controller::end_track() {
+  // A recognised pass ends with the track that follows it.
+  if (recognition_.active) return end_recognition(RecognitionEnd::kCommand);
   if (!tracker_.armed()) return;
   tracker_.cancel();
   // The tracker paced the axes; the user's speed again.
@@ -162,6 +166,10 @@ void Controller::tick_tracker(Millis now) {
   az_.set_speed_pct(speed_pct_);
   el_.set_speed_pct(speed_pct_);
   mode_ = Mode::kIdle;
+  // A recognised pass ends at LOS as the client's own: it decides what next.
+  if (recognition_.active)
+    return end_recognition(action == Tracker::Action::kFailed ? RecognitionEnd::kFailed
+                                                              : RecognitionEnd::kLos);
   switch (action) {
     case Tracker::Action::kPark:
       park();
@@ -229,28 +237,59 @@ std::optional<float> Controller::resolve_az(float az_deg, AzTarget mode) const {
 
 Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg, AzTarget az_mode,
                         CommandSource source) {
+  last_goto_recognised_ = false;
+  bool literal = false;
+  if (recognition_.active) {
+    if (source == recognition_.source && az_deg && el_deg && on_recognised(*az_deg, *el_deg)) {
+      // The client confirms the pass rotord follows: no command ends it.
+      last_activity_ms_ = now_;
+      auto_parked_ = false;
+      ++recognition_.gotos;
+      last_goto_recognised_ = true;
+      const TrackPhase phase = tracker_.status().phase;
+      if (phase != TrackPhase::kFinding && phase != TrackPhase::kPlanning &&
+          phase != TrackPhase::kWaiting)
+        return Error::kOk;
+      // Until the follower has planned the pass, the go-to itself points.
+      GotoStream::Step step;
+      const Error e = goto_axes(az_deg, el_deg, az_mode, source, step);
+      mode_ = Mode::kTrack;
+      return e;
+    }
+    end_recognition(source == recognition_.source ? RecognitionEnd::kDeparted
+                                                  : RecognitionEnd::kOtherSource);
+    literal = true;
+  }
   note_command();
+  // The go-to that ended a recognition means what it says: a new stream.
+  if (literal) stream_.interrupt();
+  GotoStream::Step step;
+  const Error e = goto_axes(az_deg, el_deg, az_mode, source, step);
+  if (e == Error::kOk && az_deg && el_deg && !literal)
+    consider_recognition(*az_deg, *el_deg, step, source);
+  return e;
+}
+
+Error Controller::goto_axes(std::optional<float> az_deg, std::optional<float> el_deg,
+                            AzTarget az_mode, CommandSource source, GotoStream::Step& step) {
   if (el_deg && !has_el_) return Error::kNotSupported;
   std::optional<float> az_target;
-  GotoStream::Step step;
   float shift_deg = 0.0f;
   if (az_deg) {
     az_target = resolve_az(*az_deg, az_mode);
     if (!az_target) return Error::kOutOfRange;
     const AxisConfig& c = az_.config();
-    if (!c.continuous) {
-      step = stream_.judge(*az_deg, source, now_, c.max_deg - c.min_deg);
-      // Only a compass azimuth is resolved: a client that sends 420 means 420.
-      if (step.continues && settings_.b(Id::kTrackContinuity) && *az_deg >= 0.0f &&
-          *az_deg <= 360.0f) {
-        const float continued = unwrap_near(*az_deg, stream_.last_target_deg());
-        // Never outside the travel: where the stream would leave it, the
-        // literal turn (the unwind) is the only way on.
-        if (continued >= c.min_deg && continued <= c.max_deg &&
-            std::fabs(continued - *az_target) > 1.0f) {
-          shift_deg = continued - *az_target;
-          az_target = continued;
-        }
+    step = stream_.judge(*az_deg, source, now_, c.continuous ? 360.0f : c.max_deg - c.min_deg);
+    // Only a compass azimuth is resolved: a client that sends 420 means 420.
+    if (!c.continuous && step.continues && settings_.b(Id::kTrackContinuity) && *az_deg >= 0.0f &&
+        *az_deg <= 360.0f) {
+      const float continued = unwrap_near(*az_deg, stream_.last_target_deg());
+      // Never outside the travel: where the stream would leave it, the
+      // literal turn (the unwind) is the only way on.
+      if (continued >= c.min_deg && continued <= c.max_deg &&
+          std::fabs(continued - *az_target) > 1.0f) {
+        shift_deg = continued - *az_target;
+        az_target = continued;
       }
     }
   }
@@ -289,6 +328,7 @@ Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman
 
 void Controller::stop() {
   if (commissioning_.running()) commissioning_.abort(commissioned_axis(), "STOP");
+  end_recognition(RecognitionEnd::kStop);
   note_command();
   stream_.interrupt();
   az_.stop();
@@ -297,6 +337,7 @@ void Controller::stop() {
 }
 
 Error Controller::park() {
+  end_recognition(RecognitionEnd::kPark);
   const float park_az = settings_.f(Id::kParkAzDeg);
   std::optional<float> park_el;
   if (has_el_) park_el = settings_.f(Id::kParkElDeg);

@@ -6,7 +6,9 @@
 #include "hal/wall_clock.hpp"
 #include "input/manual_buttons.hpp"
 #include "rotator/commissioning.hpp"
+#include "rotator/goto_match.hpp"
 #include "rotator/goto_stream.hpp"
+#include "rotator/recognition.hpp"
 #include "rotator/tracker.hpp"
 #include "settings/settings.hpp"
 #include "tracking/track_plan.hpp"
@@ -69,6 +71,14 @@ class Controller {
   /// Target evaluations (SGP4 + look angles) one tick may do for the
   /// tracker's pass search and planning (Pico W: 1, about 3 ms).
   void set_track_budget(int evaluations_per_tick) { tracker_.set_budget(evaluations_per_tick); }
+  /// The stored TLEs, for recognising what a client's go-to stream follows
+  /// (track.recognise), or nullptr (the Sun and the Moon only).
+  void attach_catalog(const tracking::TleCatalog* catalog) { catalog_ = catalog; }
+  /// Candidates (TLE entries, the Sun, the Moon) compared per go-to at most
+  /// (rotator/goto_match.hpp says why; Pico W: 3, about 10-30 ms).
+  void set_recognise_budget(int candidates_per_goto) {
+    recognise_budget_ = candidates_per_goto < 1 ? 1 : candidates_per_goto;
+  }
 
   // Commands. Each validates everything before it changes anything.
   /// A go-to. `source` names who sent it (a session, REST or MQTT from an
@@ -76,6 +86,11 @@ class Controller {
   /// gets the continuity rule (rotator/goto_stream.hpp, track.continuity):
   /// a 0..360 azimuth goes on the turn continuous with the stream, inside
   /// the travel, rather than the literal one. kNoSource: always literal.
+  /// A stream recognised as following a stored satellite, the Sun or the
+  /// Moon (track.recognise) is followed along that object's planned pass;
+  /// its go-tos that stay on the object are then taken as confirmation, and
+  /// one that departs from it, or any other command, ends the recognition
+  /// and is obeyed literally.
   Error go_to(std::optional<float> az_deg, std::optional<float> el_deg,
               AzTarget az_mode = AzTarget::kCompass, CommandSource source = kNoSource);
   /// Moves one axis until stop, a limit, or for `deadman_ms` (0 = no dead-man;
@@ -142,6 +157,21 @@ class Controller {
   /// (GET /metrics: rotord_goto_continuity_total).
   std::uint32_t continuity_resolved() const { return stream_.resolved_count(); }
 
+  /// What the go-to stream of a client was recognised as following, and when
+  /// and why the last recognition ended.
+  const Recognition& recognition() const { return recognition_; }
+  /// Whether the last go-to obeyed began or continued a recognised pass: the
+  /// session that sent it reads the position in its own frame
+  /// (rotator/client_frame.hpp).
+  bool last_goto_recognised() const { return last_goto_recognised_; }
+  /// Where the recognised object is now (azimuth 0..360), while its pass is
+  /// followed: a client's frame reads the position on the turn nearest it.
+  std::optional<float> recognised_az_deg() const {
+    if (!recognition_.active || tracker_.status().phase != TrackPhase::kTracking)
+      return std::nullopt;
+    return tracker_.status().sky_az_deg;
+  }
+
   /// Resolves a compass azimuth to the literal unwrapped target go_to would
   /// use (without the continuity rule).
   std::optional<float> resolve_az(float az_deg, AzTarget mode) const;
@@ -153,6 +183,16 @@ class Controller {
   /// ends a track.
   void note_command();
   void end_track();
+  /// A go-to's axes part: validates and moves, with the continuity rule.
+  Error goto_axes(std::optional<float> az_deg, std::optional<float> el_deg, AzTarget az_mode,
+                  CommandSource source, GotoStream::Step& step);
+  /// Compares an obeyed go-to of a stream with the sky; begins following
+  /// the object it recognises.
+  void consider_recognition(float az_deg, float el_deg, const GotoStream::Step& step,
+                            CommandSource source);
+  /// Whether a go-to of the recognised stream stays on the object.
+  bool on_recognised(float az_deg, float el_deg);
+  void end_recognition(RecognitionEnd why);
   void tick_tracker(Millis now);
   void park_when_idle_long_enough(Millis now);
   void read_estop();
@@ -179,6 +219,11 @@ class Controller {
   Tracker tracker_;
   GotoStream stream_;          // the continuity rule's view of the go-tos
   float az_shift_deg_ = 0.0f;  // what it added to the last go-to
+  const tracking::TleCatalog* catalog_ = nullptr;
+  GotoMatcher matcher_;  // what the stream follows; while recognised, holds the object
+  int recognise_budget_ = GotoMatcher::kMaxCandidates;
+  Recognition recognition_;
+  bool last_goto_recognised_ = false;
   Commissioning commissioning_;
   std::array<AxisFault, kMaxAxes> counted_fault_{};  // each axis's fault, as last counted
   std::array<std::array<std::uint32_t, kAxisFaultKinds>, kMaxAxes> faults_latched_{};

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <utility>
 
+#include "web/recognition_report.hpp"
+
 namespace rotord::web {
 namespace {
 
@@ -104,6 +106,7 @@ void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s
            "Go-tos of a tracker's stream put on the turn continuous with it instead of the "
            "literal one (track.continuity: a pass through north kept in the overlap).");
   w.integer({}, c.continuity_resolved());
+  write_recognition_metrics(w, c.recognition());
   w.family("rotord_axis_limit_active", "gauge",
            "1 while that direction is blocked by a limit switch or soft limit.");
   for (std::size_t n = 0; n < count; ++n) {

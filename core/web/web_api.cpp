@@ -8,6 +8,7 @@
 #include "util/slice.hpp"
 #include "util/utc_time.hpp"
 #include "web/place_api.hpp"
+#include "web/recognition_report.hpp"
 
 namespace rotord::web {
 namespace {
@@ -221,6 +222,7 @@ void Api::write_status(JsonWriter& w) const {
   w.key("lock");
   write_lock(w, nullptr);
   write_beam(w, s);
+  write_recognition(w, c.recognition());
   // Only when something is wrong: a status every 100 ms stays short.
   const LoadReport* load = ctx_.load_report;
   if (values.access_unreadable() || (load != nullptr && !load->empty())) {

@@ -16,6 +16,7 @@
 #include "protocol/datagram_registry.hpp"
 #include "rotator/axis_events.hpp"
 #include "rotator/controller.hpp"
+#include "rotator/recognition_events.hpp"
 #include "serial_transport.hpp"
 #include "service_notify.hpp"
 #include "settings/settings.hpp"
@@ -146,7 +147,8 @@ class Daemon final : private web::RebootHook {
   int exit_code_ = 0;
   Millis network_skip_ms_ = 0;  ///< see network_ms()
   std::unique_ptr<Controller> controller_;
-  AxisEvents axis_events_;  // faults and slips, for the log
+  AxisEvents axis_events_;                // faults and slips, for the log
+  RecognitionEvents recognition_events_;  // recognised passes, for the log
   std::unique_ptr<web::Api> api_;
   std::unique_ptr<MqttClient> mqtt_;  ///< mqtt.enabled: on the station's broker
   bool reboot_pending_ = false;

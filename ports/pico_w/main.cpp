@@ -31,6 +31,7 @@
 #include "protocol/protocol_registry.hpp"
 #include "rotator/axis_events.hpp"
 #include "rotator/controller.hpp"
+#include "rotator/recognition_events.hpp"
 #include "sensors/magnetometer.hpp"
 #include "settings/pin_rules.hpp"
 #include "settings/settings.hpp"
@@ -433,6 +434,8 @@ const char* restart_reason() {
   // Faults latched and slips, named, for the log port (docs/care.md).
   static AxisEvents axis_events;
   axis_events.begin(controller.status());
+  static RecognitionEvents recognition_events;
+  recognition_events.begin(controller.recognition());
 
   // 3. The USB protocol port: one session, fresh whenever a program opens
   // the port (usb_cdc_link.hpp).
@@ -505,6 +508,8 @@ const char* restart_reason() {
         char event[160];
         const RotatorStatus st = controller.status();
         while (axis_events.next(st, event, sizeof event)) std::printf("rotord: %s\n", event);
+        while (recognition_events.next(controller.recognition(), event, sizeof event))
+          std::printf("rotord: %s\n", event);
       }
       if (usb_link) usb_link->poll(now);
 #if ROTORD_PICO_NETWORK

@@ -234,6 +234,11 @@ void network_start(const NetworkDeps& d, Millis now) {
   // while the rotator moves is refused (a flash write pauses this loop).
   controller.attach_utc_clock(&wall_clock);
   controller.set_track_budget(1);
+  // A client's go-to stream is compared with the stored TLEs, the Sun and
+  // the Moon (track.recognise): three candidates per go-to at most (about
+  // 10-30 ms), so the loop never stalls for the whole catalogue at once.
+  controller.attach_catalog(&g_tles);
+  controller.set_recognise_budget(3);
   api_context.passes_request_budget = 10;
   api_context.passes_poll_budget = 1;
   api_context.tle_save_while_moving = false;

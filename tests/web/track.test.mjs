@@ -1,13 +1,17 @@
 // The Track page in the real browser (Debian's chromium, playwright-core):
 // TLEs pasted and refused with the reason, the next passes listed, a track
 // started at the next pass, the planned pass drawn on the sky plot with the
-// antenna's live position, STOP. The daemon runs on the manual clock with
+// antenna's live position, STOP; then a client's go-tos following the ISS
+// recognised on the control page's Pass line, and STOP ending it. The
+// daemon runs on the manual clock with
 // --utc-start, so the pass comes when the test advances to it.
 import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import { writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
 
-import { cleanup, launchBrowser, openPage, Rotord, screenshot, tempDir, until } from './harness.mjs';
+import { cleanup, launchBrowser, openPage, ROTORD, Rotord, screenshot, tempDir, until } from './harness.mjs';
 
 const ISS = [
   'ISS (ZARYA)',
@@ -79,6 +83,35 @@ test('tracking at the next pass draws the plan and follows it; STOP ends it', as
   await screenshot(page, 'track.png');
   await page.click('#stop');
   await until(async () => /^off/.test(await page.textContent('#phase')), { what: 'stopped' });
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+});
+
+test('a client\'s go-tos following the ISS are recognised on the control page; STOP ends it', async () => {
+  // The rest of the pass (the track above was stopped near culmination): a
+  // client (REST from this address) sends the ISS's position as rotord
+  // predict gives it, one go-to every 2 s of controller time.
+  const tle = `${dir}/iss.tle`;
+  writeFileSync(tle, ISS + '\n');
+  const page = await openPage(browser, rotord.url + '/');
+  const start = Date.parse('2019-12-09T19:15:00Z');
+  for (let n = 0; n < 4; n++) {
+    const ms = (await rotord.status()).time_ms;
+    if (ms % 1000 !== 0) await rotord.advance(1000 - (ms % 1000));
+    const t = new Date(start + (await rotord.status()).time_ms).toISOString().replace(/\.\d+Z$/, 'Z');
+    const p = spawnSync(ROTORD, ['predict', '--tle', tle, '--lat', '39.86366', '--lon', '-119.17875',
+      '--alt', '0', '--from', t, '--to', t, '--step', '1'], { encoding: 'utf8' });
+    const [, az, el] = p.stdout.trim().split('\n')[1].split(',').map(Number);
+    assert.ok(el > 0, p.stdout);
+    assert.equal((await rotord.post('/api/goto', { az, el })).status, 200);
+    await rotord.advance(2000);
+  }
+  await until(async () => /following ISS \(ZARYA\)/.test(await page.textContent('#recognised')),
+    { what: 'recognised' });
+  assert.equal(await page.isVisible('#recognised-row'), true);
+  await page.click('#stop');
+  await until(async () => /recognition ended \(stop\)/.test(await page.textContent('#recognised')),
+    { what: 'ended' });
   assert.deepEqual(page.errors, []);
   await page.context().close();
 });

@@ -1,0 +1,158 @@
+// The matcher behind recognising a client's pass (rotator/goto_match.hpp):
+// the flip frame undone, the tolerance against the object's recent path, a
+// recognition only after kMinHits go-tos in step with one object once every
+// candidate was compared, a bounded sweep, and no recognition when two
+// objects match.
+#include "rotator/goto_match.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "tracking/julian.hpp"
+
+namespace rotord {
+namespace {
+
+constexpr const char* kIssLine1 =
+    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
+constexpr const char* kIssLine2 =
+    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
+
+/// The same elements under catalog number 99999, checksum redone.
+std::string twin_line(const char* line) {
+  std::string s(line);
+  s.replace(2, 5, "99999");
+  int sum = 0;
+  for (std::size_t i = 0; i < 68; ++i) {
+    if (s[i] >= '0' && s[i] <= '9') sum += s[i] - '0';
+    if (s[i] == '-') sum += 1;
+  }
+  s[68] = static_cast<char>('0' + sum % 10);
+  return s;
+}
+
+class GotoMatchTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    tracking::Geodetic boulder;
+    boulder.lat_deg = 40.015;
+    boulder.lon_deg = -105.27;
+    boulder.alt_m = 1655.0;
+    station_ = tracking::Observer(boulder);
+    // The ISS's pass through north over Boulder, near its culmination.
+    ASSERT_TRUE(tracking::parse_utc("2019-12-09T22:40:30Z", t0_));
+    const std::string iss = std::string("ISS (ZARYA)\n") + kIssLine1 + "\n" + kIssLine2 + "\n";
+    ASSERT_TRUE(catalog_.put(iss, 0).ok());
+    tracking::Tle tle;
+    ASSERT_TRUE(tracking::parse_tle(kIssLine1, kIssLine2, tle).ok());
+    ASSERT_EQ(iss_.set_satellite(tle), tracking::Sgp4Error::kOk);
+  }
+  tracking::LookAngles iss_at(std::int64_t t) {
+    tracking::LookAngles look;
+    EXPECT_EQ(iss_.look(t, station_, look), tracking::Sgp4Error::kOk);
+    return look;
+  }
+  /// A go-to at the ISS's position of `t_ms` (offset by `daz` in azimuth)
+  /// received at `t_ms + lag_ms`.
+  GotoMatcher::Verdict goto_iss(GotoMatcher& m, std::int64_t t_ms, int budget, float daz = 0.0f,
+                                std::int64_t lag_ms = 0) {
+    const tracking::LookAngles l = iss_at(t_ms);
+    float az = static_cast<float>(l.az_deg) + daz;
+    float el = static_cast<float>(l.el_deg);
+    GotoMatcher::sky_direction(az, el);
+    return m.consider(az, el, t_ms + lag_ms, station_, &catalog_, budget);
+  }
+
+  tracking::Observer station_;
+  tracking::TleCatalog catalog_;
+  tracking::SkyTarget iss_;
+  std::int64_t t0_ = 0;
+};
+
+TEST(GotoMatch, TheFlipFrameIsTheSameDirection) {
+  float az = 300.0f, el = 120.0f;  // Gpredict with max el 180: az + 180, 180 - el
+  GotoMatcher::sky_direction(az, el);
+  EXPECT_NEAR(az, 120.0f, 1e-3f);
+  EXPECT_NEAR(el, 60.0f, 1e-3f);
+  az = -20.0f, el = 30.0f;
+  GotoMatcher::sky_direction(az, el);
+  EXPECT_NEAR(az, 340.0f, 1e-3f);
+  EXPECT_NEAR(el, 30.0f, 1e-3f);
+  EXPECT_NEAR(GotoMatcher::separation_deg(10.0f, 89.0f, 190.0f, 89.0f), 2.0f, 0.01f);
+  EXPECT_NEAR(GotoMatcher::separation_deg(359.0f, 0.0f, 1.0f, 0.0f), 2.0f, 0.01f);
+}
+
+TEST_F(GotoMatchTest, NearTheObjectOrWhereItWasRecentlyButNotElsewhere) {
+  const tracking::LookAngles now = iss_at(t0_);
+  const auto near = [&](const tracking::LookAngles& l, float daz, float del) {
+    return GotoMatcher::near(iss_, static_cast<float>(l.az_deg) + daz,
+                             static_cast<float>(l.el_deg) + del, t0_, station_);
+  };
+  EXPECT_TRUE(near(now, 0.0f, 0.0f));
+  EXPECT_TRUE(near(now, 0.0f, 2.0f));
+  // A client that sent where the ISS was a few seconds ago (its threshold).
+  EXPECT_TRUE(near(iss_at(t0_ - 4000), 0.0f, 0.0f));
+  // Two minutes stale, or 5 deg across its path: not the ISS.
+  EXPECT_FALSE(near(iss_at(t0_ - 120000), 0.0f, 0.0f));
+  EXPECT_FALSE(near(now, 0.0f, 5.0f));
+  EXPECT_FALSE(near(now, 0.0f, -5.0f));
+  // The Sun is not where the ISS is.
+  tracking::SkyTarget sun;
+  sun.set_body(tracking::Body::kSun);
+  EXPECT_FALSE(GotoMatcher::near(sun, static_cast<float>(now.az_deg),
+                                 static_cast<float>(now.el_deg), t0_, station_));
+}
+
+TEST_F(GotoMatchTest, RecognisedAfterThreeGotosInStepWithOneObject) {
+  GotoMatcher m;
+  const int all = GotoMatcher::kMaxCandidates;
+  GotoMatcher::Verdict v = goto_iss(m, t0_, all);
+  EXPECT_FALSE(v.recognised);
+  EXPECT_EQ(v.evaluated, 3);  // the ISS, the Sun, the Moon
+  v = goto_iss(m, t0_ + 5000, all);
+  EXPECT_FALSE(v.recognised);
+  EXPECT_EQ(v.evaluated, 1);                      // only the candidate still in
+  v = goto_iss(m, t0_ + 10000, all, 0.0f, 3000);  // a client 3 s late
+  EXPECT_TRUE(v.recognised);
+  EXPECT_EQ(v.candidate, 0);
+  EXPECT_FALSE(v.ambiguous);
+}
+
+TEST_F(GotoMatchTest, ASmallBudgetSpreadsTheSweepOverGotos) {
+  GotoMatcher m;
+  int recognised_at = 0;
+  for (int n = 1; n <= 8 && recognised_at == 0; ++n) {
+    const GotoMatcher::Verdict v = goto_iss(m, t0_ + 4000 * n, 1);
+    EXPECT_LE(v.evaluated, 1);
+    if (v.recognised) recognised_at = n;
+  }
+  // Three go-tos to compare the three candidates once, then two more hits.
+  EXPECT_EQ(recognised_at, 5);
+}
+
+TEST_F(GotoMatchTest, AMissIsOutAndTwoObjectsOnOneOrbitAreAmbiguous) {
+  GotoMatcher m;
+  const int all = GotoMatcher::kMaxCandidates;
+  goto_iss(m, t0_, all);
+  goto_iss(m, t0_ + 5000, all);
+  // A go-to 20 deg off the ISS: nothing is left in; the comparison starts
+  // over with the next go-to, which needs three hits again.
+  EXPECT_FALSE(goto_iss(m, t0_ + 10000, all, 20.0f).recognised);
+  EXPECT_FALSE(goto_iss(m, t0_ + 15000, all).recognised);
+  EXPECT_FALSE(goto_iss(m, t0_ + 20000, all).recognised);
+  EXPECT_TRUE(goto_iss(m, t0_ + 25000, all).recognised);
+
+  const std::string twin = "TWIN\n" + twin_line(kIssLine1) + "\n" + twin_line(kIssLine2) + "\n";
+  ASSERT_TRUE(catalog_.put(twin, 0).ok());
+  GotoMatcher::Verdict v;
+  for (int n = 0; n < 10; ++n) {
+    v = goto_iss(m, t0_ + 30000 + 4000 * n, all);
+    EXPECT_FALSE(v.recognised);
+  }
+  EXPECT_TRUE(v.ambiguous);
+}
+
+}  // namespace
+}  // namespace rotord
