@@ -68,5 +68,23 @@ const rotord = (() => {
   const fmt = (v, digits = 1) =>
     (typeof v === 'number' && isFinite(v) ? (Math.abs(v) < 0.5 * 10 ** -digits ? 0 : v).toFixed(digits) : '–');
 
-  return { api, post, get, live, message, fmt };
+  /**
+   * A Maidenhead locator (2 to 8 characters, JO62QM) as [lat, lon] of its
+   * square's centre, or null when the text is not one. Wherever a position
+   * is asked for, a locator typed there is understood.
+   */
+  function locator(text) {
+    const s = String(text).trim().toUpperCase();
+    if (!/^[A-R]{2}([0-9]{2}([A-X]{2}([0-9]{2})?)?)?$/.test(s)) return null;
+    let lon = (s.charCodeAt(0) - 65) * 20 - 180;
+    let lat = (s.charCodeAt(1) - 65) * 10 - 90;
+    let w = 20;
+    let h = 10;
+    if (s.length >= 4) { w = 2; h = 1; lon += Number(s[2]) * 2; lat += Number(s[3]); }
+    if (s.length >= 6) { w /= 24; h /= 24; lon += (s.charCodeAt(4) - 65) * w; lat += (s.charCodeAt(5) - 65) * h; }
+    if (s.length >= 8) { w /= 10; h /= 10; lon += Number(s[6]) * w; lat += Number(s[7]) * h; }
+    return [lat + h / 2, lon + w / 2];
+  }
+
+  return { api, post, get, live, message, fmt, locator };
 })();

@@ -1,5 +1,7 @@
 // The settings page, generated from GET /api/settings/schema (the one
-// settings table): nothing here lists setting names; the calibration cards
+// settings table): each row by its label, in the owner's groups, shown when
+// its condition holds here (settings_filter.js), rarely changed ones under
+// Advanced. Nothing here lists setting names; the calibration cards
 // (calibration.js) name the calibration rows they write.
 'use strict';
 
@@ -9,6 +11,8 @@
   let schema = null;
   let values = {};
   const fields = {};  // key -> {row, input, error, def}
+  const sections = [];  // per group: its fieldset and its Advanced part
+  let searching = false;  // whether the last refresh had a search
 
   function el(tag, attrs, ...children) {
     const e = document.createElement(tag);
@@ -20,62 +24,150 @@
     return e;
   }
 
+  /** A row's help sentence: the table's, served as /settings_help.js. */
+  const help = (d) => (typeof rotordSettingsHelp === 'object' && rotordSettingsHelp[d.key]) || '';
+
+  // Each row: the owner's words first, the key small for the REST API.
+  function buildRow(d) {
+    const id = 'f-' + d.key;
+    let input;
+    if (d.type === 'bool') {
+      input = el('input', { type: 'checkbox', id });
+    } else if (d.type === 'enum') {
+      input = el('select', { id }, ...d.choices.map((c) => el('option', { value: c }, c)));
+    } else if (d.type === 'text' || d.type === 'password') {
+      // A password comes back as "********" when one is stored; sending
+      // that back keeps it, so an untouched field changes nothing.
+      input = el('input', { type: d.type, id, maxlength: d.max, spellcheck: 'false',
+        autocomplete: d.type === 'password' ? 'new-password' : 'off', autocapitalize: 'none',
+        inputmode: d.format === 'ipv4' ? 'decimal' : undefined,
+        placeholder: d.format === 'ipv4' ? '192.168.1.20' : d.type === 'password' ? '(not set)' : undefined });
+    } else {
+      // Text, not type=number: Chromium's number field drops what it
+      // cannot read (a locator typed as JO62QM became 62, 12,5 became
+      // 125), so the field keeps what was typed and numberError() says
+      // what is wrong. A phone's decimal keypad has no minus sign.
+      input = el('input', { type: 'text', id, spellcheck: 'false', autocomplete: 'off',
+        inputmode: d.min < 0 ? 'text' : 'decimal' });
+    }
+    input.dataset.key = d.key;
+    const error = el('div', { class: 'error', role: 'alert' });
+    const range = d.type === 'float' || d.type === 'int' ? `${d.min} … ${d.max}` : null;
+    const length = d.type === 'text' ? `(up to ${d.max} characters${d.default ? `, default ${d.default}` : ''})`
+      : d.type === 'password' ? `(${d.min}-${d.max} characters or empty)` : null;
+    const row = el('div', { class: 'field' },
+      el('label', { for: id }, el('span', { class: 'name' }, d.label || d.key), ' ',
+        el('code', { class: 'key', title: 'the key in the REST API and the protocols' }, d.key)),
+      el('div', { class: 'input' }, input,
+        d.unit ? el('span', { class: 'unit' }, d.unit) : null,
+        range ? el('span', { class: 'range' }, `(${range}, default ${d.default})`) : null,
+        length ? el('span', { class: 'range' }, length) : null,
+        d.restart ? el('span', { class: 'badge', title: 'takes effect after a restart' }, 'restart') : null),
+      el('div', { class: 'help' }, help(d)),
+      error);
+    const f = { row, input, error, def: d };
+    // Marked unsaved as it is edited; a number that is not one is refused
+    // beside the field while it is typed, not only on Save.
+    if (POSITION.includes(d.key)) input.addEventListener('change', () => takeLocator(f));
+    input.addEventListener(d.type === 'bool' || d.type === 'enum' ? 'change' : 'input', () => {
+      const why = POSITION.includes(d.key) && rotord.locator(input.value) ? null : numberError(f);
+      f.error.textContent = why || '';
+      f.row.classList.toggle('invalid', !!why);
+      refresh();
+    });
+    fields[d.key] = f;
+    return row;
+  }
+
   function build() {
     const groups = $('groups');
     groups.textContent = '';
     for (const g of schema.groups) {
-      const fs = el('fieldset', {}, el('legend', {}, g));
+      const main = el('div', {});
+      const advanced = el('div', {});
+      const details = el('details', { class: 'advanced' }, el('summary', {}, 'Advanced'), advanced);
       // Hidden rows (the password and token hashes) have their own card.
       for (const d of schema.settings.filter((s) => s.group === g && !s.hidden)) {
-        const id = 'f-' + d.key;
-        let input;
-        if (d.type === 'bool') {
-          input = el('input', { type: 'checkbox', id });
-        } else if (d.type === 'enum') {
-          input = el('select', { id }, ...d.choices.map((c) => el('option', { value: c }, c)));
-        } else if (d.type === 'text' || d.type === 'password') {
-          // A password comes back as "********" when one is stored; sending
-          // that back keeps it, so an untouched field changes nothing.
-          input = el('input', { type: d.type, id, maxlength: d.max, spellcheck: 'false',
-            autocomplete: d.type === 'password' ? 'new-password' : 'off', autocapitalize: 'none',
-            inputmode: d.format === 'ipv4' ? 'decimal' : undefined,
-            placeholder: d.format === 'ipv4' ? '192.168.1.20' : d.type === 'password' ? '(not set)' : undefined });
-        } else {
-          // Text, not type=number: Chromium's number field drops what it
-          // cannot read (a locator typed as JO62QM became 62, 12,5 became
-          // 125), so the field keeps what was typed and numberError() says
-          // what is wrong. A phone's decimal keypad has no minus sign.
-          input = el('input', { type: 'text', id, spellcheck: 'false', autocomplete: 'off',
-            inputmode: d.min < 0 ? 'text' : 'decimal' });
-        }
-        input.dataset.key = d.key;
-        const error = el('div', { class: 'error', role: 'alert' });
-        const range = d.type === 'float' || d.type === 'int' ? `${d.min} … ${d.max}` : null;
-        const length = d.type === 'text' ? `(up to ${d.max} characters${d.default ? `, default ${d.default}` : ''})`
-          : d.type === 'password' ? `(${d.min}-${d.max} characters or empty)` : null;
-        const row = el('div', { class: 'field' },
-          el('label', { for: id }, d.key),
-          el('div', { class: 'input' }, input,
-            d.unit ? el('span', { class: 'unit' }, d.unit) : null,
-            range ? el('span', { class: 'range' }, `(${range}, default ${d.default})`) : null,
-            length ? el('span', { class: 'range' }, length) : null,
-            d.restart ? el('span', { class: 'badge', title: 'takes effect after a restart' }, 'restart') : null),
-          el('div', { class: 'help' }, d.help),
-          error);
-        fields[d.key] = { row, input, error, def: d };
-        fs.append(row);
+        (d.advanced ? advanced : main).append(buildRow(d));
       }
+      const fs = el('fieldset', { class: 'group' }, el('legend', {}, g), main, details);
+      sections.push({ fs, details, summary: details.firstChild, advanced });
       groups.append(fs);
     }
+  }
+
+  // The station's position: a Maidenhead locator typed into the latitude or
+  // the longitude is understood, and fills both with its square's centre.
+  const POSITION = ['station.lat_deg', 'station.lon_deg'];
+  function takeLocator(f) {
+    const p = rotord.locator(f.input.value);
+    if (!p) return;
+    const typed = f.input.value.trim().toUpperCase();
+    const [lat, lon] = POSITION.map((k) => fields[k]);
+    lat.input.value = p[0].toFixed(4);
+    lon.input.value = p[1].toFixed(4);
+    for (const x of [lat, lon]) { x.error.textContent = ''; x.row.classList.remove('invalid'); }
+    rotord.message(msg, `${typed}: ${lat.input.value}, ${lon.input.value}, the centre of the square`, true);
+    refresh();
+  }
+
+  /** The value a condition tests: the form's, as it stands. */
+  function valueOf(key) {
+    const f = fields[key];
+    return f ? read(f) : values[key];
+  }
+
+  /**
+   * Shows the rows that apply (or all, when asked) and that the search
+   * finds, marks the unsaved ones, and counts both.
+   */
+  function refresh() {
+    if (!schema) return;
+    const query = $('search').value.trim();
+    const all = $('show-all').checked;
+    let shown = 0;
+    let elsewhere = 0;
+    let unsaved = 0;
+    for (const f of Object.values(fields)) {
+      const applies = rotordSettingsFilter.holds(f.def.when, schema.platform, valueOf);
+      const found = rotordSettingsFilter.found(f.def, query);
+      f.row.hidden = !f.forced && (!found || !(applies || all));
+      f.row.classList.toggle('not-here', !applies);
+      if (!f.row.hidden) shown++;
+      else if (found && !applies) elsewhere++;
+      const changed = f.def.key in values && read(f) !== values[f.def.key];
+      f.row.classList.toggle('changed', changed);
+      if (changed) unsaved++;
+    }
+    for (const s of sections) {
+      const advanced = [...s.advanced.children].filter((r) => !r.hidden).length;
+      s.details.hidden = advanced === 0;
+      s.summary.textContent = `Advanced (${advanced})`;
+      // A search opens what it finds; once it is cleared, each Advanced part
+      // is as the owner left it.
+      if (query && !searching) s.wasOpen = s.details.open;
+      if (query) s.details.open = true;
+      else if (searching) s.details.open = s.wasOpen;
+      s.fs.hidden = s.fs.querySelectorAll('.field:not([hidden])').length === 0;
+    }
+    searching = !!query;
+    $('found').textContent = (query ? `${shown} found` : `${shown} settings`) +
+      (elsewhere ? `; ${elsewhere} more do not apply to this platform or drive` : '');
+    $('unsaved').textContent = unsaved ? `${unsaved} unsaved` : '';
+    $('save').classList.toggle('primary', unsaved > 0);
   }
 
   function show(v) {
     values = v;
     for (const [key, f] of Object.entries(fields)) {
+      f.forced = false;
       if (!(key in v)) continue;
       if (f.def.type === 'bool') f.input.checked = !!v[key];
       else f.input.value = v[key];
+      f.error.textContent = '';
+      f.row.classList.remove('invalid');
     }
+    refresh();
   }
 
   function read(f) {
@@ -97,7 +189,7 @@
     if (!NUMBER.test(t)) {
       const pointed = t.replace(',', '.');
       if (NUMBER.test(pointed)) return `not a number: write ${pointed} (a point, not a comma)`;
-      return `not a number: ${f.def.key} takes a number such as ${f.def.default}`;
+      return `not a number: write a number such as ${f.def.default}`;
     }
     if (f.def.type === 'int' && !Number.isInteger(Number(t))) return 'a whole number';
     return null;
@@ -123,8 +215,12 @@
       if (!f) continue;
       f.error.textContent = reason;
       f.row.classList.add('invalid');
+      f.forced = true;  // a refused row is shown, whatever the search or the platform
       first = first || f.input;
     }
+    refresh();
+    const details = first && first.closest('details');
+    if (details) details.open = true;
     rotord.message(msg, (r.body && r.body.error) || `error ${r.status}`, false);
     if (first) first.scrollIntoView({ block: 'center' });
     return false;
@@ -137,6 +233,7 @@
 
   $('form').addEventListener('submit', async (e) => {
     e.preventDefault();
+    for (const k of POSITION) if (fields[k]) takeLocator(fields[k]);
     const changed = {};
     clearErrors();
     let wrong = null;
@@ -153,6 +250,8 @@
       changed[key] = v;
     }
     if (wrong) {
+      const details = wrong.closest('details');
+      if (details) details.open = true;
       wrong.scrollIntoView({ block: 'center' });
       return rotord.message(msg, 'not saved: fix the fields marked', false);
     }
@@ -194,6 +293,9 @@
     rotord.message(msg, r.status === 202 ? 'restarting…' : (r.body && r.body.error) || 'failed', r.status === 202);
     if (r.status === 202) { $('reboot').hidden = true; setTimeout(reload, 1500); }
   });
+
+  $('search').addEventListener('input', refresh);
+  $('show-all').addEventListener('change', refresh);
 
   // --- live calibration (calibration.js) ---------------------------------------
   const calibration = rotordCalibration.create({ box: $('calibration'), msg, report, reload,
@@ -239,9 +341,18 @@
     build();
     show(v.body);
     // Links to one setting (settings.html#f-station.lat_deg, from the
-    // control and track pages): the field exists only now.
+    // control and track pages): the field exists only now, and is shown
+    // even when Advanced is closed or it does not apply here.
     const target = location.hash && $(decodeURIComponent(location.hash.slice(1)));
-    if (target) { target.scrollIntoView({ block: 'center' }); target.focus(); }
+    const f = target && fields[target.dataset.key];
+    if (f) {
+      f.forced = true;
+      refresh();
+      const details = f.row.closest('details');
+      if (details) details.open = true;
+      target.scrollIntoView({ block: 'center' });
+      target.focus();
+    }
     if (st.status === 200) calibration.update(st.body);
     if (st.status === 200) showLoadProblems(st.body);
     rotordAccess.wire(msg);

@@ -44,53 +44,18 @@
     showEnds();
   });
 
-  // --- 2. the wiring: only what this drive, sensor and axes use
-  function wiringKeys() {
-    const keys = [];
-    const axes = [['az', 'cw', 'ccw', 'az.', 'l1', 'l2']];
-    if (values['el.enabled']) axes.push(['el', 'up', 'down', 'el.', 'limit_up', 'limit_down']);
-    for (const [a, fwd, rev, p, l1, l2] of axes) {
-      const drive = values[p + 'drive'];
-      const both = (name) => keys.push(`pins.${a}_${name}`, `gpiod.${a}_${name}`);
-      if (drive === 'hbridge') keys.push(`pins.${a}_pwm_${fwd}`, `pins.${a}_pwm_${rev}`);
-      else { both(fwd); both(rev); }
-      if (drive === 'relay_two_speed' || drive === 'relay_voltage_select') both('speed');
-      if (a === 'az' && values['az.has_brake']) both('brake');
-      const sensor = values[p + 'sensor'];
-      if (sensor === 'pot') keys.push(`pins.${a}_pot`);
-      if (sensor === 'ma3') both('ma3');
-      both(l1);
-      both(l2);
-    }
-    return keys.filter((k) => k in values);
-  }
-  function showPins() {
-    const box = $('pins');
-    box.textContent = '';
-    for (const key of wiringKeys()) {
-      const label = document.createElement('label');
-      label.textContent = (key.startsWith('pins.') ? 'Pico W ' : 'Raspberry Pi ') + key + ' ';
-      const input = document.createElement('input');
-      Object.assign(input, { type: 'number', step: '1', value: values[key], id: 'pin-' + key });
-      input.dataset.key = key;
-      label.appendChild(input);
-      box.appendChild(label);
-    }
-  }
+  // --- 2. the wiring (setup_wiring.js): what applies here, and the boards
+  let wiring = null;
+  const showPins = () => wiring && wiring.show();
   $('save-pins').addEventListener('click', async () => {
-    const doc = {};
-    for (const input of $('pins').querySelectorAll('input')) {
-      const v = Number(input.value);
-      if (input.value.trim() === '' || !Number.isInteger(v)) {
-        return rotord.message($('pins-msg'), `${input.dataset.key}: a whole number, -1 = not wired`, false);
-      }
-      if (v !== values[input.dataset.key]) doc[input.dataset.key] = v;
-    }
+    const { doc, error } = wiring.changes();
+    if (error) return rotord.message($('pins-msg'), error, false);
     const r = await rotord.post('/api/settings', doc);
     rotord.message($('pins-msg'), r.status === 200 ? 'Saved (takes effect after a restart).'
       : Object.entries(r.body?.errors ?? {}).map(([k, v]) => `${k}: ${v}`).join('; ') || r.body?.error,
     r.status === 200);
     await loadSettings();
+    showPins();
   });
 
   // --- 3. self-commissioning
@@ -153,20 +118,8 @@
   });
 
   // --- 4. the station: a Maidenhead locator gives the latitude and longitude
-  function locatorToLatLon(loc) {
-    const s = loc.trim().toUpperCase();
-    if (!/^[A-R]{2}([0-9]{2}([A-X]{2}([0-9]{2})?)?)?$/.test(s)) return null;
-    let lon = (s.charCodeAt(0) - 65) * 20 - 180;
-    let lat = (s.charCodeAt(1) - 65) * 10 - 90;
-    let w = 20;
-    let h = 10;
-    if (s.length >= 4) { w = 2; h = 1; lon += Number(s[2]) * 2; lat += Number(s[3]); }
-    if (s.length >= 6) { w /= 24; h /= 24; lon += (s.charCodeAt(4) - 65) * w; lat += (s.charCodeAt(5) - 65) * h; }
-    if (s.length >= 8) { w /= 10; h /= 10; lon += Number(s[6]) * w; lat += Number(s[7]) * h; }
-    return [lat + h / 2, lon + w / 2];  // the square's centre
-  }
   $('locator').addEventListener('input', () => {
-    const p = locatorToLatLon($('locator').value);
+    const p = rotord.locator($('locator').value);
     if (p) { $('lat').value = p[0].toFixed(4); $('lon').value = p[1].toFixed(4); }
   });
   $('save-station').addEventListener('click', async () => {
@@ -189,12 +142,18 @@
   });
 
   (async () => {
-    const [m] = await Promise.all([rotord.get('/api/models'), loadSettings()]);
+    const [m, schema] = await Promise.all([rotord.get('/api/models'), rotord.get('/api/settings/schema'),
+      loadSettings()]);
     models = m.body?.models ?? [];
+    wiring = rotordWiring.create({ schema: schema.body, values: () => values, box: $('pins'),
+      boards: $('boards'), forSelect: $('wiring-for'), forRow: $('wiring-for-row'), note: $('pins-note') });
     for (const x of models) $('model').appendChild(Object.assign(document.createElement('option'), { value: x.id, textContent: x.name }));
     showModel();
     showPins();
     showEnds();
+    // The clock's NTP (Linux) or SNTP (Pico W) state, in words.
+    const setup = await rotord.get('/api/setup');
+    $('clock').textContent = setup.body?.clock ?? 'not known';
     $('lat').value = values['station.lat_deg'];
     $('lon').value = values['station.lon_deg'];
     $('alt').value = values['station.alt_m'];

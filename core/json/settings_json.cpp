@@ -155,7 +155,8 @@ void write_settings(const settings::Settings& values, JsonWriter& out, Secrets s
   out.flush();
 }
 
-void write_settings_schema(const settings::Settings& defaults, JsonWriter& out) {
+void write_settings_schema(const settings::Settings& defaults, JsonWriter& out,
+                           std::string_view platform) {
   static constexpr const char* kTypeNames[] = {"float", "int", "bool", "enum", "text"};
   static constexpr const char* kFormatNames[] = {"text",     "ascii",    "ipv4",     "label",
                                                  "hostname", "hostlist", "networks", "pwhash",
@@ -163,14 +164,11 @@ void write_settings_schema(const settings::Settings& defaults, JsonWriter& out) 
   static_assert(sizeof(kFormatNames) / sizeof(kFormatNames[0]) ==
                     static_cast<std::size_t>(settings::TextFormat::kPreset) + 1,
                 "a name for every text format");
-  out.begin_object().key("groups").begin_array();
-  for (std::size_t n = 0; n < settings::kCount; ++n) {
-    const char* group = settings::def(static_cast<Id>(n)).group;
-    bool seen = false;
-    for (std::size_t k = 0; k < n && !seen; ++k)
-      seen = std::strcmp(settings::def(static_cast<Id>(k)).group, group) == 0;
-    if (!seen) out.string(group);
-  }
+  out.begin_object();
+  // The form hides the rows whose condition does not hold on this platform.
+  if (!platform.empty()) out.member("platform", platform);
+  out.key("groups").begin_array();
+  for (const char* group : settings::groups()) out.string(group);
   out.end_array().key("settings").begin_array();
   for (std::size_t n = 0; n < settings::kCount; ++n) {
     const auto id = static_cast<Id>(n);
@@ -185,7 +183,9 @@ void write_settings_schema(const settings::Settings& defaults, JsonWriter& out) 
     if (text) out.member("format", kFormatNames[static_cast<int>(settings::text_format(id))]);
     out.key("default");
     write_setting(defaults, id, out);
-    out.member("group", d.group).member("help", d.help);
+    out.member("group", d.group).member("label", d.label);
+    if (!settings::condition(id).empty()) out.member("when", settings::condition(id));
+    if ((d.flags & settings::kAdvanced) != 0) out.member("advanced", true);
     out.key("choices").begin_array();
     for (int c = 0; c < settings::choice_count(id); ++c) out.string(settings::choice_name(id, c));
     out.end_array();

@@ -34,11 +34,17 @@ void write_setting(const settings::Settings& values, settings::Id id, JsonWriter
 /// One value in its JSON form (number, true/false or the choice's name).
 void write_setting_value(settings::Id id, double value, JsonWriter& out);
 
-/// The settings table for forms: groups in table order, then every row with
-/// key, type, unit, min, max, default (taken from `defaults`), group, help,
-/// choices and whether it needs a restart. Text rows have type "text" or
-/// "password" (secrets), min/max as lengths and a "format" (text_format).
-void write_settings_schema(const settings::Settings& defaults, JsonWriter& out);
+/// The settings table for forms: the platform the firmware drives
+/// (settings::platform_name, left out when empty), the groups in the form's
+/// order (settings::groups), then every row with key, type, unit, min, max,
+/// default (taken from `defaults`), group, label, "when" (its condition,
+/// left out when it always applies), "advanced" (when rarely changed),
+/// choices and whether it needs a restart. The help sentences are the web
+/// UI's asset /settings_help.js (generated from the same table). Text rows have type
+/// "text" or "password" (secrets), min/max as lengths and a "format"
+/// (text_format).
+void write_settings_schema(const settings::Settings& defaults, JsonWriter& out,
+                           std::string_view platform = {});
 
 /// Per-key reasons a document was refused, in a fixed table (no heap).
 class SettingErrors {

@@ -80,8 +80,10 @@ constexpr ConsoleSession::Command ConsoleSession::kCommands[] = {
      true},
     {"presets", "presets", &C::presets, "the named headings (set them with set preset.N)", false},
     {"preset", "preset <name>", &C::preset, "turn the beam to a named heading", true},
-    {"setup", "setup models | setup model <id>", &C::setup,
-     "list the rotator models, or fill the settings from one (docs/rotator_models.md)", true},
+    {"setup", "setup models | setup model <id> | setup station <locator or lat lon>", &C::setup,
+     "list the rotator models, fill the settings from one (docs/rotator_models.md), or set the "
+     "station's position",
+     true},
     {"commission", "commission <az|el> [step] [ccw_deg cw_deg] | status | accept", &C::commission,
      "self-commissioning: start a step (all, direction, ends, speeds), its result, accept it",
      false},

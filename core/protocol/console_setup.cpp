@@ -1,10 +1,13 @@
 // The console's set-up commands (docs/protocols/console.md): the rotator
-// model list and self-commissioning, so a Pico reached only over USB can be
+// model list, the station's position (a locator or lat lon) and
+// self-commissioning, so a Pico reached only over USB can be
 // put into service from a terminal.
+#include <cmath>
 #include <cstdio>
 
 #include "protocol/console_session.hpp"
 #include "rotator/controller.hpp"
+#include "rotator/place.hpp"
 #include "settings/rotator_models.hpp"
 #include "util/text.hpp"
 
@@ -54,19 +57,45 @@ void report(Controller& controller, ByteSink& out) {
   }
 }
 
+// The station's position from a Maidenhead locator or a latitude and a
+// longitude: wherever a position is asked for, a locator is understood. A
+// locator gives its square's centre, kept to 0.0001 deg (about 11 m).
+void setup_station(Controller& controller, std::string_view where, ByteSink& out) {
+  PlaceQuery q;
+  if (const char* why = parse_place(where, q)) return error(out, why);
+  const double lat_deg = std::round(q.to.lat_deg * 1e4) / 1e4;
+  const double lon_deg = std::round(q.to.lon_deg * 1e4) / 1e4;
+  settings::Settings& s = controller.settings();
+  const double old_lat_deg = s.get(Id::kStationLatDeg);
+  settings::Rejection r = s.set(Id::kStationLatDeg, lat_deg);
+  if (r.error == Error::kOk) r = s.set(Id::kStationLonDeg, lon_deg);
+  if (r.error != Error::kOk) {
+    s.set(Id::kStationLatDeg, old_lat_deg);  // all or nothing
+    return send(out, "error: nothing changed: %s", r.reason);
+  }
+  if (q.locator[0] != '\0')
+    send(out, "station %s: lat %.4f lon %.4f (the centre of the square)", q.locator, lat_deg,
+         lon_deg);
+  else
+    send(out, "station lat %.4f lon %.4f", lat_deg, lon_deg);
+  send(out, "ok");
+}
+
 }  // namespace
 
 void ConsoleSession::setup(std::string_view args, ByteSink& out) {
   std::string_view rest = args;
   const std::string_view word = text::next_token(rest);
   const std::string_view id = text::trim(rest);
+  if (text::iequals(word, "station") && !id.empty()) return setup_station(controller_, id, out);
   if (text::iequals(word, "models") && id.empty()) {
     for (const settings::RotatorModel& m : settings::rotator_models())
       send(out, "%-16s %s", m.id, m.name);
     return send(out, "ok");
   }
   if (!text::iequals(word, "model") || id.empty())
-    return error(out, "usage: setup models | setup model <id>");
+    return error(out,
+                 "usage: setup models | setup model <id> | setup station <locator or lat lon>");
   const settings::RotatorModel* model = nullptr;
   for (const settings::RotatorModel& m : settings::rotator_models())
     if (text::iequals(id, m.id)) model = &m;

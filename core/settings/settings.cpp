@@ -1,5 +1,6 @@
 #include "settings/settings.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,18 +19,83 @@
 namespace rotord::settings {
 namespace {
 
-constexpr Def kDefs[] = {
-#define SETTING(id, key, type, unit, min, max, def, group, flags, choices, help) \
-  {key, Type::type, unit, min, max, def, group, flags, choices, help},
+// Every row's condition (applies.hpp), for the constant evaluation below
+// only: the table stores an index into the distinct conditions, one byte in
+// what is padding anyway, instead of a pointer per row.
+constexpr std::string_view kRowConditions[] = {
+#define SETTING(id, key, type, unit, min, max, def, group, flags, choices, label, condition, help) \
+  condition,
 #include "settings/settings_table.def"
 #undef SETTING
 };
+
+constexpr bool seen_before(std::size_t row) {
+  for (std::size_t n = 0; n < row; ++n)
+    if (kRowConditions[n] == kRowConditions[row]) return true;
+  return false;
+}
+
+constexpr std::size_t kConditionCount = [] {
+  std::size_t count = 0;
+  for (std::size_t n = 0; n < kCount; ++n) count += seen_before(n) ? 0 : 1;
+  return count;
+}();
+static_assert(kConditionCount <= 256, "a condition index is one byte");
+
+constexpr auto kConditions = [] {
+  std::array<std::string_view, kConditionCount> distinct{};
+  std::size_t count = 0;
+  for (std::size_t n = 0; n < kCount; ++n)
+    if (!seen_before(n)) distinct[count++] = kRowConditions[n];
+  return distinct;
+}();
+
+constexpr std::uint8_t condition_index(std::size_t row) {
+  std::size_t n = 0;
+  while (kConditions[n] != kRowConditions[row]) ++n;
+  return static_cast<std::uint8_t>(n);
+}
+
+// clang-format off
+constexpr Def kDefs[] = {
+#define SETTING(id, key, type, unit, min, max, def, group, flags, choices, label, condition, help) \
+  {key, Type::type, flags, condition_index(static_cast<std::size_t>(Id::id)), unit, label,      \
+   min, max, def, group, choices},
+#include "settings/settings_table.def"
+#undef SETTING
+};
+// clang-format on
 static_assert(sizeof(kDefs) / sizeof(kDefs[0]) == kCount);
+
+// The groups in the order the settings form shows them (docs/settings.md).
+constexpr const char* kGroups[] = {"Rotator",           "Wiring",  "Calibration",
+                                   "Limits and safety", "Station", "Tracking",
+                                   "Network",           "Access",  "Integrations"};
+
+constexpr bool known_group(std::string_view group) {
+  for (std::string_view g : kGroups)
+    if (g == group) return true;
+  return false;
+}
+constexpr bool every_group_known() {
+  for (const Def& d : kDefs)
+    if (!known_group(d.group)) return false;
+  return true;
+}
+static_assert(every_group_known(), "a row's group is not in kGroups");
 
 }  // namespace
 
 const Def& def(Id id) {
   return kDefs[static_cast<std::size_t>(id)];
+}
+
+std::span<const char* const> groups() {
+  return kGroups;
+}
+
+std::string_view condition(Id id) {
+  return kConditions[def(id).condition];
 }
 
 std::optional<Id> find(std::string_view key) {

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "util/error.hpp"
@@ -26,7 +27,15 @@ enum class Type : std::uint8_t { kFloat, kInt, kBool, kEnum, kText };
 /// kHidden: not a field of the settings form; an endpoint of its own sets it
 /// (the web password through POST /api/password, tokens through
 /// /api/tokens), because the stored value is a hash, not what the user types.
-enum Flags : std::uint8_t { kNone = 0, kRestart = 1, kSecret = 2, kWebOnly = 4, kHidden = 8 };
+/// kAdvanced: rarely changed; the settings form keeps it under "Advanced".
+enum Flags : std::uint8_t {
+  kNone = 0,
+  kRestart = 1,
+  kSecret = 2,
+  kWebOnly = 4,
+  kHidden = 8,
+  kAdvanced = 16
+};
 
 inline constexpr const char* kSecretMask = "********";
 
@@ -81,21 +90,36 @@ enum class TextFormat : std::uint8_t {
   kPreset,        ///< "preset": a named heading, <az_deg>[L]:<name> (settings/preset.hpp)
 };
 
-/// One row of the settings table.
+/// One row of the settings table. The order of the members packs the two
+/// bytes and the label into what was padding before the doubles on the
+/// Cortex-M0+, so the labels cost the firmware their text only.
 struct Def {
   const char* key;
   Type type;
+  std::uint8_t flags;
+  std::uint8_t condition;  ///< index of the row's condition (condition())
   const char* unit;
+  const char* label;  ///< the setting in the owner's words ("Slow zone before the target")
   double min;
   double max;
   double default_value;
-  const char* group;
-  std::uint8_t flags;
+  const char* group;    ///< one of groups(), as an owner thinks of it
   const char* choices;  ///< enum names separated by '|'; kText: the default text
-  const char* help;
+  // The help column is not compiled in: the web UI serves it gzipped
+  // (settings_help.js, generated from the table by web/tools/settings_help.mjs).
 };
 
 const Def& def(Id id);
+/// The groups of the settings form in the order an owner meets them
+/// (Rotator, Wiring, Calibration, ...); every row's group is one of them.
+std::span<const char* const> groups();
+/// When the row applies ("" always): terms joined by '&', all of which must
+/// hold, alternatives joined by ';'. A term is a key (a bool that is on, a
+/// number that is not 0, a text that is not empty) or key=choice|choice (an
+/// enum set to one of them);
+/// the key "platform" is the firmware's (pico_w, gpiod, sim: applies.hpp).
+/// The settings form hides a row whose condition does not hold.
+std::string_view condition(Id id);
 TextFormat text_format(Id id);
 std::optional<Id> find(std::string_view key);
 

@@ -1,8 +1,10 @@
 # cmake -DGZIP=gzip -DWEB_DIR=web [-DEXTRA_DIR=dir] -DOUT=web_assets.cpp -P embed_assets.cmake
 # Writes a C++ file with every web/ file (and every *.js of EXTRA_DIR, the
 # files generated at build time: the map's world.js) gzipped (-9 -n: reproducible, no name
-# or time stamp) as a byte array, plus the table web::find_asset() searches.
+# or time stamp; scripts without their comment-only lines) as a byte array, plus the
+# table web::find_asset() searches.
 cmake_minimum_required(VERSION 3.25)
+find_program(SED sed REQUIRED)
 
 file(GLOB files RELATIVE ${WEB_DIR}
   ${WEB_DIR}/*.html ${WEB_DIR}/*.css ${WEB_DIR}/*.js ${WEB_DIR}/*.svg)
@@ -20,8 +22,19 @@ foreach(name IN LISTS files)
   if(NOT EXISTS ${source})
     set(source ${EXTRA_DIR}/${name})
   endif()
-  execute_process(COMMAND ${GZIP} -9 -n -c ${source}
-                  OUTPUT_FILE ${OUT}.${index}.gz COMMAND_ERROR_IS_FATAL ANY)
+  get_filename_component(ext ${name} LAST_EXT)
+  if(ext STREQUAL ".js")
+    # Lines that are only a // comment are left out: they say why for the
+    # source's readers, not for a browser, and were about 4 KB of the Pico
+    # W's flash gzipped. (No script has a template literal over several
+    # lines, where such a line would be text: web.browser* load every page.)
+    execute_process(COMMAND ${SED} -e "/^[[:space:]]*[/][/]/d" ${source}
+                    COMMAND ${GZIP} -9 -n -c
+                    OUTPUT_FILE ${OUT}.${index}.gz COMMAND_ERROR_IS_FATAL ANY)
+  else()
+    execute_process(COMMAND ${GZIP} -9 -n -c ${source}
+                    OUTPUT_FILE ${OUT}.${index}.gz COMMAND_ERROR_IS_FATAL ANY)
+  endif()
   file(READ ${OUT}.${index}.gz hex HEX)
   file(REMOVE ${OUT}.${index}.gz)
   string(LENGTH "${hex}" hex_length)
@@ -29,7 +42,6 @@ foreach(name IN LISTS files)
   string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${hex}")
   file(SHA1 ${source} sha)
   string(SUBSTRING "${sha}" 0 16 etag)
-  get_filename_component(ext ${name} LAST_EXT)
   if(ext STREQUAL ".html")
     set(type "text/html; charset=utf-8")
   elseif(ext STREQUAL ".css")

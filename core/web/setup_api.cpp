@@ -37,7 +37,16 @@ Api::Outcome Api::get_setup(const Call& call) {
   const settings::Settings& base = ctx_.defaults != nullptr ? *ctx_.defaults : scratch_;
   const settings::KeySet saved = settings::user_layer(values, base);
   send_json(call.out, 200, call.options, [&](JsonWriter& w) {
-    w.begin_object().member("configured", saved.any()).end_object();
+    w.begin_object().member("configured", saved.any());
+    // The station step: whether the clock tracking points from is kept, in
+    // words (NTP on Linux, SNTP on the Pico W).
+    if (ctx_.wall_clock != nullptr) w.member("clock_synchronized", ctx_.wall_clock->synchronized());
+    if (ctx_.clock_sync != nullptr) {
+      char words[256];
+      const std::size_t n = ctx_.clock_sync->describe(words, sizeof words);
+      w.member("clock", std::string_view(words, n < sizeof words ? n : sizeof words - 1));
+    }
+    w.end_object();
   });
   return Outcome::kDone;
 }

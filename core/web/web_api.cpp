@@ -583,7 +583,8 @@ Api::Outcome Api::get_events(const Call& call) {
 
 Api::Outcome Api::get_schema(const Call& call) {
   send_json(call.out, 200, call.options, [this](JsonWriter& w) {
-    write_settings_schema(ctx_.defaults != nullptr ? *ctx_.defaults : settings::Settings(), w);
+    write_settings_schema(ctx_.defaults != nullptr ? *ctx_.defaults : settings::Settings(), w,
+                          settings::platform_name(ctx_.platform));
   });
   return Outcome::kDone;
 }

@@ -4,11 +4,13 @@
 #include <span>
 #include <string_view>
 
+#include "hal/clock_sync.hpp"
 #include "hal/storage.hpp"
 #include "hal/wall_clock.hpp"
 #include "json/settings_json.hpp"
 #include "metrics/registry.hpp"
 #include "rotator/controller.hpp"
+#include "settings/applies.hpp"
 #include "tracking/pass_finder.hpp"
 #include "tracking/tle_catalog.hpp"
 #include "web/http_request.hpp"
@@ -70,6 +72,11 @@ struct ApiContext {
   /// What reading the stored settings dropped at start-up (GET /api/status
   /// "settings_load", shown on the settings page); nullptr: nothing.
   const LoadReport* load_report = nullptr;
+  /// What the firmware drives (GET /api/settings/schema "platform"): the
+  /// settings form hides the other platforms' pins and lines.
+  settings::Platform platform = settings::Platform::kUnknown;
+  /// The clock's state in words (GET /api/setup "clock"); nullptr: not said.
+  const hal::ClockSync* clock_sync = nullptr;
 };
 
 /// The REST API (docs/web_api.md) on the controller's command API. One per

@@ -240,6 +240,9 @@ bool Daemon::start_controller() {
   web::ApiContext api_context{*controller_,   saver_.get(), &defaults_,         this,
                               ROTORD_VERSION, &wall_clock_, host_name_.c_str(), &metrics_};
   api_context.load_report = &load_report_;
+  api_context.platform =
+      options_.hw == "gpiod" ? settings::Platform::kGpiod : settings::Platform::kSim;
+  api_context.clock_sync = &ntp_state_;
   if (crypto_.ready()) {
     api_context.crypto = &crypto_;
   } else {

@@ -11,6 +11,7 @@
 #include "mbed_crypto.hpp"
 #include "metrics/registry.hpp"
 #include "mqtt_client.hpp"
+#include "ntp_state.hpp"
 #include "options.hpp"
 #include "protocol/console_session.hpp"
 #include "protocol/datagram_registry.hpp"
@@ -115,6 +116,7 @@ class Daemon final : private web::RebootHook {
   asio::signal_set signals_;
   settings::Settings settings_;
   SystemWallClock wall_clock_;  ///< GET /api/status time_utc
+  NtpState ntp_state_;          ///< GET /api/setup "clock": the host's NTP in words
   /// Tracking's UTC: wall_clock_, or start UTC + controller time under
   /// --speedup / --clock manual.
   std::unique_ptr<SimulatedUtcClock> sim_utc_;

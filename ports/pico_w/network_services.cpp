@@ -228,6 +228,10 @@ void network_start(const NetworkDeps& d, Millis now) {
   api_context.pbkdf2_slice = kPbkdf2SliceIterations;
   api_context.log = &d.log;
   api_context.load_report = d.load_report;
+  api_context.platform = settings::Platform::kPicoW;
+  static SntpState sntp_state(&now_ms, settings.b(settings::Id::kTimeSntpEnabled),
+                              settings.text(settings::Id::kTimeSntpServer));
+  api_context.clock_sync = &sntp_state;
   // Tracking: UTC from SNTP (refused until it has answered), one target
   // evaluation (about 3 ms) per tick for the pass search and the plan, and
   // GET /api/passes a slice per loop. The TLEs in their flash slots; a PUT

@@ -11,7 +11,7 @@ namespace {
 
 // The default of every setting, by its Id's name (kPinAzCw...).
 namespace defaults {
-#define SETTING(id, key, type, unit, min, max, def, group, flags, choices, help) \
+#define SETTING(id, key, type, unit, min, max, def, group, flags, choices, label, condition, help) \
   constexpr int id = static_cast<int>(def);
 #include "settings/settings_table.def"
 #undef SETTING

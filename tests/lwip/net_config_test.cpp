@@ -147,5 +147,34 @@ TEST(SntpClock, TheHookSetsTheWallClockAndItFollowsTheMonotonicTime) {
   EXPECT_STREQ(text, "2026-11-23T17:41:41.750Z");
 }
 
+std::string words(const SntpState& state) {
+  char text[256];
+  const std::size_t n = state.describe(text, sizeof text);
+  return std::string(text, n);
+}
+
+// The set-up page's station step says how the Pico W's clock is kept.
+TEST(SntpClock, ItsStateInWords) {
+  EXPECT_EQ(words(SntpState(&fake_now, false, "pool.ntp.org")),
+            "SNTP is off (time.sntp_enabled): the clock is not set, and tracking is refused.");
+  EXPECT_EQ(words(SntpState(&fake_now, true, "")),
+            "SNTP is off (time.sntp_enabled): the clock is not set, and tracking is refused.");
+  const SntpState on(&fake_now, true, "pool.ntp.org");
+  if (sntp_updates() == 0) {
+    EXPECT_EQ(words(on),
+              "Waiting for the first answer of the SNTP server pool.ntp.org (once the Wi-Fi is "
+              "up): tracking waits for it.");
+  }
+  g_now_ms = 500'000;
+  on_sntp_time(1'795'455'611u, 0u, g_now_ms);
+  g_now_ms = 500'000 + 42'300;
+  EXPECT_EQ(words(on), "Set by SNTP from pool.ntp.org 42 s ago (" + std::to_string(sntp_updates()) +
+                           " answers).");
+  // A buffer too short is cut, never overrun.
+  char small[8];
+  EXPECT_EQ(on.describe(small, sizeof small), 7u);
+  EXPECT_STREQ(small, "Set by ");
+}
+
 }  // namespace
 }  // namespace rotord::pico_w

@@ -288,7 +288,23 @@ TEST_F(ConsoleTest, SetupModelFillsThePublishedFiguresAndSaysWhereFrom) {
   EXPECT_EQ(values().get(Id::kAzMaxDeg), 360);
   EXPECT_TRUE(values().b(Id::kAzHasBrake));
   EXPECT_EQ(ask("setup model g5500\n"), "error: unknown model (setup models lists them)\r\n");
-  EXPECT_EQ(ask("setup\n"), "error: usage: setup models | setup model <id>\r\n");
+  EXPECT_EQ(
+      ask("setup\n"),
+      "error: usage: setup models | setup model <id> | setup station <locator or lat lon>\r\n");
+}
+
+// Issue 24: a locator typed where a position is asked for is understood.
+TEST_F(ConsoleTest, SetupStationTakesALocatorOrALatitudeAndLongitude) {
+  EXPECT_EQ(ask("setup station jo62qm\n"),
+            "station JO62QM: lat 52.5208 lon 13.3750 (the centre of the square)\r\nok\r\n");
+  EXPECT_EQ(values().get(Id::kStationLatDeg), 52.5208);
+  EXPECT_EQ(values().get(Id::kStationLonDeg), 13.375);
+  EXPECT_EQ(ask("setup station 48.1458, 11.625\n"), "station lat 48.1458 lon 11.6250\r\nok\r\n");
+  EXPECT_EQ(values().get(Id::kStationLonDeg), 11.625);
+  // Not a place: refused with the reason, nothing changed.
+  EXPECT_EQ(last_line(ask("setup station ZZ99\n")).rfind("error: ", 0), 0u);
+  EXPECT_EQ(last_line(ask("setup station 95 10\n")).rfind("error: ", 0), 0u);
+  EXPECT_EQ(values().get(Id::kStationLatDeg), 48.1458);
 }
 
 TEST_F(ConsoleTest, CommissionStartsReportsAndStopAbortsIt) {

@@ -279,13 +279,21 @@ TEST_F(HttpApi, SchemaComesFromTheTable) {
   const HttpResponse res = get("/api/settings/schema");
   EXPECT_EQ(res.status, 200);
   EXPECT_TRUE(JsonObjectReader(res.body).valid());
-  EXPECT_TRUE(has(res,
-                  R"("groups":["Rotator","Azimuth","Elevation","Magnetometer","Pins",)"
-                  R"("Raspberry Pi","GS-232","rotctld","UDP","USB","Network","Access","Station",)"
-                  R"("Presets","MQTT","Tracking"])"))
+  // The groups as an owner thinks of them, in the form's order.
+  EXPECT_TRUE(has(res, R"("groups":["Rotator","Wiring","Calibration","Limits and safety",)"
+                       R"("Station","Tracking","Network","Access","Integrations"])"))
       << res.body;
   EXPECT_TRUE(has(res, R"({"key":"az.drive","type":"enum","unit":"","min":0,"max":3,)"
-                       R"("default":"relay","group":"Azimuth")"));
+                       R"("default":"relay","group":"Rotator","label":"Drive type","choices":)"));
+  // A row's condition and whether it is rarely changed; the help is the web
+  // UI's asset (settings_help.js), not in the schema.
+  EXPECT_TRUE(has(res, R"("label":"Slow zone before the target",)"
+                       R"("when":"az.drive=relay_two_speed|relay_voltage_select|hbridge",)"));
+  EXPECT_FALSE(has(res, R"("help":)"));
+  EXPECT_TRUE(has(res, R"("label":"Relay rest time",)")) << res.body;
+  EXPECT_TRUE(has(res, R"(,"advanced":true,"choices":[],"restart":false})"));
+  // This test's Api names no platform: the schema then names none either.
+  EXPECT_FALSE(has(res, R"("platform":)"));
   EXPECT_TRUE(has(res, R"("choices":["relay","relay_two_speed","relay_voltage_select","hbridge"],)"
                        R"("restart":true})"));
   // The default reported is the port's (the fake sets 100 counts).

@@ -52,19 +52,31 @@ async function saveField(page, key, text) {
   return row.locator('.error').textContent();
 }
 
-test('settings: a number field refuses a locator and a decimal comma beside the field', async () => {
+test('settings: a number field refuses a decimal comma and a word beside the field; a locator is understood', async () => {
   const page = await openPage(browser, rotord.url + '/settings.html');
   await page.waitForSelector('#f-station\\.lat_deg');
-  for (const [typed, why] of [['JO62QM', /not a number/], ['12,5', /12\.5 \(a point, not a comma\)/]]) {
+  for (const [typed, why] of [['12,5', /12\.5 \(a point, not a comma\)/], ['north', /not a number/]]) {
     assert.match(await saveField(page, 'station.lat_deg', typed), why);
     assert.match(await page.textContent('#msg'), /not saved/);
     // What was typed stays, for the user to correct; nothing was saved.
     assert.equal(await page.inputValue('#f-station\\.lat_deg'), typed);
     assert.equal((await settings())['station.lat_deg'], 0);
   }
-  await page.fill('#f-station\\.lat_deg', '52.5');
+  // A Maidenhead locator typed where a position is asked for (issue 24):
+  // both fields take its square's centre, saved as numbers.
+  await page.fill('#f-station\\.lat_deg', 'JO62qm');
+  assert.equal(await page.locator('.field:has(#f-station\\.lat_deg) .error').textContent(), '');
   await page.click('#save');
   await until(async () => (await page.textContent('#msg')).includes('saved'), { what: 'saved' });
+  assert.equal(await page.inputValue('#f-station\\.lat_deg'), '52.5208');
+  assert.equal(await page.inputValue('#f-station\\.lon_deg'), '13.375');
+  assert.equal((await settings())['station.lat_deg'], 52.5208);
+  assert.equal((await settings())['station.lon_deg'], 13.375);
+  // Only a latitude again, as the track test below expects.
+  await page.fill('#f-station\\.lat_deg', '52.5');
+  await page.fill('#f-station\\.lon_deg', '0');
+  await page.click('#save');
+  await until(async () => (await settings())['station.lon_deg'] === 0, { what: 'saved' });
   assert.equal((await settings())['station.lat_deg'], 52.5);
   assert.equal(await page.locator('.field.invalid').count(), 0);
   await screenshot(page, 'outside-settings-numbers.png');

@@ -43,15 +43,43 @@ test('from an empty settings file to a commissioned, located, protected controll
   await phone.click('#use-model');
   await until(async () => /Saved/.test(await phone.textContent('#model-msg')), { what: 'model saved' });
 
-  // 2. The wiring: a relay drive with a brake and a pot: no PWM pins.
-  const pins = await phone.$$eval('#pins input', (l) => l.map((i) => i.dataset.key));
-  assert.ok(pins.includes('pins.az_cw') && pins.includes('gpiod.az_brake'), pins.join());
-  assert.ok(!pins.some((k) => k.includes('pwm')), pins.join());
-  assert.ok(!pins.some((k) => k.startsWith('pins.el_')), pins.join());
+  // 2. The wiring: the simulator has none of its own, so the page asks
+  // which board's to prepare. A relay drive with a brake and a pot: the
+  // relay boards the docs describe, no PWM pins, no elevation, and only
+  // the chosen platform's pins.
+  await phone.waitForSelector('#wiring-for-row:not([hidden])');
+  const keys = () => phone.$$eval('#pins input', (l) => l.map((i) => i.dataset.key));
+  const boards = () => phone.$$eval('#boards button', (l) => l.map((b) => b.id));
+  await phone.selectOption('#wiring-for', 'pico_w');
+  let pins = await keys();
+  assert.ok(pins.includes('pins.az_cw') && pins.includes('pins.az_brake') && pins.includes('pins.az_pot'),
+    pins.join());
+  assert.ok(!pins.some((k) => k.includes('pwm') || k.startsWith('gpiod.') || k.startsWith('pins.el_')),
+    pins.join());
+  assert.deepEqual(await boards(), ['board-pico-relay']);
   await phone.fill('#pin-pins\\.az_cw', '2.5');
   await phone.click('#save-pins');
   assert.match(await phone.textContent('#pins-msg'), /pins\.az_cw: a whole number/);
-  await phone.fill('#pin-pins\\.az_cw', '5');
+  // The Pico W's relay board: the documented wiring (docs/hardware.md).
+  await phone.click('#board-pico-relay');
+  assert.equal(await phone.inputValue('#pin-pins\\.az_cw'), '5');
+  assert.equal(await phone.inputValue('#pin-pins\\.az_brake'), '8');
+  // The Raspberry Pi: its lines and its two relay boards.
+  await phone.selectOption('#wiring-for', 'gpiod');
+  pins = await keys();
+  assert.ok(pins.includes('gpiod.az_cw') && pins.includes('gpiod.az_brake') && pins.includes('iio.az_device'),
+    pins.join());
+  assert.ok(!pins.some((k) => k.startsWith('pins.') || k.startsWith('pwm.')), pins.join());
+  assert.deepEqual(await boards(), ['board-pi-relay-high', 'board-pi-relay-low']);
+  await phone.click('#board-pi-relay-low');
+  assert.equal(await phone.isChecked('#pin-gpiod\\.outputs_active_low'), true);
+  await phone.fill('#pin-gpiod\\.az_l1', '13');
+  await phone.click('#save-pins');
+  await until(async () => /Saved/.test(await phone.textContent('#pins-msg')), { what: 'wiring saved' });
+  const wired = (await request(rotord.url + '/api/settings')).body;
+  assert.equal(wired['gpiod.outputs_active_low'], true);
+  assert.equal(wired['gpiod.az_l1'], 13);
+  assert.equal(wired['gpiod.az_cw'], 17);
 
   // 3. Self-commissioning: the simulated Ham IV's switches sit 1 deg
   // outside 0..360. Controller time runs while the page follows the run.
@@ -73,7 +101,10 @@ test('from an empty settings file to a commissioned, located, protected controll
   assert.equal(settings['az.pot_cal_lo_deg'], -1);
   assert.equal(settings['az.has_brake'], true);
 
-  // 4. The station from a Maidenhead locator.
+  // 4. The station from a Maidenhead locator, and the clock in words (the
+  // host's NTP state: this machine's, whichever it is).
+  assert.match(await phone.textContent('#clock'),
+    /^The (system clock is (synchronized by NTP|not synchronized)|kernel does not say)/);
   await phone.fill('#locator', 'JN58td');
   assert.equal(await phone.inputValue('#lat'), '48.1458');
   assert.equal(await phone.inputValue('#lon'), '11.6250');
