@@ -25,8 +25,8 @@ bool turning(const AxisStatus& s) {
 }
 
 std::uint64_t sum(const AxisWear& w) {
-  std::uint64_t total = w.starts + w.reversals + w.run_ms + w.turned_deg + w.brake_cycles +
-                        w.relay_switchings;
+  std::uint64_t total =
+      w.starts + w.reversals + w.run_ms + w.turned_deg + w.brake_cycles + w.relay_switchings;
   return total + w.faults_total();
 }
 

@@ -13,10 +13,10 @@ namespace rotord::care {
 /// ratings (relay operations, motor duty) to judge the wear of a rotator on
 /// a tower nobody watches.
 struct AxisWear {
-  std::uint32_t starts = 0;     ///< the motor was switched on (a drive begun)
-  std::uint32_t reversals = 0;  ///< starts in the other direction than the one before
-  std::uint64_t run_ms = 0;     ///< time with the motor driven
-  std::uint32_t turned_deg = 0;  ///< whole degrees turned under power and coasting
+  std::uint32_t starts = 0;            ///< the motor was switched on (a drive begun)
+  std::uint32_t reversals = 0;         ///< starts in the other direction than the one before
+  std::uint64_t run_ms = 0;            ///< time with the motor driven
+  std::uint32_t turned_deg = 0;        ///< whole degrees turned under power and coasting
   std::uint32_t brake_cycles = 0;      ///< brake released (and set again)
   std::uint32_t relay_switchings = 0;  ///< relay closures, every relay of the axis
   /// Faults latched, indexed by AxisFault ([0], kNone, stays 0).

@@ -37,14 +37,14 @@ class BufferSink final : public ByteSink {
 };
 
 constexpr const char* kFaultKeys[kAxisFaultKinds] = {
-    "none",  "stall",        "sensor_lost", "sensor_range", "sensor_jump",
+    "none",    "stall",     "sensor_lost",  "sensor_range", "sensor_jump",
     "timeout", "no_sensor", "sensor_stuck", "slip",         "estop"};
 
 /// The counters of a wear record by name, for the writer and the reader
 /// alike (one list, so the two cannot drift apart).
 struct Field {
   const char* name;
-  std::uint32_t AxisWear::* u32;
+  std::uint32_t AxisWear::*u32;
 };
 constexpr Field kFields[] = {{"starts", &AxisWear::starts},
                              {"reversals", &AxisWear::reversals},
@@ -71,8 +71,8 @@ void write_axis_flat(JsonWriter& w, const char* prefix, const AxisWear& wear) {
 
 /// A whole number in [0, max]: a count can be nothing else.
 bool count_value(const JsonValue& v, double max, double& out) {
-  if (v.type != JsonType::kNumber || !std::isfinite(v.number) || v.number < 0.0 ||
-      v.number > max || std::floor(v.number) != v.number)
+  if (v.type != JsonType::kNumber || !std::isfinite(v.number) || v.number < 0.0 || v.number > max ||
+      std::floor(v.number) != v.number)
     return false;
   out = v.number;
   return true;

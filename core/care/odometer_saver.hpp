@@ -39,14 +39,13 @@ class OdometerSaver {
 
   enum class Result : std::uint8_t { kIdle, kWaiting, kSaved, kFailed };
   /// Call from the main loop. A reset of the counts (Odometer::reset, by
-  /// the REST API or the console) is written at once. Otherwise it writes when the counts changed and the
-  /// interval since the last write has passed: at rest from nine tenths of
-  /// it on, while `busy` (the rotator moves) at the whole of it, so an
-  /// erase rarely falls in a move and never waits past the interval. A failure is retried after another interval.
+  /// the REST API or the console) is written at once. Otherwise it writes when the counts changed
+  /// and the interval since the last write has passed: at rest from nine tenths of it on, while
+  /// `busy` (the rotator moves) at the whole of it, so an erase rarely falls in a move and never
+  /// waits past the interval. A failure is retried after another interval.
   Result poll(Millis now, bool busy = false);
   /// Writes a change at once (shutdown, reboot, a reset of the counts).
   Result flush(Millis now);
-
 
   Millis interval_ms() const { return interval_ms_; }
   /// Records written since start, and writes that failed (GET /metrics:

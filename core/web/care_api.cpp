@@ -111,11 +111,11 @@ void write_care_metrics(metrics::PrometheusWriter& w, const Controller& c,
   struct Family {
     const char* name;
     const char* help;
-    std::uint32_t AxisWear::* count;
+    std::uint32_t AxisWear::*count;
   };
   static constexpr Family kFamilies[] = {
-      {"rotord_odometer_starts_total", "Motor starts since the odometer's reset (kept across restarts).",
-       &AxisWear::starts},
+      {"rotord_odometer_starts_total",
+       "Motor starts since the odometer's reset (kept across restarts).", &AxisWear::starts},
       {"rotord_odometer_reversals_total", "Starts in the other direction than the one before.",
        &AxisWear::reversals},
       {"rotord_odometer_turned_degrees_total", "Whole degrees turned under power and coasting.",

@@ -641,8 +641,9 @@ void Daemon::load_odometer() {
     odometer_buf_.resize(4096);
   }
   // Linux writes a small file: once a minute (a power cut loses at most that).
-  odometer_saver_ = std::make_unique<care::OdometerSaver>(
-      controller_->odometer(), *odometer_storage_, odometer_buf_.data(), odometer_buf_.size(), 60000);
+  odometer_saver_ =
+      std::make_unique<care::OdometerSaver>(controller_->odometer(), *odometer_storage_,
+                                            odometer_buf_.data(), odometer_buf_.size(), 60000);
   const std::string& path = odometer_storage_->path();
   switch (odometer_saver_->load(now_ms_)) {
     case care::OdometerSaver::Load::kNothingStored:
@@ -652,11 +653,11 @@ void Daemon::load_odometer() {
       log::info("odometer loaded from %s", path.c_str());
       break;
     case care::OdometerSaver::Load::kDamaged:
-      log::error("odometer %s is damaged (%s%s%s): counting again from zero; the file is kept as "
-                 "%s.bad",
-                 path.c_str(), odometer_saver_->why(),
-                 odometer_storage_->last_error().empty() ? "" : ": ",
-                 odometer_storage_->last_error().c_str(), path.c_str());
+      log::error(
+          "odometer %s is damaged (%s%s%s): counting again from zero; the file is kept as "
+          "%s.bad",
+          path.c_str(), odometer_saver_->why(), odometer_storage_->last_error().empty() ? "" : ": ",
+          odometer_storage_->last_error().c_str(), path.c_str());
       odometer_storage_->keep_backup_before_next_save();
       break;
   }

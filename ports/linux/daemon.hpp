@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "avahi_publisher.hpp"
+#include "care/odometer_saver.hpp"
 #include "clock_control.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
@@ -22,7 +23,6 @@
 #include "settings/settings.hpp"
 #include "simulator.hpp"
 #include "storage/settings_saver.hpp"
-#include "care/odometer_saver.hpp"
 #include "system_wall_clock.hpp"
 #include "tcp_server.hpp"
 #include "tle_fetcher.hpp"
