@@ -41,11 +41,9 @@ std::uint32_t AxisWear::faults_total() const {
 void AxisOdometer::observe(const AxisStatus& s, Millis now) {
   if (!s.present) return;
   if (!seen_) {
-    // The first tick: no edge yet (an axis that starts in a fault latched
-    // before rotord ran counts it, a fault being an event).
+    // The first tick: every output was off before it (Controller::begin),
+    // so a go-to given before it still counts its start.
     seen_ = true;
-    last_out_ = s.outputs;
-    last_fault_ = AxisFault::kNone;
     last_now_ = now;
   }
   const Direction was = driven(last_out_);
@@ -54,6 +52,11 @@ void AxisOdometer::observe(const AxisStatus& s, Millis now) {
     ++wear_.starts;
     if (last_start_dir_ != Direction::kNone && is != last_start_dir_) ++wear_.reversals;
     last_start_dir_ = is;
+    close_segment(s);  // a reversal: the last drive's turn ends here
+    if (s.position_valid) {
+      segment_open_ = true;
+      segment_from_deg_ = s.position_deg;
+    }
   }
   if (was != Direction::kNone && now > last_now_)
     wear_.run_ms += static_cast<std::uint64_t>(now - last_now_);
@@ -63,21 +66,25 @@ void AxisOdometer::observe(const AxisStatus& s, Millis now) {
     ++wear_.brake_cycles;
   if (s.fault != last_fault_ && s.fault != AxisFault::kNone)
     ++wear_.faults[static_cast<std::size_t>(s.fault)];
-  // Degrees: only while the motor turns the axis (at rest the sensor's noise
-  // would add up to a turn a day; a slip is counted as such).
-  if (s.position_valid && last_pos_valid_ && turning(s)) {
-    carry_deg_ += std::fabs(s.position_deg - last_pos_deg_);
-    if (carry_deg_ >= 1.0f) {
-      const float whole = std::floor(carry_deg_);
-      wear_.turned_deg += static_cast<std::uint32_t>(whole);
-      carry_deg_ -= whole;
-    }
-  }
-  last_pos_valid_ = s.position_valid;
-  last_pos_deg_ = s.position_deg;
+  // Degrees: from where a drive started to where the axis came to rest
+  // after it (the coast included); summing every tick's step instead would
+  // count the sensor's noise, tens of degrees an hour of running.
+  if (segment_open_ && !turning(s) && is == Direction::kNone) close_segment(s);
   last_out_ = s.outputs;
   last_fault_ = s.fault;
   last_now_ = now;
+}
+
+void AxisOdometer::close_segment(const AxisStatus& s) {
+  if (!segment_open_) return;
+  segment_open_ = false;
+  if (!s.position_valid) return;  // no reading at the end: the turn is not known
+  carry_deg_ += std::fabs(s.position_deg - segment_from_deg_);
+  if (carry_deg_ >= 1.0f) {
+    const float whole = std::floor(carry_deg_);
+    wear_.turned_deg += static_cast<std::uint32_t>(whole);
+    carry_deg_ -= whole;
+  }
 }
 
 void AxisOdometer::restore(const AxisWear& wear) {

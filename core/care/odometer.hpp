@@ -38,14 +38,17 @@ class AxisOdometer {
   void restore(const AxisWear& wear);
 
  private:
+  /// Adds the turn of the drive that ends now.
+  void close_segment(const AxisStatus& s);
+
   AxisWear wear_;
   bool seen_ = false;  ///< a first status was seen (no edges before it)
   DriveOutputs last_out_;
   AxisFault last_fault_ = AxisFault::kNone;
   Direction last_start_dir_ = Direction::kNone;
   Millis last_now_ = 0;
-  bool last_pos_valid_ = false;
-  float last_pos_deg_ = 0.0f;
+  bool segment_open_ = false;     ///< a drive started at segment_from_deg_ ...
+  float segment_from_deg_ = 0.0f;  ///< ... and has not come to rest yet
   float carry_deg_ = 0.0f;  ///< the fraction of a degree not yet counted
 };
 

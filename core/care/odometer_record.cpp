@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "json/json_reader.hpp"
+#include "util/slice.hpp"
 
 namespace rotord::care {
 namespace {
@@ -92,8 +93,8 @@ bool store(AxisWear& wear, std::string_view name, double value, bool& big_ok) {
     return true;
   }
   constexpr std::string_view kFaults = "faults.";
-  if (name.substr(0, kFaults.size()) == kFaults) {
-    const std::string_view kind = name.substr(kFaults.size());
+  if (text::slice(name, 0, kFaults.size()) == kFaults) {
+    const std::string_view kind = text::slice(name, kFaults.size());
     for (std::size_t n = 1; n < kAxisFaultKinds; ++n) {
       if (kind == kFaultKeys[n]) {
         wear.faults[n] = static_cast<std::uint32_t>(value);
@@ -157,7 +158,7 @@ bool decode_record(std::string_view text, AxisWear& az, AxisWear& el, std::int64
       reset_unix_s = static_cast<std::int64_t>(number);
       continue;
     }
-    AxisWear* wear = key.substr(0, 3) == "az." ? &az : key.substr(0, 3) == "el." ? &el : nullptr;
+    AxisWear* wear = text::slice(key, 0, 3) == "az." ? &az : text::slice(key, 0, 3) == "el." ? &el : nullptr;
     if (wear == nullptr) {
       why = "an unknown key";
       return false;
@@ -168,7 +169,7 @@ bool decode_record(std::string_view text, AxisWear& az, AxisWear& el, std::int64
       return false;
     }
     bool big_ok = false;
-    if (!store(*wear, key.substr(3), number, big_ok)) {
+    if (!store(*wear, text::slice(key, 3), number, big_ok)) {
       why = "an unknown key";
       return false;
     }

@@ -6,27 +6,32 @@
 
 namespace rotord::care {
 
-/// The starts-per-hour ceiling of one axis (care.max_starts_h, docs/care.md):
-/// counts the motor's starts in a sliding hour and says when another start
-/// would pass the ceiling. The hour is kept in 31 bins of 2 minutes (62
-/// bytes, no heap): a start is allowed while the bins, the current one and
-/// the 30 before it, hold fewer than the ceiling. They span at least the
-/// last 60 minutes, so no 60 minutes ever hold more starts than the ceiling
-/// (the price: a start may wait up to 2 minutes longer than it strictly
-/// had to).
+/// The starts-per-hour ceiling of one axis (care.max_starts_h, docs/care.md).
+/// Two rules, no heap (about 80 bytes):
+///
+/// - Pace: a token bucket holding up to a tenth of the ceiling (at least 1)
+///   and refilled at the rest of it per hour. A start takes a token; a
+///   go-to finding none waits (its tolerance widened), so a tracker's stream
+///   is spread over the hour at the ceiling's rate rather than spending the
+///   hour's starts in ten minutes and standing still for fifty. Any hour
+///   holds at most burst + refill = the ceiling.
+/// - Cap: the starts of the sliding hour, kept in 31 bins of 2 minutes (the
+///   current one and the 30 before it span at least the last 60 minutes),
+///   never pass the ceiling, whatever the pace rule allowed (a change of the
+///   setting, jogs).
 class StartCeiling {
  public:
   static constexpr Millis kBinMs = 120000;
   static constexpr std::size_t kBins = 31;
 
   /// `starts`: the axis's start count (AxisStatus::moves), whose growth
-  /// since the last call is counted now.
-  void observe(std::uint32_t starts, Millis now);
+  /// since the last call is counted now; `per_hour`: the ceiling (0: none).
+  void observe(std::uint32_t starts, Millis now, int per_hour);
   /// Starts in the sliding hour (the bins' sum).
   std::uint32_t starts_in_hour() const { return in_hour_; }
   /// Whether another start stays within `per_hour` (0: no ceiling).
   bool allows_start(int per_hour) const {
-    return per_hour <= 0 || in_hour_ < static_cast<std::uint32_t>(per_hour);
+    return per_hour <= 0 || (tokens_ >= 1.0f && in_hour_ < static_cast<std::uint32_t>(per_hour));
   }
   /// When the oldest bin with a start leaves the window (a start may be
   /// allowed again then), or `now` when no start was counted.
@@ -40,6 +45,9 @@ class StartCeiling {
   bool started_ = false;
   std::uint32_t last_starts_ = 0;
   std::uint32_t in_hour_ = 0;
+  float tokens_ = 0.0f;  ///< starts the pace allows now
+  int per_hour_ = 0;     ///< the ceiling the bucket was filled for
+  Millis last_now_ = 0;
 };
 
 }  // namespace rotord::care

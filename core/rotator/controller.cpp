@@ -111,7 +111,7 @@ void Controller::count_wear(Millis now) {
   for (std::size_t n = 0; n < kMaxAxes; ++n) {
     if (axes[n] == nullptr) continue;
     const AxisStatus& s = axes[n]->status();
-    ceilings_[n].observe(s.moves, now);
+    ceilings_[n].observe(s.moves, now, per_hour);
     // Decided here for the next tick's start: the axis holds a go-to at
     // rest while another start would pass the ceiling.
     axes[n]->hold_starts(!ceilings_[n].allows_start(per_hour));
