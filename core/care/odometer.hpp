@@ -47,9 +47,9 @@ class AxisOdometer {
   AxisFault last_fault_ = AxisFault::kNone;
   Direction last_start_dir_ = Direction::kNone;
   Millis last_now_ = 0;
-  bool segment_open_ = false;     ///< a drive started at segment_from_deg_ ...
+  bool segment_open_ = false;      ///< a drive started at segment_from_deg_ ...
   float segment_from_deg_ = 0.0f;  ///< ... and has not come to rest yet
-  float carry_deg_ = 0.0f;  ///< the fraction of a degree not yet counted
+  float carry_deg_ = 0.0f;         ///< the fraction of a degree not yet counted
 };
 
 /// Both axes' odometers, when they were last reset, and a change count the

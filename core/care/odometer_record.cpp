@@ -158,7 +158,9 @@ bool decode_record(std::string_view text, AxisWear& az, AxisWear& el, std::int64
       reset_unix_s = static_cast<std::int64_t>(number);
       continue;
     }
-    AxisWear* wear = text::slice(key, 0, 3) == "az." ? &az : text::slice(key, 0, 3) == "el." ? &el : nullptr;
+    AxisWear* wear = text::slice(key, 0, 3) == "az."   ? &az
+                     : text::slice(key, 0, 3) == "el." ? &el
+                                                       : nullptr;
     if (wear == nullptr) {
       why = "an unknown key";
       return false;

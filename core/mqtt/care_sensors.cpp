@@ -11,10 +11,10 @@ namespace rotord::mqtt {
 namespace {
 
 struct CareSensor {
-  const char* object;    ///< after "<axis>_"
-  const char* name;      ///< after "Azimuth " / "Elevation "
-  const char* template_; ///< %s: the axis ("az", "el")
-  const char* unit;      ///< nullptr: none
+  const char* object;     ///< after "<axis>_"
+  const char* name;       ///< after "Azimuth " / "Elevation "
+  const char* template_;  ///< %s: the axis ("az", "el")
+  const char* unit;       ///< nullptr: none
   const char* icon;
 };
 

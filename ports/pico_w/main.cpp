@@ -13,6 +13,7 @@
 #include <optional>
 #include <string_view>
 
+#include "care/odometer_saver.hpp"
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
 #include "json/settings_json.hpp"
@@ -37,7 +38,6 @@
 #include "settings/settings.hpp"
 #include "storage/flash_slots.hpp"
 #include "storage/settings_saver.hpp"
-#include "care/odometer_saver.hpp"
 #include "usb_cdc_port.hpp"
 #include "usb_personality.hpp"
 #if ROTORD_PICO_NETWORK
@@ -541,9 +541,8 @@ const char* restart_reason() {
       // Settings changed by a protocol: saved after a quiet time, while the
       // rotator stands (a flash erase stalls this loop for tens of ms).
       if (storage != nullptr) report_save(g_saver.poll(now, controller.status().moving()));
-      if (odometer_kept &&
-          odometer_saver.poll(now, controller.status().moving()) ==
-              care::OdometerSaver::Result::kFailed)
+      if (odometer_kept && odometer_saver.poll(now, controller.status().moving()) ==
+                               care::OdometerSaver::Result::kFailed)
         std::printf("rotord: saving the odometer to flash failed\n");
       if (g_reboot.requested()) {
         if (reboot_at == 0) reboot_at = now + kRebootDelayMs;

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "../unit/memory_storage.hpp"
 #include "care/odometer_record.hpp"
 #include "care/odometer_saver.hpp"
 #include "care_rig.hpp"
-#include "../unit/memory_storage.hpp"
 
 namespace rotord {
 namespace {
@@ -30,14 +30,15 @@ TEST(Wear, GoTosAreCountedAsTheRelaysAndTheMotorSawThem) {
   ASSERT_EQ(r.controller().go_to(150.0f, std::nullopt), Error::kOk);
   r.run_ms(60000);
   const AxisWear& w = wear(r);
-  std::printf("ham4 200 -> 250 -> 150: starts %u, reversals %u, run %.1f s, turned %u deg, "
-              "brake %u, relays %u\n",
-              w.starts, w.reversals, static_cast<double>(w.run_ms) / 1000.0, w.turned_deg,
-              w.brake_cycles, w.relay_switchings);
+  std::printf(
+      "ham4 200 -> 250 -> 150: starts %u, reversals %u, run %.1f s, turned %u deg, "
+      "brake %u, relays %u\n",
+      w.starts, w.reversals, static_cast<double>(w.run_ms) / 1000.0, w.turned_deg, w.brake_cycles,
+      w.relay_switchings);
   EXPECT_EQ(w.starts, r.az().moves);  // every start the axis made, corrections included
   EXPECT_GE(w.starts, 2u);
   EXPECT_GE(w.reversals, 1u);
-  EXPECT_EQ(w.brake_cycles, w.starts);  // the brake is released for every start
+  EXPECT_EQ(w.brake_cycles, w.starts);           // the brake is released for every start
   EXPECT_GE(w.relay_switchings, 2u * w.starts);  // a direction relay and the brake each
   EXPECT_NEAR(static_cast<double>(w.turned_deg), 150.0, 6.0);
   // The motor ran for the turn, at the Ham IV's speed or slower.
@@ -142,10 +143,11 @@ TEST(StartsCeiling, AGoToStreamCannotPassIt) {
   r.settings().set(settings::Id::kCareMaxStartsH, 60);
   float held_err = 0.0f;
   const std::uint32_t starts = run_stream(r, 0.1, 10, 60, held_err);
-  std::printf("an hour of go-tos at 0.1 deg/s: %u starts without a ceiling (worst lag %.2f deg), "
-              "%u with care.max_starts_h 60 (worst lag %.2f deg), %u holds\n",
-              free_starts, static_cast<double>(free_err), starts, static_cast<double>(held_err),
-              r.controller().starts_held(AxisId::kAz));
+  std::printf(
+      "an hour of go-tos at 0.1 deg/s: %u starts without a ceiling (worst lag %.2f deg), "
+      "%u with care.max_starts_h 60 (worst lag %.2f deg), %u holds\n",
+      free_starts, static_cast<double>(free_err), starts, static_cast<double>(held_err),
+      r.controller().starts_held(AxisId::kAz));
   EXPECT_GT(free_starts, 60u);
   EXPECT_LE(starts, 60u);
   EXPECT_LE(r.controller().start_ceiling(AxisId::kAz).starts_in_hour(), 60u);
