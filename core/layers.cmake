@@ -13,7 +13,7 @@
 
 # Bottom to top (the order the libraries are defined in).
 set(ROTORD_LAYERS
-    util hal motion access tracking sensors settings json storage input axis net rotator
+    util hal motion access tracking sensors settings json storage input axis care net rotator
     protocol metrics loop web mqtt)
 
 # Errors, text, CRC-32, time, and the ids every layer shares (AxisId,
@@ -47,10 +47,14 @@ set(ROTORD_LAYER_storage json settings hal)
 set(ROTORD_LAYER_input hal util)
 # Position tracking and the motion state machine of one axis.
 set(ROTORD_LAYER_axis sensors motion settings)
+# Looked after unattended (docs/care.md): the wear odometer counted from the
+# axes' status, its record (the JSON codec) saved on a hal::Storage of its
+# own, and the starts-per-hour ceiling. Under rotator, which ticks them.
+set(ROTORD_LAYER_care axis json hal)
 # Who may connect and who may control, from the settings' network lists.
 set(ROTORD_LAYER_net access settings)
 # The Controller: axes, buttons, park, the control lock.
-set(ROTORD_LAYER_rotator axis input tracking settings access)
+set(ROTORD_LAYER_rotator axis care input tracking settings access)
 # Byte sessions of the line protocols; the allow-list from net; the settings
 # document's JSON codec for the console's export and import.
 set(ROTORD_LAYER_protocol rotator net json)

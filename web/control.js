@@ -115,6 +115,16 @@
     // Looked after unattended (docs/care.md): slips and rejected readings.
     $('care').textContent = axes.map(([n, a]) => `${n} ${a.slips} slip${a.slips === 1 ? '' : 's'}` +
       (a.slipping ? ' (slipping now)' : '') + `, ${a.readings_rejected} rejected`).join(' · ');
+    // The wear odometer (docs/care.md), and a go-to the starts ceiling holds.
+    const o = s.odometer;
+    if (o) {
+      $('wear').textContent = axes.filter(([n]) => o[n]).map(([n]) => {
+        const w = o[n];
+        return `${n} ${w.starts} starts, ${(w.run_s / 3600).toFixed(1)} h, ${w.turned_deg}°, ` +
+          `${w.relay_switchings} relay, ${w.faults_total} faults` +
+          (w.start_held ? ` (starts ceiling: waiting, tolerance ${w.widened_tolerance_deg.toFixed(1)}°)` : '');
+      }).join(' · ') + (o.reset_utc ? ` · since ${o.reset_utc.slice(0, 10)}` : '');
+    }
     if (document.activeElement !== $('speed')) $('speed').value = s.speed_pct;
     // A relay drive has one speed: the slider would move and change nothing.
     const oneSpeed = s.speed_applies === false;

@@ -451,11 +451,20 @@ void Axis::tick(Millis now) {
   update_position(now);
   status_.speed_deg_s = tracker_.estimate_speed();
 
+  start_held_ = false;
   if (state_ != AxisState::kFault) {
     const Direction want = desired_direction();
     switch (state_) {
       case AxisState::kIdle: {
         if (want == Direction::kNone) break;
+        if (starts_held_ && request_.kind == RequestKind::kGoto) {
+          // The starts ceiling: wait at rest; the move's time allowance
+          // counts from the start it gets, not from the wait.
+          start_held_ = true;
+          move_started_ = now;
+          move_distance_deg_ = std::fabs(request_.target_deg - pos_deg());
+          break;
+        }
         const Millis since_stop = now - stop_done_at_;
         const Millis wait = (want != last_dir_ && last_dir_ != Direction::kNone)
                                 ? cfg_.reverse_dead_ms
@@ -523,6 +532,7 @@ void Axis::publish() {
   status_.moves = moves_;
   status_.slips = slips_;
   status_.slipping = slipping_;
+  status_.start_held = start_held_;
   status_.outputs = out_;
 }
 

@@ -56,6 +56,10 @@ class Axis {
   void emergency_stop();
   void clear_fault();
   void set_speed_pct(int pct);
+  /// The starts ceiling (care.max_starts_h, set by the controller each
+  /// tick): while held, a go-to does not start the motor from rest (its
+  /// target kept, started once allowed); jogs and STOP are never held.
+  void hold_starts(bool held) { starts_held_ = held; }
   int speed_pct() const { return speed_pct_; }
 
   const AxisStatus& status() const { return status_; }
@@ -134,6 +138,8 @@ class Axis {
   float slip_quiet_deg_ = 0.0f;  // where a slip last moved to ...
   Millis slip_quiet_at_ = 0;     // ... and when
   std::uint32_t slips_ = 0;
+  bool starts_held_ = false;  // hold_starts()
+  bool start_held_ = false;   // a go-to waits for it now
 
   AxisStatus status_;
 };

@@ -68,6 +68,10 @@ struct AxisStatus {
   /// one is going on now.
   std::uint32_t slips = 0;
   bool slipping = false;
+  /// A go-to waits at rest, outside its tolerance, because the starts
+  /// ceiling (care.max_starts_h) allows no start yet: its tolerance is
+  /// widened to the distance it waits at.
+  bool start_held = false;
   DriveOutputs outputs;
 };
 

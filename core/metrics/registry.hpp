@@ -74,6 +74,10 @@ class Registry {
   /// nullptr: not reported.
   const std::uint32_t* settings_writes = nullptr;
   const std::uint32_t* settings_failures = nullptr;
+  /// The wear odometer's records written and failed (care::OdometerSaver,
+  /// docs/care.md); nullptr: not reported.
+  const std::uint32_t* odometer_writes = nullptr;
+  const std::uint32_t* odometer_failures = nullptr;
   /// The scheduler's clock, for the age of the last tick (GET /healthz).
   const hal::MonotonicClock* clock = nullptr;
   /// The clock's reading when the port started, for rotord_uptime_seconds.

@@ -234,6 +234,9 @@ void Bridge::set_web_url(std::string_view url) {
 }
 
 bool Bridge::announce(int step) {
+  constexpr int kCareFirst = kEntityCount + static_cast<int>(settings::kPresetCount);
+  if (step >= kCareFirst && step < kCareFirst + kCareSensorCount)
+    return !api_->settings().b(Id::kMqttDiscovery) || publish_care_sensor(step - kCareFirst);
   if (step >= kEntityCount && step < kEntityCount + static_cast<int>(settings::kPresetCount))
     return !api_->settings().b(Id::kMqttDiscovery) || publish_preset_button(step - kEntityCount);
   if (step < kEntityCount)

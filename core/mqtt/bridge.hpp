@@ -103,7 +103,10 @@ class Bridge {
   bool publish_state();
   /// Discovery's entities, a button per preset slot, then <prefix>/info.
   static constexpr int kEntityCount = 7;
-  static constexpr int kAnnouncements = kEntityCount + static_cast<int>(settings::kPresetCount) + 1;
+  /// The wear odometer's and the slips' sensors (care_sensors.cpp), per axis.
+  static constexpr int kCareSensorCount = 16;
+  static constexpr int kAnnouncements =
+      kEntityCount + static_cast<int>(settings::kPresetCount) + kCareSensorCount + 1;
   /// Publishes announcement `step` (0..kAnnouncements-1); false: the
   /// transport refused it (tried again later).
   bool announce(int step);
@@ -112,6 +115,9 @@ class Bridge {
   /// Home Assistant's button for preset slot `slot` (an empty config
   /// removes the button of an unused slot); presets.cpp.
   bool publish_preset_button(int slot);
+  /// Home Assistant's sensor `n` of the wear odometer and the slips
+  /// (docs/care.md); the elevation's are removed on an azimuth-only rotator.
+  bool publish_care_sensor(int n);
   /// The device, availability, name and unique id every entity has.
   void write_entity_head(web::JsonWriter& w, const char* name, const char* unique_id) const;
   /// Whether the presets changed since the last call (their buttons are

@@ -87,6 +87,8 @@ constexpr ConsoleSession::Command ConsoleSession::kCommands[] = {
     {"commission", "commission <az|el> [step] [ccw_deg cw_deg] | status | accept", &C::commission,
      "self-commissioning: start a step (all, direction, ends, speeds), its result, accept it",
      false},
+    {"odometer", "odometer [reset]", &C::odometer,
+     "the wear odometer of each axis; reset: every count to zero, dated", false},
     {"stop", "stop", &C::stop, "stop every motion", false},
     {"reset", "reset", &C::reset, "stop, clear latched faults", true},
     {"reboot", "reboot", &C::reboot, "restart the controller (settings are saved first)", true},

@@ -115,6 +115,8 @@ class ConsoleSession final : public Session {
   void turn(std::string_view args, ByteSink& out);
   void presets(std::string_view args, ByteSink& out);
   void preset(std::string_view args, ByteSink& out);
+  // The wear odometer (console_care.cpp).
+  void odometer(std::string_view args, ByteSink& out);
 
   void start_listing(Listing listing, std::string_view prefix, ByteSink& out);
   /// Writes the whole listing into `out` (which drops what lies outside the

@@ -9,7 +9,8 @@ namespace rotord {
 
 /// What the log should say about the axes since it last asked: a fault
 /// latched (named: a frozen sensor, a burst, a stall, a slip), a slip
-/// (counted and published whether or not slip.fault is on). The ports ask
+/// (counted and published whether or not slip.fault is on), a go-to held by
+/// the starts ceiling (care.max_starts_h: its tolerance widened). The ports ask
 /// from their main loop, never from the control tick. No heap.
 class AxisEvents {
  public:
@@ -22,6 +23,7 @@ class AxisEvents {
  private:
   std::array<std::uint32_t, 2> slips_{};
   std::array<AxisFault, 2> faults_{};
+  std::array<bool, 2> held_{};
 };
 
 }  // namespace rotord

@@ -98,6 +98,26 @@ void Controller::tick(Millis now) {
   if (mode_ != Mode::kIdle || s.moving() || tracker_.armed()) last_activity_ms_ = now;
   park_when_idle_long_enough(now);
   count_faults();
+  count_wear(now);
+}
+
+void Controller::count_wear(Millis now) {
+  // Allocation-free: fixed members only (this runs in the control tick).
+  const AxisStatus& az = az_.status();
+  const AxisStatus& el = el_.status();
+  odometer_.observe(az, has_el_ ? el : AxisStatus{}, now);
+  const int per_hour = settings_.i(Id::kCareMaxStartsH);
+  Axis* axes[kMaxAxes] = {&az_, has_el_ ? &el_ : nullptr};
+  for (std::size_t n = 0; n < kMaxAxes; ++n) {
+    if (axes[n] == nullptr) continue;
+    const AxisStatus& s = axes[n]->status();
+    ceilings_[n].observe(s.moves, now, per_hour);
+    // Decided here for the next tick's start: the axis holds a go-to at
+    // rest while another start would pass the ceiling.
+    axes[n]->hold_starts(!ceilings_[n].allows_start(per_hour));
+    if (s.start_held && !was_held_[n]) ++starts_held_[n];
+    was_held_[n] = s.start_held;
+  }
 }
 
 void Controller::note_command() {

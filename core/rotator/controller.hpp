@@ -3,6 +3,8 @@
 
 #include "access/control_lock.hpp"
 #include "axis/axis.hpp"
+#include "care/odometer.hpp"
+#include "care/start_ceiling.hpp"
 #include "hal/wall_clock.hpp"
 #include "input/manual_buttons.hpp"
 #include "rotator/commissioning.hpp"
@@ -137,6 +139,7 @@ class Controller {
   }
   Millis now() const { return now_; }
   settings::Settings& settings() { return settings_; }
+  const settings::Settings& settings() const { return settings_; }
   /// The control lock (access/control_lock.hpp): every command source asks
   /// it before a move or a setting change; STOP never does.
   access::ControlLock& control_lock() { return control_lock_; }
@@ -147,6 +150,19 @@ class Controller {
   std::uint32_t faults_latched(AxisId axis, AxisFault kind) const {
     return faults_latched_[static_cast<std::size_t>(axis_index(axis))]
                           [static_cast<std::size_t>(kind)];
+  }
+
+  /// The wear odometer (docs/care.md), counted every tick; the port keeps
+  /// it across restarts (care::OdometerSaver) and resets it.
+  const care::Odometer& odometer() const { return odometer_; }
+  care::Odometer& odometer() { return odometer_; }
+  /// The starts-per-hour ceiling's view of `axis` (care.max_starts_h).
+  const care::StartCeiling& start_ceiling(AxisId axis) const {
+    return ceilings_[static_cast<std::size_t>(axis_index(axis))];
+  }
+  /// Go-tos the ceiling held at rest since start (each wait counted once).
+  std::uint32_t starts_held(AxisId axis) const {
+    return starts_held_[static_cast<std::size_t>(axis_index(axis))];
   }
 
   /// What the continuity rule added to the last go-to's azimuth (whole
@@ -198,6 +214,8 @@ class Controller {
   void read_estop();
   /// Counts each fault an axis latched since the last call.
   void count_faults();
+  /// The odometer and the starts ceiling, after the axes ticked.
+  void count_wear(Millis now);
   Axis& commissioned_axis() { return commissioning_.axis() == AxisId::kEl ? el_ : az_; }
 
   settings::Settings& settings_;
@@ -225,6 +243,10 @@ class Controller {
   Recognition recognition_;
   bool last_goto_recognised_ = false;
   Commissioning commissioning_;
+  care::Odometer odometer_;
+  std::array<care::StartCeiling, kMaxAxes> ceilings_;
+  std::array<bool, kMaxAxes> was_held_{};
+  std::array<std::uint32_t, kMaxAxes> starts_held_{};
   std::array<AxisFault, kMaxAxes> counted_fault_{};  // each axis's fault, as last counted
   std::array<std::array<std::uint32_t, kAxisFaultKinds>, kMaxAxes> faults_latched_{};
 };

@@ -39,7 +39,7 @@ bool newer(std::uint32_t a, std::uint32_t b) {
 std::size_t FlashSlots::slot_size() const {
   const std::size_t erase = flash_.erase_size();
   if (erase == 0) return 0;
-  return flash_.size() / 2 / erase * erase;
+  return flash_.size() / static_cast<std::size_t>(slots_) / erase * erase;
 }
 
 bool FlashSlots::usable() const {
@@ -79,7 +79,7 @@ std::optional<FlashSlots::Header> FlashSlots::valid_header(int slot) {
 std::optional<FlashSlots::Newest> FlashSlots::newest() {
   if (!usable()) return std::nullopt;
   std::optional<Newest> best;
-  for (int slot = 0; slot < 2; ++slot) {
+  for (int slot = 0; slot < slots_; ++slot) {
     const auto h = valid_header(slot);
     if (!h) continue;
     if (!best || newer(h->sequence, best->sequence)) best = Newest{slot, h->sequence};
@@ -122,7 +122,7 @@ bool FlashSlots::save(std::string_view document) {
     const auto h = valid_header(current->slot);
     if (h && payload_equals(current->slot, *h, document)) return true;  // nothing changed
   }
-  const int target = current ? 1 - current->slot : 0;
+  const int target = current ? (current->slot + 1) % slots_ : 0;
   const std::uint32_t sequence = current ? current->sequence + 1 : 1;
   const std::size_t page = flash_.program_size();
   const std::size_t base = slot_offset(target);

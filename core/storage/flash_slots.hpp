@@ -29,7 +29,12 @@ class FlashSlots final : public hal::Storage {
   static constexpr std::uint32_t kMagic = 0x54455352;  // "RSET" little-endian
   static constexpr std::uint16_t kFormat = 1;
 
-  explicit FlashSlots(hal::Flash& flash) : flash_(flash) {}
+  /// `slots`: how many slots the region is split into (2 for the settings;
+  /// more spread the erases of a record written often, as the wear
+  /// odometer's, over more sectors). A save goes to the slot after the
+  /// newest, in turn.
+  explicit FlashSlots(hal::Flash& flash, int slots = 2)
+      : flash_(flash), slots_(slots < 2 ? 2 : slots) {}
 
   /// The geometry works: two slots of whole erase blocks, each larger than
   /// one page. Save and load fail without touching the flash otherwise.
@@ -68,6 +73,7 @@ class FlashSlots final : public hal::Storage {
   bool payload_equals(int slot, const Header& header, std::string_view document);
 
   hal::Flash& flash_;
+  int slots_;
   std::size_t last_programmed_ = 0;
 };
 

@@ -1,5 +1,7 @@
 #include "web/metrics_page.hpp"
 
+#include "web/care_api.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -205,6 +207,7 @@ void write_metrics(PrometheusWriter& w, const Controller& controller,
   w.integer({}, static_cast<std::uint64_t>(s.speed_pct));
   w.family("rotord_estop_active", "gauge", "1 while the emergency-stop input is active.");
   w.integer({}, controller.estop_active() ? 1 : 0);
+  write_care_metrics(w, controller, registry);
   if (registry == nullptr) return;
   write_protocols(w, *registry);
   if (registry->ticks != nullptr) write_ticks(w, *registry->ticks);

@@ -7,6 +7,7 @@
 #include "json/json_reader.hpp"
 #include "util/slice.hpp"
 #include "util/utc_time.hpp"
+#include "web/care_api.hpp"
 #include "web/place_api.hpp"
 #include "web/recognition_report.hpp"
 
@@ -223,6 +224,7 @@ void Api::write_status(JsonWriter& w) const {
   write_lock(w, nullptr);
   write_beam(w, s);
   write_recognition(w, c.recognition());
+  write_odometer_status(w, ctx_.controller);
   // Only when something is wrong: a status every 100 ms stays short.
   const LoadReport* load = ctx_.load_report;
   if (values.access_unreadable() || (load != nullptr && !load->empty())) {
@@ -424,6 +426,9 @@ const Api::Route Api::kRoutes[] = {
      "add or replace a named heading (16 at most), saved"},
     {"/api/presets/delete", true, N::kControl, true, true, delete_preset, "remove a named heading"},
     {"/api/preset", true, N::kControl, true, true, post_preset, "turn the beam to a named heading"},
+    {"/api/odometer", false, N::kRead, false, false, get_odometer, "the wear odometer"},
+    {"/api/odometer/reset", true, N::kControl, true, true, post_odometer_reset,
+     "reset the wear odometer, dated"},
 };
 
 std::span<const Api::Route> Api::routes() {

@@ -231,6 +231,7 @@ bool Daemon::start_controller() {
   // Linux the whole catalogue per go-to (26 evaluations, well under 1 ms).
   controller_->attach_catalog(tles_.get());
   if (gpio_ && gpio_->estop() != nullptr) controller_->attach_estop(gpio_->estop());
+  load_odometer();
   metrics_.ticks = &ticks_;
   if (saver_) {
     metrics_.settings_writes = &saver_->writes();
@@ -383,6 +384,8 @@ void Daemon::reboot() {
   reboot_pending_ = false;
   log::info("restarting the controller");
   stop_motors(controller_.get(), nullptr);
+  save_odometer(true);  // the next controller reads it back
+  odometer_saver_.reset();
   servers_.clear();
   udp_servers_.clear();
   datagram_handlers_.reset();
@@ -466,6 +469,7 @@ void Daemon::stop() {
   notifier_.stopping();
   avahi_.reset();               // withdrawn from the network at once
   save_changed_settings(true);  // a change still in its quiet time
+  save_odometer(true);
   timer_.cancel();
   mqtt_.reset();
   servers_.clear();
@@ -571,6 +575,7 @@ void Daemon::serve(Millis wall_ms) {
   for (auto& line : serial_lines_) line->poll(wall_ms);
   for (auto& udp : udp_servers_) udp->poll();
   save_changed_settings(false);
+  save_odometer(false);
   refresh_tles();
   if (reboot_pending_ && std::chrono::steady_clock::now() >= reboot_at_) reboot();
 }
@@ -627,6 +632,53 @@ Millis Daemon::advance_manual_clock(Millis ms) {
     serve(network_ms());
   }
   return now_ms_;
+}
+
+void Daemon::load_odometer() {
+  if (!odometer_storage_) {
+    const std::string& settings_path = storage_->path();
+    const std::size_t slash = settings_path.rfind('/');
+    odometer_storage_ = std::make_unique<FileStorage>(
+        (slash == std::string::npos ? std::string() : settings_path.substr(0, slash + 1)) +
+        "odometer.json");
+    odometer_buf_.resize(4096);
+  }
+  // Linux writes a small file: once a minute (a power cut loses at most that).
+  odometer_saver_ =
+      std::make_unique<care::OdometerSaver>(controller_->odometer(), *odometer_storage_,
+                                            odometer_buf_.data(), odometer_buf_.size(), 60000);
+  const std::string& path = odometer_storage_->path();
+  switch (odometer_saver_->load(now_ms_)) {
+    case care::OdometerSaver::Load::kNothingStored:
+      log::info("no odometer at %s yet: counting from zero", path.c_str());
+      break;
+    case care::OdometerSaver::Load::kLoaded:
+      log::info("odometer loaded from %s", path.c_str());
+      break;
+    case care::OdometerSaver::Load::kDamaged:
+      log::error(
+          "odometer %s is damaged (%s%s%s): counting again from zero; the file is kept as "
+          "%s.bad",
+          path.c_str(), odometer_saver_->why(), odometer_storage_->last_error().empty() ? "" : ": ",
+          odometer_storage_->last_error().c_str(), path.c_str());
+      odometer_storage_->keep_backup_before_next_save();
+      break;
+  }
+  metrics_.odometer_writes = &odometer_saver_->writes();
+  metrics_.odometer_failures = &odometer_saver_->failures();
+}
+
+void Daemon::save_odometer(bool now) {
+  if (!odometer_saver_) return;
+  const care::OdometerSaver::Result r =
+      now ? odometer_saver_->flush(now_ms_) : odometer_saver_->poll(now_ms_);
+  if (r == care::OdometerSaver::Result::kSaved) {
+    log::debug("odometer saved to %s", odometer_storage_->path().c_str());
+  } else if (r == care::OdometerSaver::Result::kFailed) {
+    log::error("saving the odometer to %s failed (%s); next try in %ld s",
+               odometer_storage_->path().c_str(), odometer_storage_->last_error().c_str(),
+               static_cast<long>(odometer_saver_->interval_ms() / 1000));
+  }
 }
 
 void Daemon::save_changed_settings(bool now) {

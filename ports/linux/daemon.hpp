@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "avahi_publisher.hpp"
+#include "care/odometer_saver.hpp"
 #include "clock_control.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
@@ -143,6 +144,16 @@ class Daemon final : private web::RebootHook {
   std::vector<char> saver_buf_;
   /// Between the REST API and storage_; saves settings changed by protocols.
   std::unique_ptr<SettingsSaver> saver_;
+  /// The wear odometer's record, odometer.json beside the settings file
+  /// (docs/care.md), and its saver (a new one with each controller).
+  std::unique_ptr<FileStorage> odometer_storage_;
+  std::vector<char> odometer_buf_;
+  std::unique_ptr<care::OdometerSaver> odometer_saver_;
+  /// Reads the odometer back into a new controller; says why a damaged
+  /// record starts again from zero.
+  void load_odometer();
+  /// Writes the odometer when due (or at once when `now`), and says so.
+  void save_odometer(bool now);
   std::unique_ptr<sim::SimRotator> sim_;
   std::unique_ptr<GpiodRotator> gpio_;           ///< --hw gpiod, instead of sim_
   std::unique_ptr<ClockControl> clock_control_;  ///< --clock manual

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string_view>
 
+#include "care/odometer_saver.hpp"
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
 #include "json/settings_json.hpp"
@@ -67,6 +68,8 @@ constexpr std::uint32_t kWatchdogMs = 2000;
 // POST /api/reboot (and the console's reboot) answers first, then the
 // watchdog resets the chip.
 constexpr Millis kRebootDelayMs = 300;
+/// The wear odometer's save interval on the flash (docs/care.md, the endurance).
+constexpr Millis kOdometerSaveMs = 600000;
 using protocol::Personality;
 using settings::Id;
 using settings::kNoPin;
@@ -431,6 +434,22 @@ const char* restart_reason() {
                 settings.b(Id::kEstopNormallyClosed) ? "normally-closed" : "normally-open");
   }
   controller.begin(now_ms());
+  // The wear odometer (docs/care.md): back from its flash slots, saved every
+  // 10 minutes in turn over eight sectors (the flash's endurance for ten
+  // years, computed there). Its document buffer is the start-up one too:
+  // the settings saver and this one run one after the other in this loop.
+  static PicoFlash odometer_flash(PicoFlash::kRegionBytes + PicoFlash::kTleRegionBytes,
+                                  PicoFlash::kOdometerRegionBytes);
+  static FlashSlots odometer_slots(odometer_flash, PicoFlash::kOdometerSlots);
+  static care::OdometerSaver odometer_saver(controller.odometer(), odometer_slots, g_boot_document,
+                                            sizeof g_boot_document, kOdometerSaveMs);
+  const bool odometer_kept = odometer_flash.region_free();
+  if (odometer_kept) {
+    const care::OdometerSaver::Load l = odometer_saver.load(now_ms());
+    if (l == care::OdometerSaver::Load::kDamaged)
+      std::printf("rotord: the odometer in flash is damaged (%s): counting again from zero\n",
+                  odometer_saver.why());
+  }
   // Faults latched and slips, named, for the log port (docs/care.md).
   static AxisEvents axis_events;
   axis_events.begin(controller.status());
@@ -473,6 +492,10 @@ const char* restart_reason() {
   if (storage != nullptr) {
     registry.settings_writes = &g_saver.writes();
     registry.settings_failures = &g_saver.failures();
+  }
+  if (odometer_kept) {
+    registry.odometer_writes = &odometer_saver.writes();
+    registry.odometer_failures = &odometer_saver.failures();
   }
 
 #if ROTORD_PICO_NETWORK
@@ -518,12 +541,16 @@ const char* restart_reason() {
       // Settings changed by a protocol: saved after a quiet time, while the
       // rotator stands (a flash erase stalls this loop for tens of ms).
       if (storage != nullptr) report_save(g_saver.poll(now, controller.status().moving()));
+      if (odometer_kept && odometer_saver.poll(now, controller.status().moving()) ==
+                               care::OdometerSaver::Result::kFailed)
+        std::printf("rotord: saving the odometer to flash failed\n");
       if (g_reboot.requested()) {
         if (reboot_at == 0) reboot_at = now + kRebootDelayMs;
         if (now >= reboot_at) {
           std::printf("rotord: rebooting\n");
           controller.shutdown();
           if (storage != nullptr) report_save(g_saver.flush(now));  // motors off first
+          if (odometer_kept) odometer_saver.flush(now);
           // The ROM's USB bootloader for a firmware update (the console's
           // bootsel): the RPI-RP2 drive and picotool's interface.
           if (g_reboot.to_bootloader()) reset_usb_boot(0, 0);

@@ -18,6 +18,10 @@ class PicoFlash final : public hal::Flash {
   /// The stored TLEs (tracking/tle_catalog.hpp, at most 4.1 KB of text): two
   /// 8 KB slots right below the settings.
   static constexpr std::size_t kTleRegionBytes = ROTORD_TLE_FLASH_BYTES;
+  /// The wear odometer (docs/care.md): eight 4 KB slots below the TLEs,
+  /// written in turn, so each sector is erased once every eight saves.
+  static constexpr std::size_t kOdometerRegionBytes = ROTORD_ODOMETER_FLASH_BYTES;
+  static constexpr int kOdometerSlots = 8;
 
   /// A region of `size` bytes ending `end_gap` bytes before the end of the
   /// flash: the settings (default) at the very end, the TLEs below them.

@@ -227,17 +227,18 @@ TEST_F(Places, MqttTurnsToAPlaceAndAPresetAndAnnouncesPresetButtons) {
                   " -t homeassistant/button/rotord-test/preset_2/config -C 1 -W 10")
           .out;
   EXPECT_NE(second.find(R"(Turn to JA (330)"), std::string::npos) << second;
-  // Every discovery message, presets included, against the schema.
+  // Every discovery message, presets and the 16 wear and slip sensors
+  // included, against the schema.
   const std::string file = dir + "/discovery.txt";
   ASSERT_EQ(
-      run_command("mosquitto_sub -p " + port + " -t 'homeassistant/#' -v -C 9 -W 10 > " + file).rc,
+      run_command("mosquitto_sub -p " + port + " -t 'homeassistant/#' -v -C 25 -W 10 > " + file).rc,
       0);
   const CommandOutput check = run_command("python3 " ROTORD_SOURCE_DIR
                                           "/tests/interop/ha_discovery_check.py " ROTORD_SOURCE_DIR
                                           "/tests/data/mqtt/ha_discovery.schema.json " +
                                           file + " rotord/test");
   EXPECT_EQ(check.rc, 0) << check.out;
-  EXPECT_NE(check.out.find("9 messages, 9 entities, 0 problems"), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("25 messages, 25 entities, 0 problems"), std::string::npos) << check.out;
 }
 
 }  // namespace

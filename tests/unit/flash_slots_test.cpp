@@ -230,3 +230,32 @@ TEST(FlashSlots, SettingsRoundTripThroughTheWebCodec) {
 
 }  // namespace
 }  // namespace rotord
+
+namespace rotord {
+namespace {
+
+// The wear odometer's slots on the Pico W (docs/care.md): eight 4 KB sectors
+// written in turn, so each is erased once every eight saves.
+TEST(FlashSlotsRing, EightSlotsAreWrittenInTurnAndAPowerCutKeepsThePrevious) {
+  FakeFlash flash(32 * 1024, 4096, 256);
+  FlashSlots slots(flash, 8);
+  ASSERT_TRUE(slots.usable());
+  EXPECT_EQ(slots.capacity(), 4096u - 256u);
+  for (int n = 0; n < 16; ++n) {
+    ASSERT_TRUE(slots.save(document(static_cast<char>('a' + n), 900)));
+    ASSERT_TRUE(slots.newest().has_value());
+    EXPECT_EQ(slots.newest()->slot, n % 8);
+    EXPECT_EQ(load_all(slots), document(static_cast<char>('a' + n), 900));
+  }
+  EXPECT_EQ(flash.erases, 16);  // each sector twice in sixteen saves
+  // The power fails while the next slot is being programmed: the last
+  // complete record stays the newest.
+  flash.program_budget = 512;
+  EXPECT_FALSE(slots.save(document('z', 900)));
+  flash.power_on();
+  EXPECT_EQ(slots.newest()->slot, 7);
+  EXPECT_EQ(load_all(slots), document('p', 900));
+}
+
+}  // namespace
+}  // namespace rotord

@@ -176,6 +176,12 @@ TEST_F(MqttBridge, AFullQueueDelaysTheAnnouncementsNeverLosesThem) {
   // Then one button config per preset slot (empty for an unused one).
   for (int n = 1; n <= 16; ++n)
     expected.push_back("homeassistant/button/rotord_test/preset_" + std::to_string(n) + "/config");
+  // Then the wear odometer's and the slips' sensors of each axis (docs/care.md).
+  for (const char* axis : {"az", "el"})
+    for (const char* count : {"starts", "reversals", "run_time", "turned", "brake_cycles",
+                              "relay_switchings", "faults", "slips"})
+      expected.push_back(std::string("homeassistant/sensor/rotord_test/") + axis + "_" + count +
+                         "/config");
   expected.push_back("rotord/test/info");
   expected.push_back("rotord/test/state");
   EXPECT_EQ(topics, expected);

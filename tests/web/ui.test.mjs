@@ -84,6 +84,13 @@ test('clicking the rose moves the rotator and the displayed azimuth follows', as
     return !s.moving && Math.abs(s.az.position_deg - 90) <= 1.5;
   }, { stepMs: 1000, what: 'arrival at 90' });
   await until(async () => Math.abs((await displayedAz(page)) - 90) <= 1.5, { what: 'display at 90' });
+  // The wear odometer counted the move, and the page shows what the API says
+  // (docs/care.md).
+  const odo = (await rotord.status()).odometer.az;
+  assert.ok(odo.starts >= 1 && odo.turned_deg >= 100, JSON.stringify(odo));
+  await until(async () => (await page.textContent('#wear')).startsWith(
+    `az ${odo.starts} starts, ${(odo.run_s / 3600).toFixed(1)} h, ${odo.turned_deg}°, ` +
+    `${odo.relay_switchings} relay, 0 faults`), { what: 'the wear line' });
   assert.deepEqual(page.errors, []);
   await page.context().close();
 });
