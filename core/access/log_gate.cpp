@@ -4,7 +4,7 @@ namespace rotord::access {
 namespace {
 
 bool same(const Peer& a, const Peer& b) {
-  return a.kind == b.kind && a.ipv4 == b.ipv4;
+  return a.same_host(b);
 }
 
 }  // namespace

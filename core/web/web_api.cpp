@@ -486,7 +486,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
     }
     if (caller.kind == Caller::Kind::kBadToken) {
       count_auth_failure(false);
-      char address[16];
+      char address[access::kAddressTextBytes];
       auth_.refused(peer, "rotord: unknown bearer token from %s refused", peer_text(peer, address));
       send_error(out, 401, "unknown or revoked token", o);
       return Outcome::kDone;
@@ -631,7 +631,8 @@ Api::Outcome Api::post_goto(const Call& call) {
   // Each caller's address is its own stream for the continuity rule (MQTT
   // arrives here as the broker).
   const CommandSource source = (CommandSource{1} << 62) |
-                               (static_cast<CommandSource>(call.peer.kind) << 32) | call.peer.ipv4;
+                               (static_cast<CommandSource>(call.peer.kind) << 32) |
+                               call.peer.address_hash();
   const Error e = c.go_to(az, el, mode, source);
   if (e != Error::kOk) {
     send_command_error(e, out, options);

@@ -23,8 +23,10 @@ std::string_view bearer_token(std::string_view authorization) {
 
 }  // namespace
 
-const char* peer_text(const access::Peer& peer, char (&buf)[16]) {
+const char* peer_text(const access::Peer& peer, char (&buf)[access::kAddressTextBytes]) {
   switch (peer.kind) {
+    case access::Peer::Kind::kIpv6:
+      return access::address_text(peer.ipv6, buf);
     case access::Peer::Kind::kIpv4:
       std::snprintf(buf, sizeof buf, "%u.%u.%u.%u", static_cast<unsigned>(peer.ipv4 >> 24),
                     static_cast<unsigned>(peer.ipv4 >> 16 & 0xff),
@@ -32,7 +34,7 @@ const char* peer_text(const access::Peer& peer, char (&buf)[16]) {
                     static_cast<unsigned>(peer.ipv4 & 0xff));
       return buf;
     case access::Peer::Kind::kOther:
-      return "an IPv6 client";
+      return "a network client";
     case access::Peer::Kind::kLine:
       return "a serial port";
     case access::Peer::Kind::kUnknown:
@@ -95,7 +97,7 @@ void WebAuth::write_line(const char* format, std::va_list args) {
 }
 
 void WebAuth::write_summary(const access::LogGate::Summary& s) {
-  char address[16];
+  char address[access::kAddressTextBytes];
   if (s.source.kind == access::Peer::Kind::kUnknown) {
     print("rotord: %lu more log lines in the last minute, over the log's budget",
           static_cast<unsigned long>(s.count));

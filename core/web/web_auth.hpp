@@ -154,8 +154,9 @@ class WebAuth {
   std::uint32_t refused_requests_ = 0;
 };
 
-/// A client's address for the log ("192.168.1.20", "IPv6", "serial", "?").
-const char* peer_text(const access::Peer& peer, char (&buf)[16]);
+/// A client's address for the log ("192.168.1.20", "2001:db8::7", "a serial
+/// port", ...).
+const char* peer_text(const access::Peer& peer, char (&buf)[access::kAddressTextBytes]);
 
 /// The web.token_<n> rows, in order.
 inline constexpr settings::Id kTokenRows[] = {settings::Id::kWebToken1, settings::Id::kWebToken2,

@@ -263,10 +263,20 @@ bool Daemon::start_controller() {
                              *api_);
 
   std::error_code ec;
-  const auto bind = asio::ip::make_address(options_.bind, ec);
+  auto bind = asio::ip::make_address(options_.bind, ec);
   if (ec) {
     log::error("invalid bind address '%s'", options_.bind.c_str());
     return false;
+  }
+  if (bind.is_v6() && bind.is_unspecified()) {
+    // A kernel without IPv6 (ipv6.disable=1) cannot open the dual-stack
+    // socket: serve IPv4 alone rather than nothing.
+    asio::ip::tcp::acceptor probe(io_);
+    if (probe.open(asio::ip::tcp::v6(), ec); ec) {
+      log::info("no IPv6 on this host (%s): listening on 0.0.0.0", ec.message().c_str());
+      bind = asio::ip::address_v4::any();
+      options_.bind = "0.0.0.0";
+    }
   }
   std::vector<ServiceConfig> services =
       make_services(options_, *controller_, *api_, settings_, metrics_, &console_port_);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "log.hpp"
+#include "peer_address.hpp"
 
 namespace rotord::linux_port {
 namespace {
@@ -14,12 +15,8 @@ namespace {
 access::Peer peer_of(const asio::ip::tcp::socket& socket) {
   std::error_code ec;
   const asio::ip::address address = socket.remote_endpoint(ec).address();
-  if (ec) return {access::Peer::Kind::kOther, 0};
-  if (address.is_v4()) return access::Peer::from_ipv4(address.to_v4().to_uint());
-  if (address.is_v6() && address.to_v6().is_v4_mapped())
-    return access::Peer::from_ipv4(
-        asio::ip::make_address_v4(asio::ip::v4_mapped, address.to_v6()).to_uint());
-  return {access::Peer::Kind::kOther, 0};
+  if (ec) return {access::Peer::Kind::kOther, 0, {}};
+  return linux_port::peer_of(address);
 }
 
 /// The client's address, for the per-address cap.
@@ -244,6 +241,8 @@ TcpServer::TcpServer(asio::io_context& io, const asio::ip::address& bind, Servic
   const asio::ip::tcp::endpoint endpoint(bind, config_.port);
   acceptor_.open(endpoint.protocol());
   acceptor_.set_option(asio::ip::tcp::acceptor::reuse_address(true));
+  // "::" serves IPv4 too (as ::ffff:a.b.c.d), whatever net.ipv6.bindv6only says.
+  if (bind.is_v6()) acceptor_.set_option(asio::ip::v6_only(false));
   acceptor_.bind(endpoint);
   acceptor_.listen();
   port_ = acceptor_.local_endpoint().port();
