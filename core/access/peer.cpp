@@ -95,4 +95,24 @@ const char* address_text(const IpBytes& a, char (&out)[kAddressTextBytes]) {
   return out;
 }
 
+const char* peer_text(const Peer& peer, char (&out)[kAddressTextBytes], bool host) {
+  switch (peer.kind) {
+    case Peer::Kind::kIpv4:
+      std::snprintf(out, sizeof out, "%u.%u.%u.%u", static_cast<unsigned>(peer.ipv4 >> 24),
+                    static_cast<unsigned>(peer.ipv4 >> 16 & 0xff),
+                    static_cast<unsigned>(peer.ipv4 >> 8 & 0xff),
+                    static_cast<unsigned>(peer.ipv4 & 0xff));
+      return out;
+    case Peer::Kind::kIpv6:
+      return address_text(host ? peer.host_key() : peer.ipv6, out);
+    case Peer::Kind::kOther:
+      return "a network client";
+    case Peer::Kind::kLine:
+      return "a serial port";
+    case Peer::Kind::kUnknown:
+      break;
+  }
+  return "an unknown client";
+}
+
 }  // namespace rotord::access

@@ -55,4 +55,9 @@ inline constexpr std::size_t kAddressTextBytes = 48;
 /// Returns `out`.
 const char* address_text(const IpBytes& address, char (&out)[kAddressTextBytes]);
 
+/// A client for the log: its address ("192.168.1.20", "2001:db8::7"; an
+/// IPv6 one as its /64's first address when `host` is set: Peer::host_key),
+/// or "a serial port", "a network client", "an unknown client".
+const char* peer_text(const Peer& peer, char (&out)[kAddressTextBytes], bool host = false);
+
 }  // namespace rotord::access

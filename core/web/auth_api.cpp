@@ -210,7 +210,7 @@ Api::Outcome Api::set_password(const HttpRequest& request, protocol::ByteSink& o
       return Outcome::kDone;
     }
     auth_.log("rotord: web password removed by %s: access control is off",
-              peer_text(peer, address));
+              access::peer_text(peer, address));
     send_json(out, 200, options, [](JsonWriter& w) {
       w.begin_object().member("ok", true).member("enabled", false).end_object();
     });
@@ -249,7 +249,7 @@ void Api::complete_job() {
   WebAuth::Job& job = auth_.job();
   job.completed = true;
   char address[access::kAddressTextBytes];
-  const char* who = peer_text(job.peer, address);
+  const char* who = access::peer_text(job.peer, address);
   if (job.failed || ctx_.crypto == nullptr) {
     if (job.kind == WebAuth::JobKind::kLogin) {
       // A password too long to be the one counts as a wrong guess.

@@ -178,7 +178,7 @@ bool is_whole(double v) {
 Api::Api(const ApiContext& context)
     : ctx_(context),
       auth_(WebAuth::Config{context.crypto, context.pbkdf2_iterations, context.pbkdf2_slice,
-                            context.log}) {}
+                            context.log, context.log_gate}) {}
 
 void Api::write_status(JsonWriter& w) const {
   const Controller& c = ctx_.controller;
@@ -487,7 +487,8 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
     if (caller.kind == Caller::Kind::kBadToken) {
       count_auth_failure(false);
       char address[access::kAddressTextBytes];
-      auth_.refused(peer, "rotord: unknown bearer token from %s refused", peer_text(peer, address));
+      auth_.refused(peer, "rotord: unknown bearer token from %s refused",
+                    access::peer_text(peer, address));
       send_error(out, 401, "unknown or revoked token", o);
       return Outcome::kDone;
     }

@@ -255,6 +255,7 @@ bool Daemon::start_controller() {
   api_context.pbkdf2_iterations = 100'000;
   api_context.pbkdf2_slice = 500;
   api_context.log = &access_log_;
+  api_context.log_gate = &log::gate();
   api_context.tles = tles_.get();
   api_context.tle_storage = tle_storage_.get();
   api_ = std::make_unique<web::Api>(api_context);
@@ -561,6 +562,7 @@ void Daemon::on_tick() {
 }
 
 void Daemon::serve(Millis wall_ms) {
+  log::tick(wall_ms);  // the log budget's minutes, and its summaries
   // Faults latched and slips, named, into the journal.
   char event[192];
   while (axis_events_.next(controller_->status(), event, sizeof event)) log::warn("%s", event);

@@ -276,11 +276,19 @@ void TcpServer::admit(asio::ip::tcp::socket socket) {
   const Snapshot snapshot(connections_);
   const net::Admission::Decision d = admission_.admit(snapshot, info, now_);
   info.stop_only = d.kind == net::Admission::Decision::Kind::kStopOnly;
+  if (d.kind != net::Admission::Decision::Kind::kAdmit) {
+    // Once a minute per host, the rest summed up (log.hpp): a storm of
+    // connections cannot flood the log.
+    char address[access::kAddressTextBytes];
+    const char* why = info.stop_only ? "may only say STOP: no connection free for it"
+                      : d.kind == net::Admission::Decision::Kind::kRefusePerAddress
+                          ? "refused: its host holds net.max_per_address connections"
+                          : "refused: every connection is in use";
+    log::from(info.peer, log::Level::kInfo, "%s: %s %s", config_.name.c_str(),
+              access::peer_text(info.peer, address), why);
+  }
   if (d.kind != net::Admission::Decision::Kind::kAdmit && !info.stop_only) {
     if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_refuse();
-    if (log::enabled(log::Level::kDebug))
-      log::debug("%s: %s refused, %zu clients already", config_.name.c_str(),
-                 describe(socket).c_str(), connections_.size());
     std::error_code ignored;
     asio::write(socket, asio::buffer(config_.reject_message), ignored);
     socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);

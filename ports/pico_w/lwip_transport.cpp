@@ -32,7 +32,15 @@ access::Peer peer_of(const tcp_pcb* pcb) {
   if (IP_IS_V4_VAL(pcb->remote_ip))
     return access::Peer::from_ipv4(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(&pcb->remote_ip))));
 #endif
-  return {access::Peer::Kind::kOther, 0};
+#if LWIP_IPV6
+  // Not in the image (lwipopts.h: no LWIP_IPV6, docs/pico_w.md), but ready.
+  if (IP_IS_V6_VAL(pcb->remote_ip)) {
+    access::IpBytes bytes{};
+    std::memcpy(bytes.data(), ip_2_ip6(&pcb->remote_ip)->addr, bytes.size());  // network order
+    return access::Peer::from_ipv6(bytes);
+  }
+#endif
+  return {access::Peer::Kind::kOther, 0, {}};
 }
 
 /// The client's address, for the per-address cap.
