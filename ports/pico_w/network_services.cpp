@@ -60,12 +60,24 @@ struct MakeSession {
   }
 };
 // A stop-only slot per line port (a newcomer to a full port may say STOP,
-// net/admission.hpp) costs a Connection (1.1 KB, its output buffer) and a
-// session each, about 9 KB for the five: with self-commissioning, presets and
-// the sensor gate the image no longer links with them (RAM overflowed by
-// 3,152 bytes), so the Pico W does not offer them yet (ports/pico_w/README.md,
-// docs/security.md). The transport supports them (lwip_transport_tests).
+// net/admission.hpp) would cost a Connection (1.1 KB, its output buffer) and a
+// session each, about 9 KB for the five, which the image does not have (RAM
+// overflowed by 3,152 bytes). The five share one instead
+// (lwip_port::SharedStopOnly): a Connection and room for the largest line
+// session, taken by one exchange (one short line, 2 s at most) at a time
+// (ports/pico_w/README.md, docs/security.md).
 constexpr std::size_t kStopOnlySlots = 0;
+template <Personality... Ps>
+constexpr std::size_t kLargestSession =
+    std::max({sizeof(typename protocol::SessionOf<Ps>::type)...});
+template <Personality... Ps>
+constexpr std::size_t kLargestAlign =
+    std::max({alignof(typename protocol::SessionOf<Ps>::type)...});
+using SharedStopOnlySlot = lwip_port::StaticSharedStopOnly<
+    kLargestSession<Personality::kWrc, Personality::kRotctld, Personality::kGs232,
+                    Personality::kEasycomm, Personality::kSeed>,
+    kLargestAlign<Personality::kWrc, Personality::kRotctld, Personality::kGs232,
+                  Personality::kEasycomm, Personality::kSeed>>;
 template <Personality P>
 using LineService = lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>,
                                              MakeSession<P>, kStopOnlySlots>;
@@ -193,6 +205,7 @@ void network_start(const NetworkDeps& d, Millis now) {
   static const protocol::SessionDeps deps{controller, ROTORD_VERSION, &monitor_tap};
   // Every server admits by net/admission.hpp with the live settings (idle
   // eviction, per-address cap, allow-list), as on Linux.
+  static SharedStopOnlySlot shared_stop_only;
   auto line_config = [&settings, &registry](Personality personality) {
     const protocol::ProtocolInfo& info = protocol::protocol_info(personality);
     lwip_port::ServerConfig config;
@@ -201,6 +214,7 @@ void network_start(const NetworkDeps& d, Millis now) {
     config.max_clients = static_cast<std::size_t>(settings.i(settings::Id::kNetMaxClients));
     config.reject_message = info.refusal;
     config.settings = &settings;
+    config.shared_stop_only = &shared_stop_only;
     config.metrics = &registry;
     config.protocol = info.metric;
     return config;
