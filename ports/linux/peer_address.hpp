@@ -15,6 +15,14 @@ inline access::Peer peer_of(const asio::ip::address& address) {
   return access::Peer::from_ipv6(ip);  // v4-mapped comes back as IPv4
 }
 
+/// For the logs: an IPv4 client of a dual-stack socket as the IPv4 address
+/// it is ("192.0.2.7", not "::ffff:192.0.2.7").
+inline asio::ip::address unmapped(const asio::ip::address& address) {
+  if (address.is_v6() && address.to_v6().is_v4_mapped())
+    return asio::ip::make_address_v4(asio::ip::v4_mapped, address.to_v6());
+  return address;
+}
+
 /// Where to send to `peer` from a socket of `family`: an IPv4 peer of an
 /// IPv6 socket is reached at its v4-mapped address. Unspecified for a peer
 /// that is not a network client.

@@ -36,7 +36,9 @@ std::string describe(const asio::ip::tcp::socket& socket) {
   std::error_code ec;
   const asio::ip::tcp::endpoint peer = socket.remote_endpoint(ec);
   if (ec) return "a client";
-  return peer.address().to_string() + ":" + std::to_string(peer.port());
+  const asio::ip::address address = unmapped(peer.address());
+  return (address.is_v6() ? "[" + address.to_string() + "]" : address.to_string()) + ":" +
+         std::to_string(peer.port());
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ void UdpServer::handle(std::size_t size) {
       protocol_.receive(std::string_view(buffer_.data(), size), peer, replies);
   if (metrics_ != nullptr) metrics_->on_datagram(personality_, outcome);
   if (outcome != protocol::DatagramOutcome::kDone)
-    log::debug("%s: datagram from %s %s", name_.c_str(), address.to_string().c_str(),
+    log::debug("%s: datagram from %s %s", name_.c_str(), unmapped(address).to_string().c_str(),
                protocol::outcome_name(outcome));
   send(replies, address);
 }

@@ -71,7 +71,7 @@ class Ipv6 : public ::testing::Test {
     // The daemon's default address, ::.
     daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{
         "--sim", "g5500", "--clock", "manual", "--seed-port", std::to_string(seed_port), "--bind",
-        "::", "--config", dir + "/settings.json"});
+        "::", "--config", dir + "/settings.json", "--log-level", "debug"});
     ASSERT_TRUE(daemon->ready()) << daemon->output();
     web = daemon->ports().web;
   }
@@ -191,6 +191,10 @@ TEST_F(Ipv6, EveryPortAnswersOverIpv6AndIpv4ByDefault) {
   }
   EXPECT_EQ(http_from(kOwner6, web, "GET", "/api/status").status, 200);
   EXPECT_EQ(http_from(host(1), web, "GET", "/api/status").status, 200);
+  // The log names an IPv4 client of the dual-stack socket as IPv4.
+  EXPECT_TRUE(daemon->wait_for_output("WRC text protocol: 127.0.0.1:")) << daemon->output();
+  EXPECT_TRUE(daemon->wait_for_output("WRC text protocol: [::1]:")) << daemon->output();
+  EXPECT_EQ(daemon->output().find("::ffff:127.0.0.1"), std::string::npos);
   // UDP: PstRotator over IPv6, its answer back to the sender's [::1].
   const std::string reply = udp6(pst_port, pst_port + 1, "<PST>AZ?</PST>");
   EXPECT_EQ(reply.rfind("AZ:", 0), 0u) << reply << "\n" << daemon->output();
