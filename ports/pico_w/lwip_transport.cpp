@@ -310,7 +310,8 @@ void TcpServer::Connection::reset_output() {
   close_requested_ = false;
 }
 
-TcpServer::TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots)
+TcpServer::TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots,
+                     std::span<char> output)
     : config_(config),
       sessions_(sessions),
       slots_(slots),
@@ -323,6 +324,7 @@ TcpServer::TcpServer(ServerConfig config, SessionPool& sessions, std::span<Conne
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     slots_[i].server_ = this;
     slots_[i].index_ = i;
+    slots_[i].out_ = output.subspan(i * kOutputBytes, kOutputBytes);
   }
 }
 

@@ -174,7 +174,9 @@ class TcpServer {
     bool stream_seen_ = false;         ///< the session has become an event stream
     std::uint32_t commands_seen_ = 0;  ///< session_->commands() at the last receive
     std::size_t index_ = 0;
-    std::array<char, kOutputBytes> out_{};
+    /// The output buffer: kOutputBytes of the service's storage, or the
+    /// shared stop-only slot's few (SharedStopOnly::kOutputBytes).
+    std::span<char> out_;
     std::size_t out_len_ = 0;
     std::array<Chunk, kMaxChunks> chunks_{};
     std::size_t chunk_count_ = 0;
@@ -189,7 +191,9 @@ class TcpServer {
     std::uint32_t closed = 0;           ///< by the peer, the session or an error
   };
 
-  TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots);
+  /// `output`: kOutputBytes for each slot, in order (StaticService holds them).
+  TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots,
+            std::span<char> output);
   ~TcpServer();
   TcpServer(const TcpServer&) = delete;
   TcpServer& operator=(const TcpServer&) = delete;
@@ -254,7 +258,13 @@ class TcpServer {
 /// before.
 class SharedStopOnly {
  public:
-  SharedStopOnly(void* storage, std::size_t bytes) : storage_(storage), bytes_(bytes) {}
+  /// Its output buffer: a STOP-only exchange writes one short reply, or the
+  /// port's busy refusal (a session that writes more is dropped).
+  static constexpr std::size_t kOutputBytes = 128;
+
+  SharedStopOnly(void* storage, std::size_t bytes) : storage_(storage), bytes_(bytes) {
+    connection_.out_ = output_;
+  }
   SharedStopOnly(const SharedStopOnly&) = delete;
   SharedStopOnly& operator=(const SharedStopOnly&) = delete;
   const TcpServer* holder() const { return connection_.active() ? connection_.server_ : nullptr; }
@@ -262,6 +272,7 @@ class SharedStopOnly {
  private:
   friend class TcpServer;
   TcpServer::Connection connection_;
+  std::array<char, kOutputBytes> output_{};
   void* storage_;
   std::size_t bytes_;
 };
@@ -284,7 +295,7 @@ template <typename S, std::size_t N, typename Make, std::size_t StopOnly = 0>
 class StaticService {
  public:
   StaticService(ServerConfig config, Make make)
-      : pool_(std::move(make)), server_(with_stop_only(config), pool_, slots_) {}
+      : pool_(std::move(make)), server_(with_stop_only(config), pool_, slots_, output_) {}
   TcpServer& server() { return server_; }
 
  private:
@@ -293,6 +304,7 @@ class StaticService {
     return config;
   }
   std::array<TcpServer::Connection, N + StopOnly> slots_{};
+  std::array<char, (N + StopOnly) * TcpServer::kOutputBytes> output_{};
   StaticSessionPool<S, N + StopOnly, Make> pool_;
   TcpServer server_;  // last: constructed after, destroyed before its storage
 };

@@ -63,9 +63,12 @@ struct MakeSession {
 // net/admission.hpp) would cost a Connection (1.1 KB, its output buffer) and a
 // session each, about 9 KB for the five, which the image does not have (RAM
 // overflowed by 3,152 bytes). The five share one instead
-// (lwip_port::SharedStopOnly): a Connection and room for the largest line
-// session, taken by one exchange (one short line, 2 s at most) at a time
-// (ports/pico_w/README.md, docs/security.md).
+// (lwip_port::SharedStopOnly): a Connection with a 128-byte output buffer and
+// room for the largest line session, taken by one exchange (one short line,
+// 2 s at most) at a time. It must leave the heap at least the 4 KB newlib's
+// malloc takes from sbrk at its first call (its number formatting allocates):
+// with a 1 KB output buffer the slot left 3,936 bytes and the firmware stopped
+// at boot (make hil, goto-mag). ports/pico_w/README.md, docs/security.md.
 constexpr std::size_t kStopOnlySlots = 0;
 template <Personality... Ps>
 constexpr std::size_t kLargestSession =
