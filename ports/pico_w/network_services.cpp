@@ -62,13 +62,16 @@ struct MakeSession {
 // A stop-only slot per line port (a newcomer to a full port may say STOP,
 // net/admission.hpp) would cost a Connection (1.1 KB, its output buffer) and a
 // session each, about 9 KB for the five, which the image does not have (RAM
-// overflowed by 3,152 bytes). The five share one instead
-// (lwip_port::SharedStopOnly): a Connection with a 128-byte output buffer and
-// room for the largest line session, taken by one exchange (one short line,
-// 2 s at most) at a time. It must leave the heap at least the 4 KB newlib's
-// malloc takes from sbrk at its first call (its number formatting allocates):
-// with a 1 KB output buffer the slot left 3,936 bytes and the firmware stopped
-// at boot (make hil, goto-mag). ports/pico_w/README.md, docs/security.md.
+// overflowed by 3,152 bytes). WRC, GS-232, Easycomm and seed share one
+// instead (lwip_port::SharedStopOnly): a Connection with a 128-byte output
+// buffer and room for the largest of their sessions, taken by one exchange
+// (one short line, 2 s at most) at a time. It must leave the heap at least
+// the 4 KB newlib's malloc takes from sbrk at its first call (number parsing
+// allocates; cmake/check-heap-room.cmake): with a 1 KB output buffer the slot
+// left 3,936 bytes and the firmware stopped at boot (make hil, goto-mag), and
+// room for rotctld's session too (2.7 KB, the largest) left 3,496 once pass
+// recognition came. So rotctld has none. ports/pico_w/README.md,
+// docs/security.md.
 constexpr std::size_t kStopOnlySlots = 0;
 template <Personality... Ps>
 constexpr std::size_t kLargestSession =
@@ -76,11 +79,11 @@ constexpr std::size_t kLargestSession =
 template <Personality... Ps>
 constexpr std::size_t kLargestAlign =
     std::max({alignof(typename protocol::SessionOf<Ps>::type)...});
-using SharedStopOnlySlot = lwip_port::StaticSharedStopOnly<
-    kLargestSession<Personality::kWrc, Personality::kRotctld, Personality::kGs232,
-                    Personality::kEasycomm, Personality::kSeed>,
-    kLargestAlign<Personality::kWrc, Personality::kRotctld, Personality::kGs232,
-                  Personality::kEasycomm, Personality::kSeed>>;
+using SharedStopOnlySlot =
+    lwip_port::StaticSharedStopOnly<kLargestSession<Personality::kWrc, Personality::kGs232,
+                                                    Personality::kEasycomm, Personality::kSeed>,
+                                    kLargestAlign<Personality::kWrc, Personality::kGs232,
+                                                  Personality::kEasycomm, Personality::kSeed>>;
 template <Personality P>
 using LineService = lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>,
                                              MakeSession<P>, kStopOnlySlots>;
@@ -217,7 +220,7 @@ void network_start(const NetworkDeps& d, Millis now) {
     config.max_clients = static_cast<std::size_t>(settings.i(settings::Id::kNetMaxClients));
     config.reject_message = info.refusal;
     config.settings = &settings;
-    config.shared_stop_only = &shared_stop_only;
+    if (personality != Personality::kRotctld) config.shared_stop_only = &shared_stop_only;
     config.metrics = &registry;
     config.protocol = info.metric;
     return config;
