@@ -62,28 +62,14 @@ struct MakeSession {
 // A stop-only slot per line port (a newcomer to a full port may say STOP,
 // net/admission.hpp) would cost a Connection (1.1 KB, its output buffer) and a
 // session each, about 9 KB for the five, which the image does not have (RAM
-// overflowed by 3,152 bytes). WRC, GS-232, Easycomm and seed share one
-// instead (lwip_port::SharedStopOnly): a Connection with a 128-byte output
-// buffer and room for the largest of their sessions, taken by one exchange
-// (one short line, 2 s at most) at a time. It must leave the heap at least
-// the 4 KB newlib's malloc takes from sbrk at its first call (number parsing
-// allocates; cmake/check-heap-room.cmake): with a 1 KB output buffer the slot
-// left 3,936 bytes and the firmware stopped at boot (make hil, goto-mag), and
-// room for rotctld's session too (2.7 KB, the largest) left 3,496 once pass
-// recognition came. So rotctld has none. ports/pico_w/README.md,
-// docs/security.md.
+// overflowed by 3,152 bytes). One slot shared by the line ports
+// (lwip_port::SharedStopOnly, tested in lwip_transport_tests) links, but the
+// images with it stopped at boot in make hil's goto-mag (nothing logged after
+// the settings load): room for four ports' sessions (1,328 bytes), and for
+// five with a 1 KB output buffer (3,952), while one of 3,064 bytes ran before
+// pass recognition was merged. Until that is understood the Pico W has no
+// STOP-only slot (ports/pico_w/README.md, docs/security.md).
 constexpr std::size_t kStopOnlySlots = 0;
-template <Personality... Ps>
-constexpr std::size_t kLargestSession =
-    std::max({sizeof(typename protocol::SessionOf<Ps>::type)...});
-template <Personality... Ps>
-constexpr std::size_t kLargestAlign =
-    std::max({alignof(typename protocol::SessionOf<Ps>::type)...});
-using SharedStopOnlySlot =
-    lwip_port::StaticSharedStopOnly<kLargestSession<Personality::kWrc, Personality::kGs232,
-                                                    Personality::kEasycomm, Personality::kSeed>,
-                                    kLargestAlign<Personality::kWrc, Personality::kGs232,
-                                                  Personality::kEasycomm, Personality::kSeed>>;
 template <Personality P>
 using LineService = lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>,
                                              MakeSession<P>, kStopOnlySlots>;
@@ -211,7 +197,7 @@ void network_start(const NetworkDeps& d, Millis now) {
   static const protocol::SessionDeps deps{controller, ROTORD_VERSION, &monitor_tap};
   // Every server admits by net/admission.hpp with the live settings (idle
   // eviction, per-address cap, allow-list), as on Linux.
-  static SharedStopOnlySlot shared_stop_only;
+
   auto line_config = [&settings, &registry](Personality personality) {
     const protocol::ProtocolInfo& info = protocol::protocol_info(personality);
     lwip_port::ServerConfig config;
@@ -220,7 +206,6 @@ void network_start(const NetworkDeps& d, Millis now) {
     config.max_clients = static_cast<std::size_t>(settings.i(settings::Id::kNetMaxClients));
     config.reject_message = info.refusal;
     config.settings = &settings;
-    if (personality != Personality::kRotctld) config.shared_stop_only = &shared_stop_only;
     config.metrics = &registry;
     config.protocol = info.metric;
     return config;
