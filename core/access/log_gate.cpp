@@ -1,10 +1,12 @@
 #include "access/log_gate.hpp"
 
+#include <cstdio>
+
 namespace rotord::access {
 namespace {
 
 bool same(const Peer& a, const Peer& b) {
-  return a.kind == b.kind && a.ipv4 == b.ipv4;
+  return a.same_host(b);
 }
 
 }  // namespace
@@ -23,7 +25,7 @@ void LogGate::roll(Millis now) {
 
 bool LogGate::admit_line(Millis now) {
   roll(now);
-  if (lines_ >= kLinesPerWindow) {
+  if (lines_ >= lines_per_window_) {
     ++dropping_;
     return false;
   }
@@ -52,7 +54,15 @@ bool LogGate::admit(const Peer& source, Millis now, Summary& evicted) {
       if (slot == nullptr || e.since < slot->since) slot = &e;
     }
   }
-  if (slot->used && slot->quiet > 0) evicted = {slot->source, slot->quiet};
+  if (slot->used && slot->quiet > 0) {
+    // Its summary is a line like any other: many addresses taking turns
+    // must not get a line each past the budget.
+    if (admit_line(now)) {
+      evicted = {slot->source, slot->quiet};
+    } else {
+      dropping_ += slot->quiet - 1;  // admit_line counted one
+    }
+  }
   *slot = Entry{true, source, now, 0};
   return admit_line(now);
 }
@@ -71,6 +81,19 @@ LogGate::Summary LogGate::next_due(Millis now) {
     return s;
   }
   return {};
+}
+
+const char* LogGate::summary_text(const Summary& s, char* out, std::size_t size) {
+  const auto count = static_cast<unsigned long>(s.count);
+  if (s.source.kind == Peer::Kind::kUnknown) {
+    std::snprintf(out, size, "%lu more log lines in the last minute, over the log's budget", count);
+    return out;
+  }
+  char address[kAddressTextBytes];
+  peer_text(s.source, address, true);
+  std::snprintf(out, size, "%lu more from %s%s in the last minute", count, address,
+                s.source.kind == Peer::Kind::kIpv6 ? "/64" : "");
+  return out;
 }
 
 }  // namespace rotord::access

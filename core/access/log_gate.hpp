@@ -2,9 +2,13 @@
 // Keeps an attacker from flooding the log (an SD card, the journal, the
 // Pico's USB log port): the first refusal from a source in a minute is
 // written, the rest from it are counted and summed up in one line when its
-// minute ends ("N more from ADDR in the last minute"), and the whole sink
-// writes at most kLinesPerWindow lines a minute, summaries apart
-// (docs/security.md, "Logs"). Fixed storage, no heap.
+// minute ends ("N more from ADDR in the last minute"), and the whole log
+// writes at most lines_per_window lines a minute, summaries of a minute's
+// end apart (at most one per source followed, and one of the lines over the
+// budget). One gate serves the whole process: on Linux every line of the
+// daemon's log goes through it (ports/linux/log.hpp), on the Pico W the
+// web's; the web's access log shares it (web/web_auth.hpp,
+// docs/security.md, "Logs"). Fixed storage, no heap.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -17,7 +21,11 @@ namespace rotord::access {
 class LogGate {
  public:
   static constexpr Millis kWindowMs = 60000;
+  /// A web access log of its own (the Pico W's, a test's).
   static constexpr unsigned kLinesPerWindow = 30;
+
+  explicit LogGate(unsigned lines_per_window = kLinesPerWindow)
+      : lines_per_window_(lines_per_window) {}
   /// Sources followed at once; one more takes the place of the oldest (its
   /// count is summed up then).
   static constexpr std::size_t kSources = 8;
@@ -29,13 +37,20 @@ class LogGate {
   };
 
   /// A refusal from `source`: true to write it. `evicted` is the summary of
-  /// a source that had to give way (write it first when its count is not 0).
+  /// a source that had to give way (write it first when its count is not 0;
+  /// it has been counted in the budget, and when over it, its count goes to
+  /// the lines over the budget instead).
   bool admit(const Peer& source, Millis now, Summary& evicted);
   /// Any other line: true to write it (within the budget).
   bool admit_line(Millis now);
   /// The summaries due at `now`, one per call (count 0: none left), and then
   /// the lines dropped over the budget (source kind kUnknown).
   Summary next_due(Millis now);
+
+  /// "N more from ADDR in the last minute" (an IPv6 source as its /64), or
+  /// "N more log lines in the last minute, over the log's budget"; without
+  /// a prefix or line end. Returns `out`.
+  static const char* summary_text(const Summary& s, char* out, std::size_t size);
 
  private:
   struct Entry {
@@ -46,6 +61,7 @@ class LogGate {
   };
   void roll(Millis now);
 
+  unsigned lines_per_window_;
   std::array<Entry, kSources> entries_{};
   Millis window_start_ = 0;
   bool started_ = false;

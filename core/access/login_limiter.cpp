@@ -1,23 +1,15 @@
 #include "access/login_limiter.hpp"
 
 namespace rotord::access {
-namespace {
-
-bool same_client(Peer::Kind kind, std::uint32_t ipv4, const Peer& peer) {
-  return kind == peer.kind && (kind != Peer::Kind::kIpv4 || ipv4 == peer.ipv4);
-}
-
-}  // namespace
-
 LoginLimiter::Entry* LoginLimiter::find(const Peer& peer) {
   for (Entry& e : entries_)
-    if (e.used && same_client(e.kind, e.ipv4, peer)) return &e;
+    if (e.used && e.who.same_host(peer)) return &e;
   return nullptr;
 }
 
 const LoginLimiter::Entry* LoginLimiter::find(const Peer& peer) const {
   for (const Entry& e : entries_)
-    if (e.used && same_client(e.kind, e.ipv4, peer)) return &e;
+    if (e.used && e.who.same_host(peer)) return &e;
   return nullptr;
 }
 
@@ -40,8 +32,7 @@ unsigned LoginLimiter::failed(const Peer& peer, Millis now) {
     }
     *e = Entry{};
     e->used = true;
-    e->kind = peer.kind;
-    e->ipv4 = peer.ipv4;
+    e->who = peer;
   }
   ++e->failures;
   e->last = now;

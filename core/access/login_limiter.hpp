@@ -13,8 +13,8 @@ namespace rotord::access {
 
 class LoginLimiter {
  public:
-  /// Addresses remembered; a new one replaces the one idle longest. IPv6
-  /// clients share one entry (the allow-list has no IPv6 either).
+  /// Addresses remembered; a new one replaces the one idle longest. An IPv6
+  /// client is remembered by its /64 (Peer::host_key).
   static constexpr std::size_t kAddresses = 8;
   static constexpr unsigned kFreeFailures = 3;
   static constexpr Millis kFirstWaitMs = 1000;
@@ -29,8 +29,7 @@ class LoginLimiter {
  private:
   struct Entry {
     bool used = false;
-    Peer::Kind kind = Peer::Kind::kUnknown;
-    std::uint32_t ipv4 = 0;
+    Peer who;
     unsigned failures = 0;
     Millis last = 0;
     Millis blocked_until = 0;

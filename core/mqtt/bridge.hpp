@@ -133,7 +133,7 @@ class Bridge {
   char device_name_[72] = {};
   char web_url_[Station::kMaxUrlBytes] = {};
   Station* station_ = nullptr;
-  access::Peer broker_peer_{access::Peer::Kind::kOther, 0};
+  access::Peer broker_peer_{access::Peer::Kind::kOther, 0, {}};
   const char* version_ = "";
   char availability_[kMaxTopicBytes] = {};
   std::size_t availability_len_ = 0;

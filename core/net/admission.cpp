@@ -38,15 +38,24 @@ Millis Admission::idle_evict_ms() const {
 }
 
 bool Admission::control_listed(const access::Peer& peer) const {
-  if (settings_ == nullptr || peer.kind != access::Peer::Kind::kIpv4) return false;
+  if (settings_ == nullptr || !peer.is_network()) return false;
   if (settings_->access_unreadable()) return false;  // the list itself is unknown
   // An empty list makes every client a controller (access control off), so
   // nobody is protected by it: an idle stranger must not hold a slot forever.
   const std::string_view networks = settings_->text(settings::Id::kAccessControlNetworks);
-  return !networks.empty() && settings::in_network_list(networks, peer.ipv4);
+  return !networks.empty() && settings::in_network_list(networks, peer);
 }
 
-std::size_t Admission::idlest(const ClientList& clients, const Address* only, bool any_listed,
+bool Admission::same_host(const ClientInfo& a, const ClientInfo& b) const {
+  if (a.address == b.address) return true;
+  // IPv6: a host picks any address of its /64 at will, so the /64 is the
+  // host; but allow-listed addresses are the owner's own devices, which
+  // share their LAN's /64 (docs/security.md, "IPv6").
+  return a.peer.kind == access::Peer::Kind::kIpv6 && a.peer.same_host(b.peer) &&
+         !control_listed(a.peer) && !control_listed(b.peer);
+}
+
+std::size_t Admission::idlest(const ClientList& clients, const ClientInfo* only, bool any_listed,
                               Millis now) const {
   const Millis threshold = idle_evict_ms();
   if (threshold < 0) return kNone;
@@ -55,7 +64,7 @@ std::size_t Admission::idlest(const ClientList& clients, const Address* only, bo
   for (std::size_t i = 0; i < clients.size(); ++i) {
     const ClientInfo* c = clients.at(i);
     if (c == nullptr || c->event_stream || c->stop_only) continue;
-    if (only != nullptr && !(c->address == *only)) continue;
+    if (only != nullptr && !same_host(*c, *only)) continue;
     if (!c->between_requests && now - c->last_useful_ms < threshold) continue;
     if (!any_listed && control_listed(c->peer)) continue;
     if (best == kNone || c->last_useful_ms < best_since) {
@@ -101,7 +110,7 @@ Admission::Decision Admission::stop_only_or(const ClientList& clients, const Cli
     const ClientInfo* c = clients.at(i);
     if (c == nullptr || !c->stop_only) continue;
     ++taken;
-    same_host = same_host || c->address == newcomer.address;
+    same_host = same_host || this->same_host(*c, newcomer);
   }
   if (taken < limits_.stop_only_slots && !same_host) {
     ++counters_.stop_only;
@@ -128,12 +137,12 @@ Admission::Decision Admission::admit(const ClientList& clients, const ClientInfo
       continue;
     }
     ++requests;
-    if (c->address == newcomer.address) ++same_host;
+    if (this->same_host(*c, newcomer)) ++same_host;
   }
 
   Decision d;
   if (same_host >= per_address_cap()) {
-    d.evict = idlest(clients, &newcomer.address, true, now);
+    d.evict = idlest(clients, &newcomer, true, now);
     if (d.evict == kNone) return stop_only_or(clients, newcomer, Decision::Kind::kRefusePerAddress);
     ++counters_.evicted_idle;
   } else if (requests >= limits_.max_clients || requests + streams >= limits_.slots) {

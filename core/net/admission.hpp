@@ -96,7 +96,8 @@ struct Limits {
 /// - an allow-listed newcomer is served before strangers: it drops the
 ///   stranger least recently useful, however busy; with no stranger left,
 ///   the listed client least recently useful gives way;
-/// - one host holds at most net.max_per_address of the request/line slots,
+/// - one host holds at most net.max_per_address of the request/line slots
+///   (an IPv6 host is its /64, unless it is on the allow-list: same_host),
 ///   and never all of them (the cap is kept below max_clients); at its cap a
 ///   host's newcomer replaces that host's own client idle longest, allowed
 ///   or not (a host that lost its connections without a close, e.g. a
@@ -143,9 +144,12 @@ class Admission {
 
  private:
   /// The request/line client idle longest (idle at least idle_evict_ms), of
-  /// `only` when given; allow-listed ones only when `any_listed`.
-  std::size_t idlest(const ClientList& clients, const Address* only, bool any_listed,
+  /// `only`'s host when given; allow-listed ones only when `any_listed`.
+  std::size_t idlest(const ClientList& clients, const ClientInfo* only, bool any_listed,
                      Millis now) const;
+  /// One host for the per-address cap: the same address, or two IPv6
+  /// addresses of one /64 when neither is on the allow-list.
+  bool same_host(const ClientInfo& a, const ClientInfo& b) const;
   /// The request/line client least recently useful, however recently,
   /// among the allow-listed ones (`listed`) or the others.
   std::size_t least_useful(const ClientList& clients, bool listed) const;

@@ -13,10 +13,11 @@ bool may_control(const settings::Settings& settings, const Peer& peer) {
     case Peer::Kind::kLine:
       return settings.b(settings::Id::kAccessLineControl);
     case Peer::Kind::kIpv4:
+    case Peer::Kind::kIpv6:
     case Peer::Kind::kOther: {
       const std::string_view networks = settings.text(settings::Id::kAccessControlNetworks);
       if (networks.empty()) return true;
-      return peer.kind == Peer::Kind::kIpv4 && settings::in_network_list(networks, peer.ipv4);
+      return settings::in_network_list(networks, peer);
     }
   }
   return false;

@@ -17,8 +17,10 @@ namespace rotord::access {
 ///   (Settings::access_unreadable): nobody, on any port;
 /// - access.control_networks empty: every client controls (the default, as
 ///   before access control);
-/// - otherwise a network client controls when its IPv4 address is in one of
-///   the networks; an IPv6 client never does;
+/// - otherwise a network client controls when its address is in one of the
+///   networks (IPv4 or IPv6; an IPv4 client of a dual-stack socket,
+///   ::ffff:a.b.c.d, matches the IPv4 entries); a client whose address is
+///   unknown never does;
 /// - pty, serial and USB ports control when access.serial_control is on.
 bool may_control(const settings::Settings& settings, const Peer& peer);
 

@@ -203,7 +203,7 @@ DatagramOutcome N1mmRotor::receive(std::string_view datagram, const access::Peer
   report(label, out);
   // Then every second while it turns, to this sender (IPv4: the address the
   // ports can send to without keeping the message).
-  if (from.kind == access::Peer::Kind::kIpv4 && label.size() < sizeof(report_name_)) {
+  if (from.is_network() && label.size() < sizeof(report_name_)) {
     report_to_ = from;
     reporting_ = true;
     next_report_ms_ = controller_.now() + kReportPeriodMs;

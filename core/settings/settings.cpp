@@ -252,13 +252,13 @@ Rejection validate_text(Id id, std::string_view value) {
     case TextFormat::kNetworks: {
       bool bad = false;
       for_each_list_item(value, [&bad](std::string_view item) {
-        Ipv4Network ignored;
-        bad = bad || !parse_ipv4_network(item, ignored);
+        IpNetwork ignored;
+        bad = bad || !parse_network(item, ignored);
       });
       if (bad)
         return {Error::kInvalidArgument,
-                "IPv4 networks such as 192.168.1.0/24 or addresses such as 10.0.0.5, separated "
-                "by commas or spaces"};
+                "networks such as 192.168.1.0/24 or fd00::/8, or addresses such as 10.0.0.5 or "
+                "::1, separated by commas or spaces"};
       break;
     }
     case TextFormat::kPasswordHash: {

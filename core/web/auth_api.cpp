@@ -142,8 +142,8 @@ Api::Outcome Api::login(const HttpRequest& request, protocol::ByteSink& out,
   // own, so strangers guessing from many addresses never lock the owner out.
   const bool device = access::DeviceCookie::valid(*ctx_.crypto, stored, request.cookie);
   const std::string_view networks = values.text(Id::kAccessControlNetworks);
-  const bool listed = !device && peer.kind == access::Peer::Kind::kIpv4 && !networks.empty() &&
-                      !values.access_unreadable() && settings::in_network_list(networks, peer.ipv4);
+  const bool listed = !device && !networks.empty() && !values.access_unreadable() &&
+                      settings::in_network_list(networks, peer);
   const WebAuth::Guesser who = device   ? WebAuth::Guesser::kDevice
                                : listed ? WebAuth::Guesser::kListed
                                         : WebAuth::Guesser::kStranger;
@@ -201,7 +201,7 @@ Api::Outcome Api::set_password(const HttpRequest& request, protocol::ByteSink& o
     return Outcome::kDone;
   }
   settings::Settings& values = ctx_.controller.settings();
-  char address[16];
+  char address[access::kAddressTextBytes];
   if (fields[0].text[0] == '\0' && !fields[0].too_long) {
     backup_ = values;
     values.set_text(Id::kWebPassword, "");
@@ -210,7 +210,7 @@ Api::Outcome Api::set_password(const HttpRequest& request, protocol::ByteSink& o
       return Outcome::kDone;
     }
     auth_.log("rotord: web password removed by %s: access control is off",
-              peer_text(peer, address));
+              access::peer_text(peer, address));
     send_json(out, 200, options, [](JsonWriter& w) {
       w.begin_object().member("ok", true).member("enabled", false).end_object();
     });
@@ -248,8 +248,8 @@ void Api::work() {
 void Api::complete_job() {
   WebAuth::Job& job = auth_.job();
   job.completed = true;
-  char address[16];
-  const char* who = peer_text(job.peer, address);
+  char address[access::kAddressTextBytes];
+  const char* who = access::peer_text(job.peer, address);
   if (job.failed || ctx_.crypto == nullptr) {
     if (job.kind == WebAuth::JobKind::kLogin) {
       // A password too long to be the one counts as a wrong guess.

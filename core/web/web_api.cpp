@@ -179,7 +179,7 @@ bool is_whole(double v) {
 Api::Api(const ApiContext& context)
     : ctx_(context),
       auth_(WebAuth::Config{context.crypto, context.pbkdf2_iterations, context.pbkdf2_slice,
-                            context.log}) {}
+                            context.log, context.log_gate}) {}
 
 void Api::write_status(JsonWriter& w) const {
   const Controller& c = ctx_.controller;
@@ -491,8 +491,9 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
     }
     if (caller.kind == Caller::Kind::kBadToken) {
       count_auth_failure(false);
-      char address[16];
-      auth_.refused(peer, "rotord: unknown bearer token from %s refused", peer_text(peer, address));
+      char address[access::kAddressTextBytes];
+      auth_.refused(peer, "rotord: unknown bearer token from %s refused",
+                    access::peer_text(peer, address));
       send_error(out, 401, "unknown or revoked token", o);
       return Outcome::kDone;
     }
@@ -636,7 +637,8 @@ Api::Outcome Api::post_goto(const Call& call) {
   // Each caller's address is its own stream for the continuity rule (MQTT
   // arrives here as the broker).
   const CommandSource source = (CommandSource{1} << 62) |
-                               (static_cast<CommandSource>(call.peer.kind) << 32) | call.peer.ipv4;
+                               (static_cast<CommandSource>(call.peer.kind) << 32) |
+                               call.peer.address_hash();
   const Error e = c.go_to(az, el, mode, source);
   if (e != Error::kOk) {
     send_command_error(e, out, options);

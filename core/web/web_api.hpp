@@ -57,6 +57,9 @@ struct ApiContext {
   std::uint32_t pbkdf2_slice = 10'000;
   /// Where logins, failed logins, tokens and the control lock are logged.
   protocol::ByteSink* log = nullptr;
+  /// The process's log budget (access/log_gate.hpp), shared with the port's
+  /// other lines; nullptr: the web's own.
+  access::LogGate* log_gate = nullptr;
   /// The stored TLEs (GET/PUT /api/tle, POST /api/track) and where they are
   /// saved; nullptr: no store, /api/tle answers 501 (tracking the Sun, the
   /// Moon or a direction still works).

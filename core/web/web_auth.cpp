@@ -23,24 +23,6 @@ std::string_view bearer_token(std::string_view authorization) {
 
 }  // namespace
 
-const char* peer_text(const access::Peer& peer, char (&buf)[16]) {
-  switch (peer.kind) {
-    case access::Peer::Kind::kIpv4:
-      std::snprintf(buf, sizeof buf, "%u.%u.%u.%u", static_cast<unsigned>(peer.ipv4 >> 24),
-                    static_cast<unsigned>(peer.ipv4 >> 16 & 0xff),
-                    static_cast<unsigned>(peer.ipv4 >> 8 & 0xff),
-                    static_cast<unsigned>(peer.ipv4 & 0xff));
-      return buf;
-    case access::Peer::Kind::kOther:
-      return "an IPv6 client";
-    case access::Peer::Kind::kLine:
-      return "a serial port";
-    case access::Peer::Kind::kUnknown:
-      break;
-  }
-  return "an unknown client";
-}
-
 bool WebAuth::enabled(const settings::Settings& settings) {
   return !settings.text(settings::Id::kWebPassword).empty();
 }
@@ -95,14 +77,8 @@ void WebAuth::write_line(const char* format, std::va_list args) {
 }
 
 void WebAuth::write_summary(const access::LogGate::Summary& s) {
-  char address[16];
-  if (s.source.kind == access::Peer::Kind::kUnknown) {
-    print("rotord: %lu more log lines in the last minute, over the log's budget",
-          static_cast<unsigned long>(s.count));
-  } else {
-    print("rotord: %lu more from %s in the last minute", static_cast<unsigned long>(s.count),
-          peer_text(s.source, address));
-  }
+  char text[96];
+  print("rotord: %s", access::LogGate::summary_text(s, text, sizeof text));
 }
 
 void WebAuth::print(const char* format, ...) {
@@ -113,7 +89,7 @@ void WebAuth::print(const char* format, ...) {
 }
 
 void WebAuth::log(const char* format, ...) {
-  if (config_.log == nullptr || !gate_.admit_line(now_)) return;
+  if (config_.log == nullptr || !gate().admit_line(now_)) return;
   std::va_list args;
   va_start(args, format);
   write_line(format, args);
@@ -123,7 +99,7 @@ void WebAuth::log(const char* format, ...) {
 void WebAuth::refused(const access::Peer& from, const char* format, ...) {
   if (config_.log == nullptr) return;
   access::LogGate::Summary evicted;
-  const bool write = gate_.admit(from, now_, evicted);
+  const bool write = gate().admit(from, now_, evicted);
   if (evicted.count > 0) write_summary(evicted);
   if (!write) return;
   std::va_list args;
@@ -135,7 +111,7 @@ void WebAuth::refused(const access::Peer& from, const char* format, ...) {
 void WebAuth::flush_log(Millis now) {
   now_ = now;
   if (config_.log == nullptr) return;
-  for (access::LogGate::Summary s = gate_.next_due(now); s.count > 0; s = gate_.next_due(now))
+  for (access::LogGate::Summary s = gate().next_due(now); s.count > 0; s = gate().next_due(now))
     write_summary(s);
 }
 

@@ -59,6 +59,9 @@ class WebAuth {
     std::uint32_t pbkdf2_slice = 10'000;
     /// Where failed logins and access changes are logged (one line each); may be nullptr.
     protocol::ByteSink* log = nullptr;
+    /// The process's log budget, shared with every other line the process
+    /// logs (access/log_gate.hpp); nullptr: a budget of the web's own.
+    access::LogGate* gate = nullptr;
   };
 
   explicit WebAuth(const Config& config) : config_(config) {}
@@ -145,7 +148,8 @@ class WebAuth {
   access::WebSessions sessions_;
   access::LoginLimiter limiter_;
   access::GuessBudget budgets_[3];
-  access::LogGate gate_;
+  access::LogGate own_gate_;
+  access::LogGate& gate() { return config_.gate != nullptr ? *config_.gate : own_gate_; }
   Millis now_ = 0;
   access::Pbkdf2 pbkdf2_;
   Job job_;
@@ -153,9 +157,6 @@ class WebAuth {
   std::uint32_t failed_logins_ = 0;
   std::uint32_t refused_requests_ = 0;
 };
-
-/// A client's address for the log ("192.168.1.20", "IPv6", "serial", "?").
-const char* peer_text(const access::Peer& peer, char (&buf)[16]);
 
 /// The web.token_<n> rows, in order.
 inline constexpr settings::Id kTokenRows[] = {settings::Id::kWebToken1, settings::Id::kWebToken2,

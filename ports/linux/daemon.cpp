@@ -256,6 +256,7 @@ bool Daemon::start_controller() {
   api_context.pbkdf2_iterations = 100'000;
   api_context.pbkdf2_slice = 500;
   api_context.log = &access_log_;
+  api_context.log_gate = &log::gate();
   api_context.tles = tles_.get();
   api_context.tle_storage = tle_storage_.get();
   api_ = std::make_unique<web::Api>(api_context);
@@ -264,10 +265,20 @@ bool Daemon::start_controller() {
                              *api_);
 
   std::error_code ec;
-  const auto bind = asio::ip::make_address(options_.bind, ec);
+  auto bind = asio::ip::make_address(options_.bind, ec);
   if (ec) {
     log::error("invalid bind address '%s'", options_.bind.c_str());
     return false;
+  }
+  if (bind.is_v6() && bind.is_unspecified()) {
+    // A kernel without IPv6 (ipv6.disable=1) cannot open the dual-stack
+    // socket: serve IPv4 alone rather than nothing.
+    asio::ip::tcp::acceptor probe(io_);
+    if (probe.open(asio::ip::tcp::v6(), ec); ec) {
+      log::info("no IPv6 on this host (%s): listening on 0.0.0.0", ec.message().c_str());
+      bind = asio::ip::address_v4::any();
+      options_.bind = "0.0.0.0";
+    }
   }
   std::vector<ServiceConfig> services =
       make_services(options_, *controller_, *api_, settings_, metrics_, &console_port_);
@@ -555,6 +566,7 @@ void Daemon::on_tick() {
 }
 
 void Daemon::serve(Millis wall_ms) {
+  log::tick(wall_ms);  // the log budget's minutes, and its summaries
   // Faults latched and slips, named, into the journal.
   char event[192];
   while (axis_events_.next(controller_->status(), event, sizeof event)) log::warn("%s", event);

@@ -14,6 +14,8 @@ namespace {
 Level g_level = Level::kInfo;
 Format g_format = Format::kText;
 bool g_journal = false;
+access::LogGate g_gate(kLinesPerMinute);
+Millis g_now_ms = 0;
 
 void append_json_string(std::string& out, std::string_view s) {
   out += '"';
@@ -44,8 +46,11 @@ std::int64_t unix_ms_now() {
   return duration_cast<milliseconds>(system_clock::now().time_since_epoch()).count();
 }
 
-void vwrite(Level level, const char* fmt, va_list args, bool always = false) {
+/// `budget`: the line counts against the process's budget (and is dropped
+/// over it); replies and summaries do not.
+void vwrite(Level level, const char* fmt, va_list args, bool always = false, bool budget = true) {
   if (!always && !enabled(level)) return;
+  if (budget && !always && level != Level::kDebug && !g_gate.admit_line(g_now_ms)) return;
   char stack[512];
   va_list copy;
   va_copy(copy, args);
@@ -162,6 +167,44 @@ std::string format_line(Format format, Level level, std::string_view message, st
   append_json_string(line, message);
   line += '}';
   return line;
+}
+
+/// A line outside the budget (a summary: at most one per source a minute).
+static void write_unbudgeted(Level level, const char* fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+static void write_unbudgeted(Level level, const char* fmt, ...) {
+  va_list args;
+  va_start(args, fmt);
+  vwrite(level, fmt, args, false, false);
+  va_end(args);
+}
+
+static void write_summary(const access::LogGate::Summary& s) {
+  char text[96];
+  write_unbudgeted(Level::kWarn, "%s", access::LogGate::summary_text(s, text, sizeof text));
+}
+
+access::LogGate& gate() {
+  return g_gate;
+}
+
+void tick(Millis now_ms) {
+  g_now_ms = now_ms;
+  for (access::LogGate::Summary s = g_gate.next_due(now_ms); s.count > 0;
+       s = g_gate.next_due(now_ms))
+    write_summary(s);
+}
+
+void from(const access::Peer& source, Level level, const char* fmt, ...) {
+  if (!enabled(level)) return;
+  access::LogGate::Summary evicted;
+  const bool write = g_gate.admit(source, g_now_ms, evicted);
+  if (evicted.count > 0) write_summary(evicted);
+  if (!write) return;
+  va_list args;
+  va_start(args, fmt);
+  vwrite(level, fmt, args, false, false);  // admit() counted it
+  va_end(args);
 }
 
 void error(const char* fmt, ...) {

@@ -11,9 +11,19 @@
 // entry's priority (`journalctl -p warning -u rotord`), and text lines drop
 // the "rotord: " the journal already shows as rotord[pid].
 // One process-wide setting, made once by main() before anything logs.
+//
+// Nobody floods it (issue 29, docs/security.md "Logs"): every line at info,
+// warn and error goes through one budget of kLinesPerMinute lines a minute
+// for the whole process (access/log_gate.hpp), the web's access log
+// included; a refusal or error caused by a client (from()) is written once a
+// minute per source, the rest summed up as "N more from ADDR in the last
+// minute". Debug lines are outside the budget: --log-level debug traces
+// every connection and datagram on purpose, for diagnosis, not service.
 #include <cstdint>
 #include <string>
 #include <string_view>
+
+#include "access/log_gate.hpp"
 
 namespace rotord::linux_port::log {
 
@@ -39,6 +49,21 @@ bool enabled(Level level);
 /// Exposed for tests.
 std::string format_line(Format format, Level level, std::string_view message, std::int64_t unix_ms,
                         bool journal = false);
+
+/// Lines a minute at info, warn and error, for the whole process: room for
+/// the start-up's ~30 and a busy minute's own lines.
+inline constexpr unsigned kLinesPerMinute = 120;
+
+/// The process's budget, shared with the web's access log (web::Context::log_gate).
+access::LogGate& gate();
+/// The network's clock (the manual clock under --clock manual): the budget's
+/// minutes, and the summaries that are due are written now. Call every pass.
+void tick(Millis now_ms);
+
+/// A refusal or error caused by `source` (printf-style): the first from its
+/// host in a minute is written, the rest summed up when that minute ends.
+void from(const access::Peer& source, Level level, const char* fmt, ...)
+    __attribute__((format(printf, 3, 4)));
 
 /// printf-style; the message has no "rotord: " prefix and no line end.
 void error(const char* fmt, ...) __attribute__((format(printf, 1, 2)));

@@ -34,7 +34,9 @@ int main(int argc, char** argv) {
                  "tracking runs on simulated time");
   app.add_option("--sim-seed", o.sim_seed, "Seed of the simulator's noise (same seed, same run)")
       ->capture_default_str();
-  app.add_option("--bind", o.bind, "Address to listen on")->capture_default_str();
+  app.add_option("--bind", o.bind,
+                 "Address to listen on (:: serves IPv6 and IPv4; 0.0.0.0 IPv4 only)")
+      ->capture_default_str();
   const auto port = CLI::Range(0, 65535);
   app.add_option("--web-port", o.web_port, "Web UI and REST API port (0 disables)")
       ->check(port)

@@ -30,20 +30,18 @@ access::Peer peer_of_socket(int fd) {
   sockaddr_storage address{};
   socklen_t length = sizeof address;
   if (fd < 0 || ::getpeername(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0)
-    return {access::Peer::Kind::kOther, 0};
+    return {access::Peer::Kind::kOther, 0, {}};
   if (address.ss_family == AF_INET) {
     const auto* v4 = reinterpret_cast<const sockaddr_in*>(&address);
     return access::Peer::from_ipv4(ntohl(v4->sin_addr.s_addr));
   }
   if (address.ss_family == AF_INET6) {
     const auto* v6 = reinterpret_cast<const sockaddr_in6*>(&address);
-    if (IN6_IS_ADDR_V4MAPPED(&v6->sin6_addr)) {
-      const std::uint8_t* b = v6->sin6_addr.s6_addr + 12;
-      return access::Peer::from_ipv4((std::uint32_t{b[0]} << 24) | (std::uint32_t{b[1]} << 16) |
-                                     (std::uint32_t{b[2]} << 8) | b[3]);
-    }
+    access::IpBytes ip{};
+    for (std::size_t i = 0; i < ip.size(); ++i) ip[i] = v6->sin6_addr.s6_addr[i];
+    return access::Peer::from_ipv6(ip);  // a v4-mapped broker comes back as IPv4
   }
-  return {access::Peer::Kind::kOther, 0};
+  return {access::Peer::Kind::kOther, 0, {}};
 }
 
 }  // namespace

@@ -100,7 +100,7 @@ class MqttClient final : private mqtt::Transport {
   bool publishing_paused_ = false;       ///< the loop's: said so in the log
   /// The broker's address of the current connection (on_connect), for
   /// access.control_networks; guarded by mutex_.
-  access::Peer broker_peer_{access::Peer::Kind::kOther, 0};
+  access::Peer broker_peer_{access::Peer::Kind::kOther, 0, {}};
 };
 
 }  // namespace rotord::linux_port

@@ -26,7 +26,9 @@ struct Options {
   /// (tracking tests); empty: the system clock at start.
   std::string utc_start;
   std::uint32_t sim_seed = 1;
-  std::string bind = "0.0.0.0";
+  /// "::": IPv6 and IPv4 on one socket per port (IPV6_V6ONLY off); on a
+  /// host without IPv6 the daemon falls back to 0.0.0.0.
+  std::string bind = "::";
   int web_port = 8080;
   /// --KEY-port of each line protocol, indexed by protocol::Personality;
   /// defaults from the protocol registry (0: off).

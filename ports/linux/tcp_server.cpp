@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "log.hpp"
+#include "peer_address.hpp"
 
 namespace rotord::linux_port {
 namespace {
@@ -14,12 +15,8 @@ namespace {
 access::Peer peer_of(const asio::ip::tcp::socket& socket) {
   std::error_code ec;
   const asio::ip::address address = socket.remote_endpoint(ec).address();
-  if (ec) return {access::Peer::Kind::kOther, 0};
-  if (address.is_v4()) return access::Peer::from_ipv4(address.to_v4().to_uint());
-  if (address.is_v6() && address.to_v6().is_v4_mapped())
-    return access::Peer::from_ipv4(
-        asio::ip::make_address_v4(asio::ip::v4_mapped, address.to_v6()).to_uint());
-  return {access::Peer::Kind::kOther, 0};
+  if (ec) return {access::Peer::Kind::kOther, 0, {}};
+  return linux_port::peer_of(address);
 }
 
 /// The client's address, for the per-address cap.
@@ -39,7 +36,9 @@ std::string describe(const asio::ip::tcp::socket& socket) {
   std::error_code ec;
   const asio::ip::tcp::endpoint peer = socket.remote_endpoint(ec);
   if (ec) return "a client";
-  return peer.address().to_string() + ":" + std::to_string(peer.port());
+  const asio::ip::address address = unmapped(peer.address());
+  return (address.is_v6() ? "[" + address.to_string() + "]" : address.to_string()) + ":" +
+         std::to_string(peer.port());
 }
 
 }  // namespace
@@ -244,6 +243,8 @@ TcpServer::TcpServer(asio::io_context& io, const asio::ip::address& bind, Servic
   const asio::ip::tcp::endpoint endpoint(bind, config_.port);
   acceptor_.open(endpoint.protocol());
   acceptor_.set_option(asio::ip::tcp::acceptor::reuse_address(true));
+  // "::" serves IPv4 too (as ::ffff:a.b.c.d), whatever net.ipv6.bindv6only says.
+  if (bind.is_v6()) acceptor_.set_option(asio::ip::v6_only(false));
   acceptor_.bind(endpoint);
   acceptor_.listen();
   port_ = acceptor_.local_endpoint().port();
@@ -277,11 +278,19 @@ void TcpServer::admit(asio::ip::tcp::socket socket) {
   const Snapshot snapshot(connections_);
   const net::Admission::Decision d = admission_.admit(snapshot, info, now_);
   info.stop_only = d.kind == net::Admission::Decision::Kind::kStopOnly;
+  if (d.kind != net::Admission::Decision::Kind::kAdmit) {
+    // Once a minute per host, the rest summed up (log.hpp): a storm of
+    // connections cannot flood the log.
+    char address[access::kAddressTextBytes];
+    const char* why = info.stop_only ? "may only say STOP: no connection free for it"
+                      : d.kind == net::Admission::Decision::Kind::kRefusePerAddress
+                          ? "refused: its host holds net.max_per_address connections"
+                          : "refused: every connection is in use";
+    log::from(info.peer, log::Level::kInfo, "%s: %s %s", config_.name.c_str(),
+              access::peer_text(info.peer, address), why);
+  }
   if (d.kind != net::Admission::Decision::Kind::kAdmit && !info.stop_only) {
     if (config_.metrics != nullptr) config_.metrics->protocol(config_.protocol).on_refuse();
-    if (log::enabled(log::Level::kDebug))
-      log::debug("%s: %s refused, %zu clients already", config_.name.c_str(),
-                 describe(socket).c_str(), connections_.size());
     std::error_code ignored;
     asio::write(socket, asio::buffer(config_.reject_message), ignored);
     socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);

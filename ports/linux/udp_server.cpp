@@ -1,6 +1,7 @@
 #include "udp_server.hpp"
 
 #include "log.hpp"
+#include "peer_address.hpp"
 
 namespace rotord::linux_port {
 
@@ -16,6 +17,8 @@ UdpServer::UdpServer(asio::io_context& io, const asio::ip::address& bind, std::u
   socket_.open(endpoint.protocol());
   // Another program on this host may listen for the same broadcasts.
   socket_.set_option(asio::socket_base::reuse_address(true));
+  // "::" hears IPv4 senders too (as ::ffff:a.b.c.d).
+  if (bind.is_v6()) socket_.set_option(asio::ip::v6_only(false));
   socket_.bind(endpoint);
   port_ = socket_.local_endpoint().port();
   receive();
@@ -32,8 +35,7 @@ void UdpServer::receive() {
 
 void UdpServer::handle(std::size_t size) {
   const asio::ip::address address = from_.address();
-  const access::Peer peer = address.is_v4() ? access::Peer::from_ipv4(address.to_v4().to_uint())
-                                            : access::Peer{access::Peer::Kind::kOther, 0};
+  const access::Peer peer = peer_of(address);
   protocol::DatagramReplies replies;
   // A datagram that filled the buffer was longer than the protocol reads
   // (the kernel dropped the rest): the handler refuses it by its size.
@@ -41,7 +43,7 @@ void UdpServer::handle(std::size_t size) {
       protocol_.receive(std::string_view(buffer_.data(), size), peer, replies);
   if (metrics_ != nullptr) metrics_->on_datagram(personality_, outcome);
   if (outcome != protocol::DatagramOutcome::kDone)
-    log::debug("%s: datagram from %s %s", name_.c_str(), address.to_string().c_str(),
+    log::debug("%s: datagram from %s %s", name_.c_str(), unmapped(address).to_string().c_str(),
                protocol::outcome_name(outcome));
   send(replies, address);
 }
@@ -49,8 +51,10 @@ void UdpServer::handle(std::size_t size) {
 void UdpServer::poll() {
   protocol::DatagramReplies replies;
   access::Peer to;
-  if (!protocol_.poll(replies, to) || to.kind != access::Peer::Kind::kIpv4) return;
-  send(replies, asio::ip::address_v4(to.ipv4));
+  if (!protocol_.poll(replies, to) || !to.is_network()) return;
+  std::error_code ec;
+  const bool v6_socket = socket_.local_endpoint(ec).address().is_v6();
+  send(replies, address_of(to, v6_socket));
 }
 
 void UdpServer::send(const protocol::DatagramReplies& replies, const asio::ip::address& to) {

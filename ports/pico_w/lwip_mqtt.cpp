@@ -183,7 +183,7 @@ void LwipMqtt::connect_to(const ip_addr_t& address) {
     bridge_.set_broker_peer(
         access::Peer::from_ipv4(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(&address)))));
   } else {
-    bridge_.set_broker_peer({access::Peer::Kind::kOther, 0});
+    bridge_.set_broker_peer({access::Peer::Kind::kOther, 0, {}});
   }
   phase_ = Phase::kConnecting;
   const err_t err =

@@ -32,7 +32,15 @@ access::Peer peer_of(const tcp_pcb* pcb) {
   if (IP_IS_V4_VAL(pcb->remote_ip))
     return access::Peer::from_ipv4(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(&pcb->remote_ip))));
 #endif
-  return {access::Peer::Kind::kOther, 0};
+#if LWIP_IPV6
+  // Not in the image (lwipopts.h: no LWIP_IPV6, docs/pico_w.md), but ready.
+  if (IP_IS_V6_VAL(pcb->remote_ip)) {
+    access::IpBytes bytes{};
+    std::memcpy(bytes.data(), ip_2_ip6(&pcb->remote_ip)->addr, bytes.size());  // network order
+    return access::Peer::from_ipv6(bytes);
+  }
+#endif
+  return {access::Peer::Kind::kOther, 0, {}};
 }
 
 /// The client's address, for the per-address cap.
@@ -56,14 +64,19 @@ net::Address address_of(const tcp_pcb* pcb) {
 /// The slots as the admission rule reads them; a free slot is null.
 class TcpServer::SlotList final : public net::ClientList {
  public:
-  explicit SlotList(std::span<Connection> slots) : slots_(slots) {}
-  std::size_t size() const override { return slots_.size(); }
+  /// `shared`: the shared stop-only slot's connection while this server
+  /// holds it (its last entry), else null.
+  SlotList(std::span<Connection> slots, const Connection* shared)
+      : slots_(slots), shared_(shared) {}
+  std::size_t size() const override { return slots_.size() + 1; }
   const net::ClientInfo* at(std::size_t i) const override {
+    if (i == slots_.size()) return shared_ != nullptr ? &shared_->info_ : nullptr;
     return slots_[i].active() ? &slots_[i].info_ : nullptr;
   }
 
  private:
   std::span<Connection> slots_;
+  const Connection* shared_;
 };
 
 struct TcpServer::Glue {
@@ -79,17 +92,24 @@ struct TcpServer::Glue {
     for (Connection& s : server->slots_) {
       if (s.active()) s.info_.between_requests = s.session_->between_requests();
     }
-    const net::Admission::Decision d =
-        server->admission_.admit(SlotList(server->slots_), info, server->now_);
+    const net::Admission::Decision d = server->admission_.admit(
+        SlotList(server->slots_, server->shared_held()), info, server->now_);
     info.stop_only = d.kind == net::Admission::Decision::Kind::kStopOnly;
     if (d.kind != net::Admission::Decision::Kind::kAdmit && !info.stop_only)
       return reject(*server, pcb);
     // The one making room gets a FIN, no message (no protocol has one). What
     // close() returns concerns that pcb, not this callback's.
     if (d.evict != net::Admission::kNone) server->close(server->slots_[d.evict]);
-    Connection* c = server->free_slot();
-    protocol::Session* session = c != nullptr ? server->sessions_.open(c->index_) : nullptr;
-    if (session == nullptr) return reject(*server, pcb);
+    protocol::Session* session = nullptr;
+    Connection* c = server->open_slot(info.stop_only, session);
+    if (session == nullptr) {
+      if (info.stop_only) {
+        // The shared stop-only slot is another port's now: refused after all.
+        --server->admission_.counters().stop_only;
+        ++server->admission_.counters().refused_full;
+      }
+      return reject(*server, pcb);
+    }
 
     ++server->stats_.accepted;
     // A stop-only exchange is counted as refused (or not at all), not as a client.
@@ -290,17 +310,21 @@ void TcpServer::Connection::reset_output() {
   close_requested_ = false;
 }
 
-TcpServer::TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots)
+TcpServer::TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots,
+                     std::span<char> output)
     : config_(config),
       sessions_(sessions),
       slots_(slots),
       admission_({std::min(config.max_clients, slots.size() - config.stop_only_slots),
                   slots.size() - config.stop_only_slots, config.max_event_streams,
-                  config.settings != nullptr ? config.stop_only_slots : 0},
+                  config.settings != nullptr
+                      ? config.stop_only_slots + (config.shared_stop_only != nullptr ? 1 : 0)
+                      : 0},
                  config.settings) {
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     slots_[i].server_ = this;
     slots_[i].index_ = i;
+    slots_[i].out_ = output.subspan(i * kOutputBytes, kOutputBytes);
   }
 }
 
@@ -334,6 +358,7 @@ void TcpServer::stop() {
   for (Connection& c : slots_) {
     if (c.pcb_ != nullptr) close(c);
   }
+  if (Connection* shared = shared_held()) close(*shared);
   if (listener_ != nullptr) {
     tcp_arg(listener_, nullptr);
     tcp_accept(listener_, nullptr);
@@ -344,21 +369,50 @@ void TcpServer::stop() {
 
 void TcpServer::poll(Millis now) {
   now_ = now;
-  for (Connection& c : slots_) {
-    if (c.pcb_ == nullptr) continue;
-    if (c.info_.stop_only && !c.close_requested_ &&
-        now - c.info_.opened_ms >= net::kStopOnlyExchangeMs)
-      end_exchange(c, true);  // its command never came
-    c.session_->poll(now, c);
-    c.flush();
-    c.continue_reply();
-    settle(c);  // outside any lwIP callback: the returned ERR_ABRT is nobody's
-  }
+  for (Connection& c : slots_) poll(c, now);
+  if (Connection* shared = shared_held()) poll(*shared, now);
+}
+
+void TcpServer::poll(Connection& c, Millis now) {
+  if (c.pcb_ == nullptr) return;
+  if (c.info_.stop_only && !c.close_requested_ &&
+      now - c.info_.opened_ms >= net::kStopOnlyExchangeMs)
+    end_exchange(c, true);  // its command never came
+  c.session_->poll(now, c);
+  c.flush();
+  c.continue_reply();
+  settle(c);  // outside any lwIP callback: the returned ERR_ABRT is nobody's
 }
 
 std::size_t TcpServer::client_count() const {
-  return static_cast<std::size_t>(
-      std::count_if(slots_.begin(), slots_.end(), [](const Connection& c) { return c.active(); }));
+  return static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(),
+                                                [](const Connection& c) { return c.active(); })) +
+         (shared_held() != nullptr ? 1 : 0);
+}
+
+TcpServer::Connection* TcpServer::shared_held() const {
+  SharedStopOnly* shared = config_.shared_stop_only;
+  if (shared == nullptr || shared->connection_.server_ != this || !shared->connection_.active())
+    return nullptr;
+  return &shared->connection_;
+}
+
+TcpServer::Connection* TcpServer::open_slot(bool stop_only, protocol::Session*& session) {
+  session = nullptr;
+  SharedStopOnly* shared = config_.shared_stop_only;
+  if (stop_only && config_.stop_only_slots == 0) {
+    // Admission counted the shared slot as this server's; another server's
+    // exchange may hold it: then this newcomer is refused as before.
+    if (shared == nullptr || shared->connection_.active()) return nullptr;
+    session = sessions_.open_at(shared->storage_, shared->bytes_);
+    if (session == nullptr) return nullptr;
+    shared->connection_.server_ = this;
+    shared->connection_.index_ = slots_.size();  // past the server's own
+    return &shared->connection_;
+  }
+  Connection* c = free_slot();
+  if (c != nullptr) session = sessions_.open(c->index_);
+  return c;
 }
 
 TcpServer::Connection* TcpServer::free_slot() {
@@ -373,7 +427,7 @@ void TcpServer::stream_started(Connection& c) {
   // Without a stream limit a stream stays an ordinary client.
   if (admission_.limits().max_event_streams == 0) return;
   c.info_.event_stream = true;
-  const std::size_t victim = admission_.stream_started(SlotList(slots_), c.index_);
+  const std::size_t victim = admission_.stream_started(SlotList(slots_, shared_held()), c.index_);
   if (victim != net::Admission::kNone) close(slots_[victim]);
 }
 
@@ -432,7 +486,11 @@ err_t TcpServer::drop(Connection& c) {
 
 void TcpServer::release(Connection& c) {
   if (c.session_ != nullptr) {
-    sessions_.release(c.index_);
+    if (&c == shared_held()) {
+      c.session_->~Session();  // in the shared slot's storage
+    } else {
+      sessions_.release(c.index_);
+    }
     if (config_.metrics != nullptr && !c.info_.stop_only)
       config_.metrics->protocol(config_.protocol).on_close();
   }

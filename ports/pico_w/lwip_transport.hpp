@@ -35,6 +35,9 @@ class SessionPool {
   /// Constructs the session of slot `slot`; null when the slot is taken.
   virtual protocol::Session* open(std::size_t slot) = 0;
   virtual void release(std::size_t slot) = 0;
+  /// Constructs a session in storage outside the pool (the shared stop-only
+  /// slot); null when it does not fit. Destroyed by its virtual destructor.
+  virtual protocol::Session* open_at(void* storage, std::size_t bytes) = 0;
 };
 
 /// N sessions of type S built in place by `make()` (which returns an S by
@@ -60,6 +63,11 @@ class StaticSessionPool final : public SessionPool {
     live_[slot]->~S();
     live_[slot] = nullptr;
   }
+  protocol::Session* open_at(void* storage, std::size_t bytes) override {
+    if (bytes < sizeof(S) || reinterpret_cast<std::uintptr_t>(storage) % alignof(S) != 0)
+      return nullptr;
+    return ::new (storage) S(make_());
+  }
 
  private:
   struct alignas(S) Slot {
@@ -69,6 +77,8 @@ class StaticSessionPool final : public SessionPool {
   std::array<Slot, N> storage_{};
   std::array<S*, N> live_{};
 };
+
+class SharedStopOnly;
 
 struct ServerConfig {
   const char* name = "";            ///< for logs, e.g. "WRC text protocol"
@@ -90,6 +100,10 @@ struct ServerConfig {
   /// newcomer to a full port may still say STOP: net/admission.hpp).
   /// StaticService sets it.
   std::size_t stop_only_slots = 0;
+  /// One stop-only slot shared with other servers (the Pico W's line ports,
+  /// which have no RAM for one each): used when the server has none of its
+  /// own, by one exchange at a time across them all. nullptr: none.
+  SharedStopOnly* shared_stop_only = nullptr;
   /// Where connections, refusals and error replies are counted (GET
   /// /metrics), under `protocol`; nullptr counts nothing.
   metrics::Registry* metrics = nullptr;
@@ -135,6 +149,7 @@ class TcpServer {
 
    private:
     friend class TcpServer;
+    friend class SharedStopOnly;
     friend struct Glue;
     struct Chunk {
       const char* data = nullptr;  ///< nullptr: the next bytes of out_
@@ -159,7 +174,9 @@ class TcpServer {
     bool stream_seen_ = false;         ///< the session has become an event stream
     std::uint32_t commands_seen_ = 0;  ///< session_->commands() at the last receive
     std::size_t index_ = 0;
-    std::array<char, kOutputBytes> out_{};
+    /// The output buffer: kOutputBytes of the service's storage, or the
+    /// shared stop-only slot's few (SharedStopOnly::kOutputBytes).
+    std::span<char> out_;
     std::size_t out_len_ = 0;
     std::array<Chunk, kMaxChunks> chunks_{};
     std::size_t chunk_count_ = 0;
@@ -174,7 +191,9 @@ class TcpServer {
     std::uint32_t closed = 0;           ///< by the peer, the session or an error
   };
 
-  TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots);
+  /// `output`: kOutputBytes for each slot, in order (StaticService holds them).
+  TcpServer(ServerConfig config, SessionPool& sessions, std::span<Connection> slots,
+            std::span<char> output);
   ~TcpServer();
   TcpServer(const TcpServer&) = delete;
   TcpServer& operator=(const TcpServer&) = delete;
@@ -197,7 +216,13 @@ class TcpServer {
 
  private:
   class SlotList;
+  friend class SharedStopOnly;
   Connection* free_slot();
+  /// The shared stop-only slot's connection when this server holds it.
+  Connection* shared_held() const;
+  /// A connection and its session for a newcomer: a free slot of its own,
+  /// or for a stop-only exchange without slots of its own the shared one.
+  Connection* open_slot(bool stop_only, protocol::Session*& session);
   /// Entry `c` has just become an event stream: closes the oldest other one
   /// when the streams are over their limit.
   void stream_started(Connection& c);
@@ -210,6 +235,7 @@ class TcpServer {
   /// was not STOP) or whose time ran out.
   void after_input(Connection& c);
   void end_exchange(Connection& c, bool refused);
+  void poll(Connection& c, Millis now);
   std::int8_t close(Connection& c);
   std::int8_t drop(Connection& c);
   void release(Connection& c);
@@ -224,6 +250,43 @@ class TcpServer {
   Millis now_ = 0;  ///< the last poll's: stamps accepts and received bytes
 };
 
+/// One stop-only slot for several servers (ServerConfig::shared_stop_only):
+/// a Connection and room for the largest of their sessions, held by one
+/// server's exchange at a time. A STOP-only exchange is one short line and
+/// lasts net::kStopOnlyExchangeMs at most, so one slot serves newcomers to
+/// every full line port in turn; while it is taken, the next is refused as
+/// before.
+class SharedStopOnly {
+ public:
+  /// Its output buffer: a STOP-only exchange writes one short reply, or the
+  /// port's busy refusal (a session that writes more is dropped).
+  static constexpr std::size_t kOutputBytes = 128;
+
+  SharedStopOnly(void* storage, std::size_t bytes) : storage_(storage), bytes_(bytes) {
+    connection_.out_ = output_;
+  }
+  SharedStopOnly(const SharedStopOnly&) = delete;
+  SharedStopOnly& operator=(const SharedStopOnly&) = delete;
+  const TcpServer* holder() const { return connection_.active() ? connection_.server_ : nullptr; }
+
+ private:
+  friend class TcpServer;
+  TcpServer::Connection connection_;
+  std::array<char, kOutputBytes> output_{};
+  void* storage_;
+  std::size_t bytes_;
+};
+
+/// SharedStopOnly with its session storage: `Bytes` the largest session's size.
+template <std::size_t Bytes, std::size_t Align = alignof(std::max_align_t)>
+class StaticSharedStopOnly : public SharedStopOnly {
+ public:
+  StaticSharedStopOnly() : SharedStopOnly(session_bytes_, Bytes) {}
+
+ private:
+  alignas(Align) unsigned char session_bytes_[Bytes];
+};
+
 /// A server with its own session pool and connection slots, meant for static
 /// storage (the firmware's composition root): N for clients and StopOnly more
 /// for stop-only exchanges (each a Connection and an S: their RAM is counted
@@ -232,7 +295,7 @@ template <typename S, std::size_t N, typename Make, std::size_t StopOnly = 0>
 class StaticService {
  public:
   StaticService(ServerConfig config, Make make)
-      : pool_(std::move(make)), server_(with_stop_only(config), pool_, slots_) {}
+      : pool_(std::move(make)), server_(with_stop_only(config), pool_, slots_, output_) {}
   TcpServer& server() { return server_; }
 
  private:
@@ -241,6 +304,7 @@ class StaticService {
     return config;
   }
   std::array<TcpServer::Connection, N + StopOnly> slots_{};
+  std::array<char, (N + StopOnly) * TcpServer::kOutputBytes> output_{};
   StaticSessionPool<S, N + StopOnly, Make> pool_;
   TcpServer server_;  // last: constructed after, destroyed before its storage
 };

@@ -50,7 +50,7 @@ void UdpService::stop() {
 
 void UdpService::handle(std::size_t size, const void* from_addr) {
   const auto* addr = static_cast<const ip_addr_t*>(from_addr);
-  access::Peer peer{access::Peer::Kind::kOther, 0};
+  access::Peer peer{access::Peer::Kind::kOther, 0, {}};
   if (IP_IS_V4(addr)) peer = access::Peer::from_ipv4(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(addr))));
   protocol::DatagramReplies replies;
   last_outcome_ = protocol_.receive(std::string_view(in_.data(), size), peer, replies);

@@ -1,12 +1,16 @@
 // The log cannot be flooded (issue 29, item 6), through the real daemon: 2000
-// requests with random bearer tokens on one keep-alive connection. Prints
-// the log bytes a minute under the flood.
+// requests with random bearer tokens on one keep-alive connection; 2000
+// connections from 40 addresses (IPv6 among them) to a full line port, each
+// refused or let in for STOP only, a line the log summarises per source
+// within the process's budget. Prints the log bytes a minute under each
+// flood.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -77,6 +81,80 @@ TEST(LogFlood, RandomBearerTokensOnOneConnectionWriteTwoLinesAMinute) {
       << logged;
   EXPECT_LT(logged.size(), 400u);
   std::filesystem::remove_all(dir);
+}
+
+/// What rotord logged in `all`, the manual clock's own replies aside.
+std::string logged_lines(const std::string& all) {
+  std::string logged;
+  for (std::size_t at = 0; at < all.size();) {
+    const std::size_t end = std::min(all.find('\n', at), all.size() - 1) + 1;
+    const std::string line = all.substr(at, end - at);
+    if (line.rfind("rotord: clock ", 0) != 0) logged += line;
+    at = end;
+  }
+  return logged;
+}
+
+std::size_t count_of(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(LogFlood, ConnectionsToAFullLinePortFromManyHostsStayWithinTheBudget) {
+  DaemonProcess daemon({"--sim", "g5500", "--clock", "manual", "--bind", "::"});
+  ASSERT_TRUE(daemon.ready()) << daemon.output();
+  const int wrc = daemon.ports().wrc;
+  // Eight busy clients fill the port.
+  std::vector<std::unique_ptr<TcpClient>> busy;
+  for (int n = 1; n <= 8; ++n) {
+    busy.push_back(std::make_unique<TcpClient>(wrc, "127.0.1." + std::to_string(n)));
+    ASSERT_EQ(busy.back()->ask("AZ?\n").rfind("OK AZ", 0), 0u);
+  }
+  daemon.advance_ms(10);
+  const std::size_t before = daemon.output().size();
+  // 2000 newcomers from 40 hosts in turn, [::1] one of them: each is refused
+  // or given a STOP-only exchange, and says nothing.
+  const bool v6 = ipv6_loopback();
+  for (int n = 0; n < 2000; ++n) {
+    const int h = n % 40;
+    const std::string from = h == 0 && v6 ? "::1" : "127.0.2." + std::to_string(h + 1);
+    TcpClient c(wrc, from);
+    ASSERT_TRUE(c.connected()) << from;
+    if (n % 100 == 99) daemon.advance_ms(10);
+  }
+  daemon.advance_ms(60000);  // the minute ends: its summaries
+  daemon.advance_ms(10);
+  ASSERT_TRUE(daemon.wait_for_output("in the last minute")) << daemon.output().substr(before);
+  daemon.advance_ms(10);
+  const std::string logged = logged_lines(daemon.output().substr(before));
+  const std::size_t lines = count_of(logged, "\n");
+  std::printf(
+      "[ measured ] 2000 connections from 40 hosts to a full WRC port: %zu log lines, %zu log "
+      "bytes in the minute (budget %u lines a minute)\n",
+      lines, logged.size(), 120u);
+  // The first lines and the last (the summaries).
+  std::size_t head_end = 0;
+  for (int n = 0; n < 3 && head_end != std::string::npos; ++n)
+    head_end = logged.find('\n', head_end + 1);
+  std::size_t tail_start = logged.size() - 1;
+  for (int n = 0; n < 4 && tail_start != std::string::npos; ++n)
+    tail_start = logged.rfind('\n', tail_start - 1);
+  std::printf("%s...\n%s", logged.substr(0, head_end + 1).c_str(),
+              logged.substr(tail_start + 1).c_str());
+  EXPECT_NE(logged.find("more log lines in the last minute, over the log's budget"),
+            std::string::npos)
+      << logged;
+  EXPECT_NE(logged.find("WRC text protocol: 127.0.2.2 may only say STOP"), std::string::npos)
+      << logged;
+  if (v6) {
+    EXPECT_NE(logged.find("WRC text protocol: ::1 "), std::string::npos) << logged;
+  }
+  EXPECT_NE(logged.find(" more "), std::string::npos) << logged;
+  // The budget and at most one summary per source followed, one for the rest.
+  EXPECT_LE(lines, 120u + 8u + 1u);
+  EXPECT_LT(logged.size(), 20000u);
+  for (auto& c : busy) EXPECT_EQ(c->ask("AZ?\n").rfind("OK AZ", 0), 0u);  // served throughout
 }
 
 }  // namespace

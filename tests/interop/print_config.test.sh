@@ -29,6 +29,8 @@ grep -q "^# settings file $dir/xdg/rotord/settings.json (from \$XDG_CONFIG_HOME)
 grep -q sesame <<<"$out" && fail "the secret was printed"
 [ "$(line --web-port)" = "--web-port 9999 # given" ] || fail "--web-port: $(line --web-port)"
 [ "$(line --rotctld-port)" = "--rotctld-port 4533 # default" ] || fail "--rotctld-port"
+# IPv6 and IPv4 by default (one dual-stack socket per port, issue 29).
+[ "$(line --bind)" = "--bind :: # default" ] || fail "--bind: $(line --bind)"
 # Every row of the settings table is listed (one line per key).
 [ "$(grep -c ' # \(default\|file\|profile ham4\)$' <<<"$out")" -gt 100 ] || fail "too few settings"
 

@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -48,8 +49,6 @@ DaemonProcess::DaemonProcess(std::vector<std::string> extra_args) {
 bool DaemonProcess::spawn(const std::vector<std::string>& extra_args) {
   ports_ = {free_port(), free_port(), free_port(), free_port(), free_port()};
   std::vector<std::string> args = {ROTORD_BINARY,
-                                   "--bind",
-                                   "127.0.0.1",
                                    "--wrc-port",
                                    std::to_string(ports_.wrc),
                                    "--rotctld-port",
@@ -61,6 +60,12 @@ bool DaemonProcess::spawn(const std::vector<std::string>& extra_args) {
                                    "--easycomm-port",
                                    std::to_string(ports_.easycomm)};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
+  // Loopback only, unless the test names its own address (the default, ::,
+  // serves IPv6 and IPv4).
+  if (std::find(extra_args.begin(), extra_args.end(), "--bind") == extra_args.end()) {
+    args.push_back("--bind");
+    args.push_back("127.0.0.1");
+  }
   for (int* fd : {&out_fd_, &in_fd_}) {
     if (*fd >= 0) ::close(*fd);
     *fd = -1;
@@ -187,6 +192,10 @@ DaemonProcess::~DaemonProcess() {
 TcpClient::TcpClient(int port) : TcpClient(port, "") {}
 
 TcpClient::TcpClient(int port, const std::string& source) {
+  if (source.find(':') != std::string::npos) {
+    connect_ipv6(port, source);
+    return;
+  }
   fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
   if (!source.empty()) {
     sockaddr_in local{};
@@ -209,6 +218,36 @@ TcpClient::TcpClient(int port, const std::string& source) {
   }
   int one = 1;
   ::setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
+}
+
+void TcpClient::connect_ipv6(int port, const std::string& source) {
+  fd_ = ::socket(AF_INET6, SOCK_STREAM, 0);
+  sockaddr_in6 local{};
+  local.sin6_family = AF_INET6;
+  sockaddr_in6 addr{};
+  addr.sin6_family = AF_INET6;
+  addr.sin6_addr = in6addr_loopback;
+  addr.sin6_port = htons(static_cast<uint16_t>(port));
+  if (fd_ < 0 || ::inet_pton(AF_INET6, source.c_str(), &local.sin6_addr) != 1 ||
+      ::bind(fd_, reinterpret_cast<sockaddr*>(&local), sizeof(local)) != 0 ||
+      ::connect(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+    return;
+  }
+  int one = 1;
+  ::setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
+}
+
+bool ipv6_loopback() {
+  const int fd = ::socket(AF_INET6, SOCK_STREAM, 0);
+  if (fd < 0) return false;
+  sockaddr_in6 addr{};
+  addr.sin6_family = AF_INET6;
+  addr.sin6_addr = in6addr_loopback;
+  const bool ok = ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0;
+  ::close(fd);
+  return ok;
 }
 
 TcpClient::~TcpClient() {

@@ -64,12 +64,16 @@ class DaemonProcess {
   std::string config_home_;  ///< XDG_CONFIG_HOME of the child
 };
 
+/// Whether this machine has the IPv6 loopback (::1): IPv6 tests skip without.
+bool ipv6_loopback();
+
 /// A blocking loopback TCP client with timeouts, for protocol tests.
 class TcpClient {
  public:
   explicit TcpClient(int port);
   /// From another loopback address (e.g. "127.0.0.2"): another host, as the
-  /// per-address limits and the allow-list see it.
+  /// per-address limits and the allow-list see it. An IPv6 source ("::1")
+  /// connects to [::1].
   TcpClient(int port, const std::string& source);
   ~TcpClient();
   TcpClient(const TcpClient&) = delete;
@@ -92,6 +96,8 @@ class TcpClient {
   int fd() const { return fd_; }
 
  private:
+  void connect_ipv6(int port, const std::string& source);
+
   int fd_ = -1;
   std::string buffer_;
 };

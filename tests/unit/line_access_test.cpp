@@ -65,7 +65,13 @@ TEST(LineAccess, WhoMayControl) {
   settings::Settings s;
   const Peer lan = Peer::from_ipv4(ip(192, 168, 1, 20));
   const Peer wan = Peer::from_ipv4(ip(203, 0, 113, 9));
-  const Peer v6{Peer::Kind::kOther, 0};
+  access::IpBytes doc{};  // 2001:db8::1
+  doc[0] = 0x20;
+  doc[1] = 0x01;
+  doc[2] = 0x0D;
+  doc[3] = 0xB8;
+  doc[15] = 1;
+  const Peer v6 = Peer::from_ipv6(doc);
   // Off by default: everyone, as before access control.
   EXPECT_TRUE(access::may_control(s, lan));
   EXPECT_TRUE(access::may_control(s, wan));

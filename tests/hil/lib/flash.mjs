@@ -4,7 +4,7 @@
 // answers status reads), modelled at the bootrom's routines.
 
 export const FLASH_BYTES = 2 * 1024 * 1024; // PICO_FLASH_SIZE_BYTES of the pico_w board
-export const SETTINGS_REGION_BYTES = 16 * 1024; // PicoFlash::kRegionBytes, at the very end
+export const SETTINGS_REGION_BYTES = 32 * 1024; // PicoFlash::kRegionBytes (ROTORD_SETTINGS_FLASH_BYTES), at the very end
 const SECTOR = 4096;
 const PAGE = 256;
 const MAGIC = 0x54455352; // "RSET"
