@@ -9,6 +9,7 @@
 
 #include "bounds.hpp"
 #include "care.hpp"
+#include "client_passes.hpp"
 #include "control_quality.hpp"
 #include "results.hpp"
 #include "tick_cost.hpp"
@@ -62,6 +63,7 @@ int main(int argc, char** argv) {
   if (wanted("control")) add(run_control_quality());
   if (wanted("tracking")) add(run_tracking_error());
   if (wanted("tracking_mode")) add(run_tracking_mode());
+  if (wanted("clients")) add(run_client_passes());
   if (wanted("care")) add(run_care_day());
   if (wanted("tick")) results.push_back(run_tick_cost());
   std::FILE* out = out_path ? std::fopen(out_path, "w") : stdout;

@@ -332,8 +332,8 @@ Error Controller::goto_axes(std::optional<float> az_deg, std::optional<float> el
     float seen = std::fabs(*az_target - az_.status().position_deg);
     if (el_deg) seen = std::fmax(seen, std::fabs(*el_deg - el_.status().position_deg));
     lead_.note_client_error(seen);
-    az_plan = lead_axis(az_, *az_target, lead_.az.steady_dir());
-    if (el_deg) el_plan = lead_axis(el_, *el_deg, lead_.el.steady_dir());
+    az_plan = lead_axis(az_, *az_target, lead_.az);
+    if (el_deg) el_plan = lead_axis(el_, *el_deg, lead_.el);
     if (az_plan.hold || el_plan.hold || az_plan.aim_deg != *az_target ||
         (el_deg && el_plan.aim_deg != *el_deg))
       lead_.count_led();
@@ -359,12 +359,13 @@ Error Controller::goto_axes(std::optional<float> az_deg, std::optional<float> el
   return Error::kOk;
 }
 
-StreamLead::Plan Controller::lead_axis(const Axis& axis, float sent_deg, int dir) const {
+StreamLead::Plan Controller::lead_axis(const Axis& axis, float sent_deg,
+                                       const StreamLead::Axis& stream) const {
   const AxisStatus& s = axis.status();
   const AxisConfig& c = axis.config();
   const bool at_rest = s.state == AxisState::kIdle && !s.has_target;
-  return StreamLead::plan(sent_deg, s.position_deg, dir, at_rest, lead_.band_deg(c.tolerance_deg),
-                          c.min_deg, c.max_deg);
+  return StreamLead::plan(sent_deg, s.position_deg, stream.steady_dir(), at_rest,
+                          lead_.band_deg(stream, c.tolerance_deg), c.min_deg, c.max_deg);
 }
 
 Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman_ms) {

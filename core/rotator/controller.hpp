@@ -204,7 +204,8 @@ class Controller {
   /// ends a track.
   void note_command();
   /// The lead rule's decision for one axis of a stream's go-to.
-  StreamLead::Plan lead_axis(const Axis& axis, float sent_deg, int dir) const;
+  StreamLead::Plan lead_axis(const Axis& axis, float sent_deg,
+                             const StreamLead::Axis& stream) const;
   void end_track();
   /// A go-to's axes part: validates and moves, with the continuity rule.
   Error goto_axes(std::optional<float> az_deg, std::optional<float> el_deg, AzTarget az_mode,

@@ -5,6 +5,7 @@ namespace rotord {
 void StreamLead::Axis::note(float sent_deg) {
   if (have) {
     const float d = sent_deg - last_deg;
+    step_deg = d < 0.0f ? -d : d;
     // Steps below the clients' two decimals do not say a direction.
     const int sign = d > 0.005f ? 1 : (d < -0.005f ? -1 : 0);
     if (sign != 0) {

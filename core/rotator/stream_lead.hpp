@@ -34,6 +34,7 @@ class StreamLead {
     float last_deg = 0.0f;
     int dir = 0;     ///< sign of the last step that moved
     int steady = 0;  ///< steps in a row in that direction
+    float step_deg = 0.0f;  ///< the size of the last step
     /// Records a sent position (after the continuity rule: unwrapped).
     void note(float sent_deg);
     /// The direction when steady, else 0 (then the axis is not led).
@@ -60,10 +61,14 @@ class StreamLead {
   void note_client_error(float error_deg) {
     if (error_deg < threshold_deg_) threshold_deg_ = error_deg;
   }
-  /// The band for an axis of tolerance `tolerance_deg`: the client's
-  /// threshold as measured, at least the tolerance.
-  float band_deg(float tolerance_deg) const {
-    const float b = kBandOfThreshold * threshold_deg_;
+  /// The band for `axis` of tolerance `tolerance_deg`: the client's
+  /// threshold as measured, but no more than the axis moved since the
+  /// client's last command (the axis that did not make the client send
+  /// moves little, and is led and held by as little), at least the
+  /// tolerance.
+  float band_deg(const Axis& axis, float tolerance_deg) const {
+    const float moved = axis.step_deg < threshold_deg_ ? axis.step_deg : threshold_deg_;
+    const float b = kBandOfThreshold * moved;
     return b > tolerance_deg ? b : tolerance_deg;
   }
   Axis az;
