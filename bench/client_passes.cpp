@@ -248,8 +248,8 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
 std::vector<Result> run_client_passes() {
   std::vector<PassCase> cases;
   for (const double el : {30.0, 60.0, 75.0, 85.0})
-    cases.push_back(find_case(("max_el_" + std::to_string(static_cast<int>(el))).c_str(), el,
-                              false));
+    cases.push_back(
+        find_case(("max_el_" + std::to_string(static_cast<int>(el))).c_str(), el, false));
   cases.push_back(find_case("north", 45.0, true));
   cases.push_back(find_case("flip", 82.0, true));
   const Who whos[] = {

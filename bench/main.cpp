@@ -52,8 +52,8 @@ int main(int argc, char** argv) {
     results.push_back(
         {"bounds/csv_check", {{"rows", static_cast<double>(rows)}}, {{"max_deviation_s", dev_s}}});
     if (dev_s < 0 || dev_s > 0.002) {
-      std::fprintf(stderr,
-                   "bench: bound formulas disagree with time_optimal_bounds.csv (%.4f s)\n", dev_s);
+      std::fprintf(stderr, "bench: bound formulas disagree with time_optimal_bounds.csv (%.4f s)\n",
+                   dev_s);
       return 1;
     }
   }

@@ -55,7 +55,8 @@ class TrackerClient {
  public:
   explicit TrackerClient(ClientKind kind, ClientPass pass = {}) : kind_(kind), pass_(pass) {
     cycle_ms_ = kind == ClientKind::kSatnogs ? 3000 : (kind == ClientKind::kGpredict ? 900 : 1000);
-    threshold_deg_ = kind == ClientKind::kSatnogs ? 4.0 : (kind == ClientKind::kGpredict ? 5.0 : 0.0);
+    threshold_deg_ =
+        kind == ClientKind::kSatnogs ? 4.0 : (kind == ClientKind::kGpredict ? 5.0 : 0.0);
   }
   /// Where the client wants the antenna for a sky position at `t_s`.
   SkyAzEl wanted(SkyAzEl sky, double t_s) const {

@@ -32,8 +32,8 @@ class StreamLead {
   struct Axis {
     bool have = false;
     float last_deg = 0.0f;
-    int dir = 0;     ///< sign of the last step that moved
-    int steady = 0;  ///< steps in a row in that direction
+    int dir = 0;            ///< sign of the last step that moved
+    int steady = 0;         ///< steps in a row in that direction
     float step_deg = 0.0f;  ///< the size of the last step
     /// Records a sent position (after the continuity rule: unwrapped).
     void note(float sent_deg);
