@@ -27,6 +27,10 @@ class StreamLead {
   /// direction, two that agree a steady one (the elevation's turn at
   /// culmination is led again two steps after it).
   static constexpr int kSteadySteps = 2;
+  /// The widest band: a client's threshold is a few degrees (Gpredict 5,
+  /// the SatNOGS client 4); a stream of larger steps (a GS-232 timed list
+  /// of 50 deg, the azimuth near the zenith) is led by no more than this.
+  static constexpr float kMaxBandDeg = 6.0f;
 
   /// One axis of the stream: its last sent position and direction.
   struct Axis {
@@ -64,11 +68,12 @@ class StreamLead {
   /// The band for `axis` of tolerance `tolerance_deg`: the client's
   /// threshold as measured, but no more than the axis moved since the
   /// client's last command (the axis that did not make the client send
-  /// moves little, and is led and held by as little), at least the
-  /// tolerance.
+  /// moves little, and is led and held by as little), at most
+  /// kMaxBandDeg, at least the tolerance.
   float band_deg(const Axis& axis, float tolerance_deg) const {
     const float moved = axis.step_deg < threshold_deg_ ? axis.step_deg : threshold_deg_;
-    const float b = kBandOfThreshold * moved;
+    float b = kBandOfThreshold * moved;
+    if (b > kMaxBandDeg) b = kMaxBandDeg;
     return b > tolerance_deg ? b : tolerance_deg;
   }
   Axis az;
