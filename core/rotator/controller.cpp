@@ -364,6 +364,8 @@ StreamLead::Plan Controller::lead_axis(const Axis& axis, float sent_deg,
   const AxisStatus& s = axis.status();
   const AxisConfig& c = axis.config();
   const bool at_rest = s.state == AxisState::kIdle && !s.has_target;
+  // An endless axis reads 0..360 and its stream wraps at north: not led.
+  if (c.continuous) return StreamLead::plan(sent_deg, s.position_deg, 0, at_rest, 0.0f, 0.0f, 0.0f);
   return StreamLead::plan(sent_deg, s.position_deg, stream.steady_dir(), at_rest,
                           lead_.band_deg(stream, c.tolerance_deg), c.min_deg, c.max_deg);
 }
