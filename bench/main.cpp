@@ -9,6 +9,7 @@
 
 #include "bounds.hpp"
 #include "care.hpp"
+#include "client_passes.hpp"
 #include "control_quality.hpp"
 #include "results.hpp"
 #include "tick_cost.hpp"
@@ -18,6 +19,9 @@
 int main(int argc, char** argv) {
   using namespace rotord::bench;
   const char* out_path = nullptr;
+  // --only GROUP[,GROUP]: run only these groups (bounds, control, tracking,
+  // tracking_mode, clients, care, tick), e.g. to measure one change quickly.
+  const char* only = nullptr;
   for (int i = 1; i < argc; ++i) {
     const bool ticks = std::strcmp(argv[i], "--ticks") == 0;
     if ((ticks || std::strcmp(argv[i], "--sim-only") == 0) && i + 1 < argc) {
@@ -25,27 +29,43 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out_path = argv[++i];
+    if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
     if (std::strcmp(argv[i], "--care") == 0) {  // the day unattended alone
       write_json(stdout, run_care_day());
       return 0;
     }
   }
+  const auto wanted = [only](const char* group) {
+    if (only == nullptr) return true;
+    const std::size_t n = std::strlen(group);
+    for (const char* p = only; (p = std::strstr(p, group)) != nullptr; p += n) {
+      const bool starts = p == only || p[-1] == ',';
+      if (starts && (p[n] == '\0' || p[n] == ',')) return true;
+    }
+    return false;
+  };
   std::vector<Result> results;
   int rows = 0;
-  const double dev_s =
-      max_csv_bound_deviation_s(ROTORD_BENCH_DATA_DIR "/time_optimal_bounds.csv", &rows);
-  results.push_back(
-      {"bounds/csv_check", {{"rows", static_cast<double>(rows)}}, {{"max_deviation_s", dev_s}}});
-  if (dev_s < 0 || dev_s > 0.002) {
-    std::fprintf(stderr, "bench: bound formulas disagree with time_optimal_bounds.csv (%.4f s)\n",
-                 dev_s);
-    return 1;
+  if (wanted("bounds")) {
+    const double dev_s =
+        max_csv_bound_deviation_s(ROTORD_BENCH_DATA_DIR "/time_optimal_bounds.csv", &rows);
+    results.push_back(
+        {"bounds/csv_check", {{"rows", static_cast<double>(rows)}}, {{"max_deviation_s", dev_s}}});
+    if (dev_s < 0 || dev_s > 0.002) {
+      std::fprintf(stderr, "bench: bound formulas disagree with time_optimal_bounds.csv (%.4f s)\n",
+                   dev_s);
+      return 1;
+    }
   }
-  for (Result& r : run_control_quality()) results.push_back(std::move(r));
-  for (Result& r : run_tracking_error()) results.push_back(std::move(r));
-  for (Result& r : run_tracking_mode()) results.push_back(std::move(r));
-  for (Result& r : run_care_day()) results.push_back(std::move(r));
-  results.push_back(run_tick_cost());
+  const auto add = [&results](std::vector<Result> rows_of_group) {
+    for (Result& r : rows_of_group) results.push_back(std::move(r));
+  };
+  if (wanted("control")) add(run_control_quality());
+  if (wanted("tracking")) add(run_tracking_error());
+  if (wanted("tracking_mode")) add(run_tracking_mode());
+  if (wanted("clients")) add(run_client_passes());
+  if (wanted("care")) add(run_care_day());
+  if (wanted("tick")) results.push_back(run_tick_cost());
   std::FILE* out = out_path ? std::fopen(out_path, "w") : stdout;
   if (out == nullptr) {
     std::perror(out_path);

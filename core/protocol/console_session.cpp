@@ -390,15 +390,19 @@ void ConsoleSession::write_listing(ByteSink& out) const {
 
 void ConsoleSession::write_more(std::size_t room_bytes, ByteSink& out) {
   if (listing_ == Listing::kNone) return;
-  if (controller_.settings().revision() != listing_revision_) {
+  if (listing_ != Listing::kHeld && controller_.settings().revision() != listing_revision_) {
     // Its windows would no longer join up.
     if (listing_sent_ > 0) out.write("\r\n");
     error(out, "the settings changed during the listing: ask again");
-  } else {
+  } else if (listing_ != Listing::kHeld) {
     WindowSink window(out, listing_sent_, room_bytes, WindowSink::Cut::kWhole);
     write_listing(window);
     listing_sent_ += window.written();
     if (listing_sent_ < window.total()) return;
+    if (window.written() > 0 && (held_ > 0 || hold_dropped_ > 0)) {
+      listing_ = Listing::kHeld;  // this window had its room
+      return;
+    }
   }
   listing_ = Listing::kNone;
   // What was typed meanwhile, in order.

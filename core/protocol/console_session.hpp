@@ -94,7 +94,9 @@ class ConsoleSession final : public Session {
   /// A reply longer than a transport takes at once, sent in windows of the
   /// bytes it has room for (write_more): rebuilt from the settings each time,
   /// so it costs no buffer.
-  enum class Listing : std::uint8_t { kNone, kExport, kList };
+  /// kHeld: the listing is out; what was typed during it is answered in
+  /// the next window (not beyond the room the last one had).
+  enum class Listing : std::uint8_t { kNone, kExport, kList, kHeld };
 
   void help(std::string_view args, ByteSink& out);
   void status(std::string_view args, ByteSink& out);

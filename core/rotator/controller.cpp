@@ -319,19 +319,55 @@ Error Controller::goto_axes(std::optional<float> az_deg, std::optional<float> el
   }
   if (az_.status().fault != AxisFault::kNone || (has_el_ && el_.status().fault != AxisFault::kNone))
     return Error::kFaulted;
+  // The lead rule: a tracker's stream moves each axis a lead ahead, or
+  // holds it while the target is within the band (rotator/stream_lead.hpp).
+  StreamLead::Plan az_plan, el_plan;
+  if (az_target) az_plan.aim_deg = *az_target;
+  if (el_deg) el_plan.aim_deg = *el_deg;
+  if (az_target && step.continues && settings_.b(Id::kTrackStreamLead)) {
+    lead_.az.note(*az_target);
+    if (el_deg) lead_.el.note(*el_deg);
+    // What the client saw: its error when it decided to send (a Gpredict
+    // sends only beyond its threshold, SatDump every cycle).
+    float seen = std::fabs(*az_target - az_.status().position_deg);
+    if (el_deg) seen = std::fmax(seen, std::fabs(*el_deg - el_.status().position_deg));
+    lead_.note_client_error(seen);
+    az_plan = lead_axis(az_, *az_target, lead_.az);
+    if (el_deg) el_plan = lead_axis(el_, *el_deg, lead_.el);
+    if (az_plan.hold || el_plan.hold || az_plan.aim_deg != *az_target ||
+        (el_deg && el_plan.aim_deg != *el_deg))
+      lead_.count_led();
+  } else if (az_target) {
+    lead_.reset();
+    lead_.az.note(*az_target);
+    if (el_deg) lead_.el.note(*el_deg);
+  }
   if (az_target) {
-    const Error e = az_.go_to(*az_target);
-    if (e != Error::kOk) return e;
+    if (!az_plan.hold) {
+      const Error e = az_.go_to(az_plan.aim_deg);
+      if (e != Error::kOk) return e;
+    }
     stream_.accept(step, *az_deg, *az_target, source, now_);
     if (shift_deg != 0.0f) stream_.count_resolved();
     az_shift_deg_ = shift_deg;
   }
-  if (el_deg) {
-    const Error e = el_.go_to(*el_deg);
+  if (el_deg && !el_plan.hold) {
+    const Error e = el_.go_to(el_plan.aim_deg);
     if (e != Error::kOk) return e;
   }
   if (az_target || el_deg) mode_ = Mode::kGoto;
   return Error::kOk;
+}
+
+StreamLead::Plan Controller::lead_axis(const Axis& axis, float sent_deg,
+                                       const StreamLead::Axis& stream) const {
+  const AxisStatus& s = axis.status();
+  const AxisConfig& c = axis.config();
+  const bool at_rest = s.state == AxisState::kIdle && !s.has_target;
+  // An endless axis reads 0..360 and its stream wraps at north: not led.
+  if (c.continuous) return StreamLead::plan(sent_deg, s.position_deg, 0, at_rest, 0.0f, 0.0f, 0.0f);
+  return StreamLead::plan(sent_deg, s.position_deg, stream.steady_dir(), at_rest,
+                          lead_.band_deg(stream, c.tolerance_deg), c.min_deg, c.max_deg);
 }
 
 Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman_ms) {

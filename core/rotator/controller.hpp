@@ -11,6 +11,7 @@
 #include "rotator/goto_match.hpp"
 #include "rotator/goto_stream.hpp"
 #include "rotator/recognition.hpp"
+#include "rotator/stream_lead.hpp"
 #include "rotator/tracker.hpp"
 #include "settings/settings.hpp"
 #include "tracking/track_plan.hpp"
@@ -172,6 +173,10 @@ class Controller {
   /// Go-tos the continuity rule put on another turn than the literal one
   /// (GET /metrics: rotord_goto_continuity_total).
   std::uint32_t continuity_resolved() const { return stream_.resolved_count(); }
+  /// Go-tos of a stream whose axes the lead rule led ahead or held
+  /// (rotator/stream_lead.hpp, track.stream_lead; GET /metrics:
+  /// rotord_goto_led_total).
+  std::uint32_t stream_led() const { return lead_.led_count(); }
 
   /// What the go-to stream of a client was recognised as following, and when
   /// and why the last recognition ended.
@@ -198,6 +203,9 @@ class Controller {
   /// Any command restarts the idle time park.after_idle_min counts, and
   /// ends a track.
   void note_command();
+  /// The lead rule's decision for one axis of a stream's go-to.
+  StreamLead::Plan lead_axis(const Axis& axis, float sent_deg,
+                             const StreamLead::Axis& stream) const;
   void end_track();
   /// A go-to's axes part: validates and moves, with the continuity rule.
   Error goto_axes(std::optional<float> az_deg, std::optional<float> el_deg, AzTarget az_mode,
@@ -236,6 +244,7 @@ class Controller {
   const hal::WallClock* utc_clock_ = nullptr;
   Tracker tracker_;
   GotoStream stream_;          // the continuity rule's view of the go-tos
+  StreamLead lead_;            // the lead rule's view of the same stream
   float az_shift_deg_ = 0.0f;  // what it added to the last go-to
   const tracking::TleCatalog* catalog_ = nullptr;
   GotoMatcher matcher_;  // what the stream follows; while recognised, holds the object

@@ -27,8 +27,9 @@ inline CommandSource source_of(const void* object) {
 class GotoStream {
  public:
   /// The longest pause between two go-tos of one stream: a low pass moves a
-  /// client's 5 deg threshold in half a minute or more.
-  static constexpr Millis kMaxGapMs = 60000;
+  /// client's 5 deg threshold in half a minute or more, and with the lead
+  /// rule (stream_lead.hpp) the antenna waits for about twice that.
+  static constexpr Millis kMaxGapMs = 150000;
   /// The largest step of a stream (and at most a quarter of the travel):
   /// near the zenith a client's azimuth steps by tens of degrees.
   static constexpr float kMaxStepDeg = 90.0f;

@@ -109,6 +109,10 @@ void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s
            "literal one (track.continuity: a pass through north kept in the overlap).");
   w.integer({}, c.continuity_resolved());
   write_recognition_metrics(w, c.recognition());
+  w.family("rotord_goto_led_total", "counter",
+           "Go-tos of a tracker's stream whose axes the lead rule sent ahead of the target or "
+           "left standing within the band (track.stream_lead: fewer motor starts).");
+  w.integer({}, c.stream_led());
   w.family("rotord_axis_limit_active", "gauge",
            "1 while that direction is blocked by a limit switch or soft limit.");
   for (std::size_t n = 0; n < count; ++n) {

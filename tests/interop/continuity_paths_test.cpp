@@ -4,7 +4,8 @@
 // 359, then 4 and 9) sent over REST (curl-like HTTP from one address), MQTT
 // (mosquitto_rr through a real Mosquitto broker) and PstRotator's UDP
 // messages ends on the turn continuous with it, 369 on the 450 deg G-5500,
-// not back at 9.
+// not back at 9 (the lead rule, docs/tracking.md "Fewer motor starts", sends
+// the axis of such a steady stream up to 6 deg further: 369..375).
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -40,6 +41,12 @@ double stream_across_north(DaemonProcess& daemon, const std::function<void(doubl
   return json_number(s, "target_deg", s.find("\"az\""));
 }
 
+/// 9 on the turn continuous with the stream (369), led by at most 6 deg.
+void expect_on_the_turn(double target_deg) {
+  EXPECT_GE(target_deg, 368.5);
+  EXPECT_LE(target_deg, 369.0 + 6.0);
+}
+
 TEST(ContinuityPaths, RestStreamAcrossNorthStaysOnItsTurn) {
   const std::string dir = make_temp_dir("rotord-continuity-rest");
   DaemonProcess daemon(
@@ -52,7 +59,7 @@ TEST(ContinuityPaths, RestStreamAcrossNorthStaysOnItsTurn) {
     EXPECT_EQ(r.status, 200) << r.body;
   });
   std::printf("[ continuity ] REST stream 340 -> 9 across north: az target %.1f\n", target);
-  EXPECT_NEAR(target, 369.0, 0.5);
+  expect_on_the_turn(target);
   run_command("rm -rf " + dir);
 }
 
@@ -80,7 +87,7 @@ TEST(ContinuityPaths, MqttStreamAcrossNorthStaysOnItsTurn) {
     EXPECT_NE(r.find("\"status\":200"), std::string::npos) << r;
   });
   std::printf("[ continuity ] MQTT stream 340 -> 9 across north: az target %.1f\n", target);
-  EXPECT_NEAR(target, 369.0, 0.5);
+  expect_on_the_turn(target);
   run_command("rm -rf " + dir);
 }
 
@@ -149,7 +156,7 @@ TEST(ContinuityPaths, PstRotatorUdpStreamAcrossNorthStaysOnItsTurn) {
   });
   std::printf("[ continuity ] PstRotator UDP stream 340 -> 9 across north: az target %.1f\n",
               target);
-  EXPECT_NEAR(target, 369.0, 0.5);
+  expect_on_the_turn(target);
   run_command("rm -rf " + dir);
 }
 

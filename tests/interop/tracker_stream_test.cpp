@@ -179,3 +179,60 @@ TEST(TrackerStream, WithTrackContinuityOffTheSameStreamTurnsTheLongWay) {
 
 }  // namespace
 }  // namespace rotord::testing
+
+namespace rotord::testing {
+namespace {
+
+TEST(TrackerStream, RotctlStreamingASatnogsMirroredPassGoesOverTheTop) {
+  // The SatNOGS client's flip as it sends it (past culmination az = 2 az_mid
+  // - az, el = 2 el_mid - el): the azimuth turns back once, the elevation
+  // goes on past 90. The simulated G-5500 (el 0..180) follows it over the
+  // top, on the same turn, with the lead rule on (the default).
+  DaemonProcess daemon({"--sim", "g5500", "--clock", "manual"});
+  ASSERT_TRUE(daemon.ready()) << daemon.output();
+  const std::string where = "127.0.0.1:" + std::to_string(daemon.ports().rotctld);
+  RotctlSession tracker(where);
+  ASSERT_TRUE(tracker.ok());
+  const auto other = [&where]() {
+    return numbers_in(run_command("timeout 20 rotctl -m 2 -r " + where + " p").out);
+  };
+  tracker.send("P 100 60\n");
+  std::vector<double> v;
+  for (int i = 0; i < 200; ++i) {
+    ASSERT_GE(daemon.advance_ms(1000), 0);
+    v = other();
+    if (v.size() == 2 && std::fabs(v[0] - 100.0) < 2.0 && std::fabs(v[1] - 60.0) < 2.0) break;
+  }
+  ASSERT_EQ(v.size(), 2u);
+  ASSERT_NEAR(v[1], 60.0, 2.0);
+  double az_lo = 1e9, az_hi = -1e9, el_hi = -1e9;
+  for (int i = 1; i <= 20; ++i) {
+    // Up to culmination at (127, 87), then mirrored back to (97, 117).
+    const double az = i <= 9 ? 100.0 + 3.0 * i : 127.0 - 3.0 * (i - 9);
+    const double el = i <= 9 ? 60.0 + 3.0 * i : 87.0 + 3.0 * (i - 9);
+    char cmd[48];
+    std::snprintf(cmd, sizeof cmd, "P %.2f %.2f\n", az, el);
+    tracker.send(cmd);
+    for (int step = 0; step < 4; ++step) {
+      ASSERT_GE(daemon.advance_ms(500), 0);
+      v = other();
+      ASSERT_EQ(v.size(), 2u);
+      az_lo = std::fmin(az_lo, v[0]);
+      az_hi = std::fmax(az_hi, v[0]);
+      el_hi = std::fmax(el_hi, v[1]);
+    }
+  }
+  for (int i = 0; i < 10; ++i) ASSERT_GE(daemon.advance_ms(1000), 0);
+  v = other();
+  ASSERT_EQ(v.size(), 2u);
+  std::printf("[ flip ] rotctl mirrored stream: az %.1f..%.1f, el up to %.1f, ends at %.1f %.1f\n",
+              az_lo, az_hi, el_hi, v[0], v[1]);
+  EXPECT_GT(el_hi, 110.0);       // over the top, as sent
+  EXPECT_GT(az_lo, 90.0);        // the azimuth turned back once ...
+  EXPECT_LT(az_hi, 135.0);       // ... and never round
+  EXPECT_NEAR(v[0], 97.0, 6.0);  // where it was sent, within the band
+  EXPECT_NEAR(v[1], 117.0, 6.0);
+}
+
+}  // namespace
+}  // namespace rotord::testing
