@@ -107,15 +107,7 @@ void Api::write_lock(JsonWriter& w, const Caller* caller) const {
 }
 
 void Api::send_locked(protocol::ByteSink& out, const ResponseOptions& options) {
-  const access::ControlLock& lock = ctx_.controller.control_lock();
-  const Millis left = lock.until() > transport_now_ ? lock.until() - transport_now_ : 0;
-  char message[160];
-  std::snprintf(message, sizeof message,
-                "another operator holds the control lock (%s, %lld s left); STOP still works",
-                lock.holder().kind == access::LockHolder::Kind::kToken ? lock.holder().label
-                                                                       : "a web session",
-                static_cast<long long>((left + 999) / 1000));
-  send_error(out, 423, message, options);
+  send_error(out, 423, commands_.locked_refusal().message, options);
 }
 
 Api::Outcome Api::login(const HttpRequest& request, protocol::ByteSink& out,

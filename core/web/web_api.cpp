@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "command/json_args.hpp"
 #include "json/json_reader.hpp"
 #include "util/slice.hpp"
 #include "util/utc_time.hpp"
@@ -90,88 +91,29 @@ void write_axis(JsonWriter& w, const AxisStatus& a, int sensor) {
   w.end_object().end_object();
 }
 
-/// The members of a small command body, checked against what the endpoint takes.
-struct Member {
-  Member(const char* member_name, JsonType member_type) : name(member_name), type(member_type) {}
-  const char* name;
-  JsonType type;
-  bool present = false;
-  JsonValue value;
-  char text_copy[16] = {};
-};
-
-/// Reads `body` (empty = {}) into `members`. On failure writes the 400 and
-/// returns false: bad JSON, an unknown member or a member of the wrong type.
-template <std::size_t N>
-bool read_members(std::string_view body, Member (&members)[N], protocol::ByteSink& out,
-                  const ResponseOptions& options) {
-  if (body.empty()) return true;
-  JsonObjectReader reader(body);
-  char message[160];
-  if (!reader.valid()) {
-    std::snprintf(message, sizeof(message), "invalid JSON: %s (byte %u)", reader.error(),
-                  static_cast<unsigned>(reader.error_offset()));
-    send_error(out, 400, message, options);
-    return false;
-  }
-  std::string_view key;
-  JsonValue value;
-  while (reader.next(key, value)) {
-    Member* found = nullptr;
-    for (Member& m : members)
-      if (key == m.name) found = &m;
-    if (found == nullptr) {
-      std::snprintf(message, sizeof(message), "unknown member '%.*s'",
-                    static_cast<int>(key.size() > 40 ? 40 : key.size()), key.data());
-      send_error(out, 400, message, options);
-      return false;
-    }
-    if (value.type != found->type) {
-      std::snprintf(message, sizeof(message), "%s must be a %s", found->name,
-                    json_type_name(found->type));
-      send_error(out, 400, message, options);
-      return false;
-    }
-    found->present = true;
-    found->value = value;
-    if (value.type == JsonType::kString) {
-      // The reader's scratch is reused for the next member; keep the few
-      // bytes the commands need (axis, dir, mode names).
-      found->value.text = {};
-      static_assert(JsonObjectReader::kMaxStringBytes >= 16);
-      std::size_t len = value.text.size() < 15 ? value.text.size() : 15;
-      if (value.text.size() > 15) len = 0;  // never a valid name
-      std::memcpy(found->text_copy, value.text.data(), len);
-      found->value.text = std::string_view(found->text_copy, len);
-    }
-  }
-  return true;
+/// A command's result as the REST API's response.
+void send_result(protocol::ByteSink& out, const ResponseOptions& options,
+                 const command::Result& r) {
+  send_json(out, command::http_status(r.status), options,
+            [&](JsonWriter& w) { command::write_result(w, r); });
 }
 
-void send_ok(protocol::ByteSink& out, const ResponseOptions& options) {
-  send_json(out, 200, options,
-            [](JsonWriter& w) { w.begin_object().member("ok", true).end_object(); });
+/// A command route's handler: the command layer runs it (the gate was
+/// passed in Api::handle).
+template <command::Id kId>
+Api::Outcome run_command(Api& api, const Api::Call& call) {
+  const command::Request request{api.authority(call.caller), call.peer, call.request.body};
+  send_result(call.out, call.options, api.commands().execute(kId, request));
+  return Api::Outcome::kDone;
 }
 
-/// Maps a refused command onto its HTTP status and message.
-void send_command_error(Error e, protocol::ByteSink& out, const ResponseOptions& options) {
-  switch (e) {
-    case Error::kFaulted:
-      return send_error(out, 409, "an axis has a latched fault: clear it with POST /api/reset",
-                        options);
-    case Error::kLimit:
-      return send_error(out, 409, "that direction is blocked by a limit", options);
-    case Error::kNotSupported:
-      return send_error(out, 422, "this rotator has no elevation axis", options);
-    case Error::kOutOfRange:
-      return send_error(out, 422, "outside the allowed range", options);
-    default:
-      return send_error(out, 422, error_name(e), options);
-  }
-}
-
-bool is_whole(double v) {
-  return std::floor(v) == v;
+/// A route row for a command of the command layer: its gate and help are
+/// the command's. Only STOP takes a body of any type: it must always work.
+template <command::Id kId>
+constexpr Api::Route command_route(std::string_view path) {
+  const command::Def& d = command::kCommandTable[static_cast<std::size_t>(kId)];
+  return {path,  true, d.gate.need, d.gate.locked, kId != command::Id::kStop, run_command<kId>,
+          d.help};
 }
 
 }  // namespace
@@ -179,7 +121,21 @@ bool is_whole(double v) {
 Api::Api(const ApiContext& context)
     : ctx_(context),
       auth_(WebAuth::Config{context.crypto, context.pbkdf2_iterations, context.pbkdf2_slice,
-                            context.log}) {}
+                            context.log}),
+      commands_(context.controller) {}
+
+command::Authority Api::authority(const Caller& caller) const {
+  const access::ControlLock& lock = ctx_.controller.control_lock();
+  command::Authority who;
+  if (WebAuth::enabled(ctx_.controller.settings())) {
+    who.granted = caller.may_administer() ? Need::kAdmin
+                  : caller.may_control()  ? Need::kControl
+                  : caller.may_read()     ? Need::kRead
+                                          : Need::kPublic;
+  }
+  who.holds_lock = lock.held() && caller.can_hold_lock() && lock.held_by(caller.holder);
+  return who;
+}
 
 void Api::write_status(JsonWriter& w) const {
   const Controller& c = ctx_.controller;
@@ -262,22 +218,7 @@ void Api::poll(Millis transport_now) {
   auth_.sessions().expire(transport_now);
   work();
   work_passes(ctx_.passes_poll_budget);
-  for (std::size_t n = 0; n < dead_man_.size(); ++n) {
-    DeadMan& d = dead_man_[n];
-    if (!d.armed || transport_now < d.until) continue;
-    d.armed = false;
-    const auto axis = static_cast<AxisId>(n);
-    const RotatorStatus s = ctx_.controller.status();
-    const AxisStatus& a = axis == AxisId::kAz ? s.az : s.el;
-    // Only the jog the hold started: a go-to given since stays.
-    if (a.jogging) ctx_.controller.move(axis, Direction::kNone);
-  }
-}
-
-void Api::arm_dead_man(AxisId axis, Millis hold_ms) {
-  DeadMan& d = dead_man_[static_cast<std::size_t>(axis)];
-  d.armed = hold_ms > 0;
-  d.until = transport_now_ + hold_ms;
+  commands_.poll(transport_now);
 }
 
 // The route table: every endpoint of the REST API, once. Paths are exact;
@@ -313,21 +254,15 @@ const Api::Route Api::kRoutes[] = {
        return O::kDone;
      },
      "the bearer tokens' names and scopes"},
-    {"/api/goto", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_goto(c); },
-     "go to az and/or el"},
-    {"/api/move", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_move(c); },
-     "hold-to-move with a dead-man"},
+    command_route<command::Id::kGoto>("/api/goto"),
+    command_route<command::Id::kMove>("/api/move"),
     // STOP: always, for anyone, with any body.
-    {"/api/stop", true, N::kPublic, false, false, [](Api& a, const Call& c) { return a.post_stop(c); },
-     "stop everything"},
-    {"/api/park", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_park(c); },
-     "go to the park position"},
+    command_route<command::Id::kStop>("/api/stop"),
+    command_route<command::Id::kPark>("/api/park"),
     {"/api/mode", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_mode(c); },
      "idle (stop) or park"},
-    {"/api/reset", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_reset(c); },
-     "stop, clear latched faults"},
-    {"/api/speed", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_speed(c); },
-     "speed in %"},
+    command_route<command::Id::kReset>("/api/reset"),
+    command_route<command::Id::kSpeed>("/api/speed"),
     {"/api/settings", true, N::kControl, true, true,
      [](Api& a, const Call& c) {
        a.post_settings(c.request.body, c.out, c.options, c.caller);
@@ -417,15 +352,14 @@ const Api::Route Api::kRoutes[] = {
     // Where the beam points (place_api.cpp, preset_api.cpp).
     {"/api/place", false, N::kRead, false, false, get_place,
      "the bearing and distance to a locator or lat/lon (no move)"},
-    {"/api/place", true, N::kControl, true, true, post_place,
-     "turn the beam to a locator or lat/lon, short or long path"},
+    command_route<command::Id::kPlace>("/api/place"),
     {"/api/sky", false, N::kRead, false, false, get_sky,
      "the station, the beamwidth, the Sun's and the Moon's positions (the map)"},
     {"/api/presets", false, N::kRead, false, false, get_presets, "the named headings"},
     {"/api/presets", true, N::kControl, true, true, post_presets,
      "add or replace a named heading (16 at most), saved"},
     {"/api/presets/delete", true, N::kControl, true, true, delete_preset, "remove a named heading"},
-    {"/api/preset", true, N::kControl, true, true, post_preset, "turn the beam to a named heading"},
+    command_route<command::Id::kPreset>("/api/preset"),
     {"/api/odometer", false, N::kRead, false, false, get_odometer, "the wear odometer"},
     {"/api/odometer/reset", true, N::kControl, true, true, post_odometer_reset,
      "reset the wear odometer, dated"},
@@ -447,7 +381,7 @@ bool Api::takes_method(const Route& route, std::string_view method) {
 }
 
 Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
-                         const ResponseOptions& options, const access::Peer& peer, Via via) {
+                         const ResponseOptions& options, const access::Peer& peer) {
   const std::string_view path = request.path;
   // PUT and DELETE change state as POST does (the tracking routes).
   const bool is_post = request.method == Method::kPost || request.method == Method::kPut ||
@@ -477,12 +411,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
   // Access control (docs/security.md).
   const Caller caller = auth_.identify(request, settings(), transport_now_);
   last_caller_ = caller;
-  if (via == Via::kBroker && route->need != Need::kPublic && route->need != Need::kControl) {
-    // The broker's authority covers commands, never access or reading state.
-    send_error(out, 403, "not from the broker: this needs the web login", options);
-    return Outcome::kDone;
-  }
-  if (via == Via::kHttp && WebAuth::enabled(settings()) && route->need != Need::kPublic) {
+  if (WebAuth::enabled(settings()) && route->need != Need::kPublic) {
     ResponseOptions o = options;
     o.extra_headers = "WWW-Authenticate: Bearer realm=\"rotord\"\r\n";
     if (ctx_.crypto == nullptr) {
@@ -512,19 +441,13 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
       return Outcome::kDone;
     }
   }
-  // Failed closed (the access settings could not be read at start-up):
-  // STOP, login and logout, and reading only, from anyone, until fixed.
-  if (settings().access_unreadable() && route->post && route->need != Need::kPublic) {
-    send_error(out, 503,
-               "the access settings in the stored settings cannot be read: only STOP and status "
-               "until they are fixed (docs/security.md)",
-               options);
-    return Outcome::kDone;
-  }
-  const access::ControlLock& held = ctx_.controller.control_lock();
-  if (route->locked && held.held() && (!caller.can_hold_lock() || !held.held_by(caller.holder))) {
-    count_auth_failure(false);
-    send_locked(out, options);
+  // The unreadable access settings and the control lock: the command
+  // layer's gate, the same for every route and every front end.
+  if (const command::Result r =
+          commands_.admit({route->need, route->locked, route->post}, authority(caller));
+      !r.ok()) {
+    if (r.status == command::Status::kLocked) count_auth_failure(false);
+    send_result(out, options, r);
     return Outcome::kDone;
   }
   // A state-changing row takes POST, or the methods it names (verbs).
@@ -594,205 +517,26 @@ Api::Outcome Api::get_schema(const Call& call) {
   return Outcome::kDone;
 }
 
-Api::Outcome Api::post_stop(const Call& call) {
-  dead_man_ = {};
-  ctx_.controller.stop();
-  send_ok(call.out, call.options);
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_goto(const Call& call) {
-  protocol::ByteSink& out = call.out;
-  const ResponseOptions& options = call.options;
-  Controller& c = ctx_.controller;
-  Member m[] = {
-      {"az", JsonType::kNumber}, {"el", JsonType::kNumber}, {"unwrapped", JsonType::kBool}};
-  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
-  if (!m[0].present && !m[1].present) {
-    send_error(out, 400, "give az and/or el (degrees)", options);
-    return Outcome::kDone;
-  }
-  const AzTarget mode =
-      m[2].present && m[2].value.boolean ? AzTarget::kUnwrapped : AzTarget::kCompass;
-  const Limits l = c.limits();
-  char message[128];
-  if (m[0].present && !c.resolve_az(static_cast<float>(m[0].value.number), mode)) {
-    std::snprintf(message, sizeof(message), "az %g is outside the travel %g..%g", m[0].value.number,
-                  static_cast<double>(l.az_min_deg), static_cast<double>(l.az_max_deg));
-    send_error(out, 422, message, options);
-    return Outcome::kDone;
-  }
-  if (m[1].present && l.has_el &&
-      (m[1].value.number < l.el_min_deg || m[1].value.number > l.el_max_deg)) {
-    std::snprintf(message, sizeof(message), "el %g is outside the travel %g..%g", m[1].value.number,
-                  static_cast<double>(l.el_min_deg), static_cast<double>(l.el_max_deg));
-    send_error(out, 422, message, options);
-    return Outcome::kDone;
-  }
-  std::optional<float> az;
-  std::optional<float> el;
-  if (m[0].present) az = static_cast<float>(m[0].value.number);
-  if (m[1].present) el = static_cast<float>(m[1].value.number);
-  // Each caller's address is its own stream for the continuity rule (MQTT
-  // arrives here as the broker).
-  const CommandSource source = (CommandSource{1} << 62) |
-                               (static_cast<CommandSource>(call.peer.kind) << 32) | call.peer.ipv4;
-  const Error e = c.go_to(az, el, mode, source);
-  if (e != Error::kOk) {
-    send_command_error(e, out, options);
-    return Outcome::kDone;
-  }
-  const RotatorStatus s = c.status();
-  send_json(out, 200, options, [&](JsonWriter& w) {
-    w.begin_object().member("ok", true).key("az_target");
-    if (az) {
-      w.number(s.az.target_deg);
-    } else {
-      w.null();
-    }
-    w.key("el_target");
-    if (el) {
-      w.number(s.el.target_deg);
-    } else {
-      w.null();
-    }
-    w.end_object();
-  });
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_move(const Call& call) {
-  protocol::ByteSink& out = call.out;
-  const ResponseOptions& options = call.options;
-  Controller& c = ctx_.controller;
-  Member m[] = {{"axis", JsonType::kString},
-                {"dir", JsonType::kString},
-                {"speed", JsonType::kNumber},
-                {"hold_ms", JsonType::kNumber}};
-  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
-  if (!m[1].present) {
-    send_error(out, 400, "give dir: cw, ccw, up, down or stop", options);
-    return Outcome::kDone;
-  }
-  const std::string_view dir_text = m[1].value.text;
-  Direction dir = Direction::kNone;
-  std::optional<AxisId> axis;
-  if (dir_text == "cw" || dir_text == "ccw") {
-    dir = dir_text == "cw" ? Direction::kCw : Direction::kCcw;
-  } else if (dir_text == "up" || dir_text == "down") {
-    dir = dir_text == "up" ? Direction::kCw : Direction::kCcw;
-    axis = AxisId::kEl;
-  } else if (dir_text != "stop") {
-    send_error(out, 422, "dir must be cw, ccw, up, down or stop", options);
-    return Outcome::kDone;
-  }
-  if (m[0].present) {
-    const std::string_view a = m[0].value.text;
-    if (a != "az" && a != "el") {
-      send_error(out, 422, "axis must be az or el", options);
-      return Outcome::kDone;
-    }
-    const AxisId named = a == "az" ? AxisId::kAz : AxisId::kEl;
-    if (axis && *axis != named) {
-      send_error(out, 422, "up and down move the elevation axis", options);
-      return Outcome::kDone;
-    }
-    axis = named;
-  }
-  int speed = -1;
-  if (m[2].present) {
-    const double v = m[2].value.number;
-    if (!is_whole(v) || v < 1 || v > 100) {
-      send_error(out, 422, "speed must be a whole number 1..100 (%)", options);
-      return Outcome::kDone;
-    }
-    speed = static_cast<int>(v);
-  }
-  Millis hold = kDefaultHoldMs;
-  if (m[3].present) {
-    const double v = m[3].value.number;
-    if (!is_whole(v) ||
-        (v != 0 && (v < static_cast<double>(kMinHoldMs) || v > static_cast<double>(kMaxHoldMs)))) {
-      send_error(out, 422, "hold_ms must be 0 (no dead-man) or 100..10000", options);
-      return Outcome::kDone;
-    }
-    hold = static_cast<Millis>(v);
-  }
-  if (dir == Direction::kNone && !axis) {
-    dead_man_ = {};
-    c.stop();
-    send_ok(out, options);
-    return Outcome::kDone;
-  }
-  const AxisId moved = axis.value_or(AxisId::kAz);
-  const Error e = c.move(moved, dir, speed);
-  if (e != Error::kOk) {
-    send_command_error(e, out, options);
-    return Outcome::kDone;
-  }
-  arm_dead_man(moved, dir == Direction::kNone ? 0 : hold);
-  send_ok(out, options);
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_park(const Call& call) {
-  if (const Error e = ctx_.controller.park(); e != Error::kOk) {
-    send_command_error(e, call.out, call.options);
-    return Outcome::kDone;
-  }
-  send_ok(call.out, call.options);
-  return Outcome::kDone;
-}
-
 Api::Outcome Api::post_mode(const Call& call) {
-  protocol::ByteSink& out = call.out;
-  const ResponseOptions& options = call.options;
-  Controller& c = ctx_.controller;
-  Member m[] = {{"mode", JsonType::kString}};
-  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
+  // A REST alias: "idle" is STOP, "park" the park command.
+  command::Member m[] = {{"mode", JsonType::kString}};
+  if (const command::Result bad = command::read_members(call.request.body, m); !bad.ok()) {
+    send_result(call.out, call.options, bad);
+    return Outcome::kDone;
+  }
   const std::string_view mode = m[0].value.text;
+  const command::Request request{authority(call.caller), call.peer, {}};
   if (!m[0].present) {
-    send_error(out, 400, "give mode: idle or park", options);
-  } else if (mode == "idle") {
-    c.stop();
-    send_ok(out, options);
-  } else if (mode == "park") {
-    const Error e = c.park();
-    if (e != Error::kOk) {
-      send_command_error(e, out, options);
-    } else {
-      send_ok(out, options);
-    }
+    send_error(call.out, 400, "give mode: idle or park", call.options);
+  } else if (mode == "idle" || mode == "park") {
+    send_result(
+        call.out, call.options,
+        commands_.execute(mode == "idle" ? command::Id::kStop : command::Id::kPark, request));
   } else if (mode == "goto" || mode == "manual") {
-    send_error(out, 422, "goto and manual start with POST /api/goto and /api/move", options);
+    send_error(call.out, 422, "goto and manual start with POST /api/goto and /api/move",
+               call.options);
   } else {
-    send_error(out, 422, "mode must be idle or park", options);
-  }
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_reset(const Call& call) {
-  if (ctx_.controller.reset() == Error::kOk) {
-    send_ok(call.out, call.options);
-  } else {
-    send_error(call.out, 409, "the emergency stop is active: release it, then reset", call.options);
-  }
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_speed(const Call& call) {
-  protocol::ByteSink& out = call.out;
-  const ResponseOptions& options = call.options;
-  Controller& c = ctx_.controller;
-  Member m[] = {{"speed_pct", JsonType::kNumber}};
-  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
-  if (!m[0].present) {
-    send_error(out, 400, "give speed_pct", options);
-  } else if (!is_whole(m[0].value.number) ||
-             c.set_speed_pct(static_cast<int>(m[0].value.number)) != Error::kOk) {
-    send_error(out, 422, "speed_pct must be a whole number 1..100", options);
-  } else {
-    send_ok(out, options);
+    send_error(call.out, 422, "mode must be idle or park", call.options);
   }
   return Outcome::kDone;
 }

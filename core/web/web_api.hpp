@@ -4,6 +4,7 @@
 #include <span>
 #include <string_view>
 
+#include "command/commands.hpp"
 #include "hal/clock_sync.hpp"
 #include "hal/storage.hpp"
 #include "hal/wall_clock.hpp"
@@ -85,9 +86,6 @@ struct ApiContext {
 /// too (it would not fit the Pico's stack).
 class Api {
  public:
-  static constexpr Millis kDefaultHoldMs = 1000;
-  static constexpr Millis kMinHoldMs = 100;
-  static constexpr Millis kMaxHoldMs = 10000;
   /// The stored settings document (json/settings_json.hpp).
   static constexpr std::size_t kMaxDocumentBytes = kMaxSettingsDocumentBytes;
 
@@ -100,8 +98,8 @@ class Api {
 
   /// Who may call a route once access control is on (web.password set):
   /// kPublic anyone, kRead a login or any token, kControl a login or a
-  /// control token, kAdmin the web login only.
-  enum class Need : unsigned char { kPublic, kRead, kControl, kAdmin };
+  /// control token, kAdmin the web login only (command/commands.hpp).
+  using Need = command::Need;
   /// What a route's handler is given.
   struct Call {
     const HttpRequest& request;
@@ -132,20 +130,12 @@ class Api {
   static std::span<const Route> routes();
   /// Whether a state-changing row takes `method` ("POST", or its verbs).
   static bool takes_method(const Route& route, std::string_view method);
-  /// Who vouches for a request. kHttp: the web's own access control (a
-  /// login or a token once web.password is set). kBroker: a command from the
-  /// MQTT broker, which carries no login: mqtt.control, the broker's ACLs and
-  /// access.control_networks (checked by the MQTT bridge) are its authority,
-  /// so the web login is not asked for; the control lock still is (the
-  /// broker never holds it), and the web-login-only routes are refused.
-  enum class Via : unsigned char { kHttp, kBroker };
   /// Answers one request whose path starts with /api/, from `peer`.
   /// kStartEvents: the response head of an event stream went out and events
   /// follow (poll). kPending: a login or a new password is being hashed;
   /// the session asks finish_pending() on each poll until it answers.
   Outcome handle(const HttpRequest& request, protocol::ByteSink& out,
-                 const ResponseOptions& options, const access::Peer& peer = {},
-                 Via via = Via::kHttp);
+                 const ResponseOptions& options, const access::Peer& peer = {});
 
   /// The ticket of the request that just went kPending.
   std::uint32_t pending_ticket() const { return auth_.job().ticket; }
@@ -188,6 +178,10 @@ class Api {
   /// The live state: GET /api/status and every event of /api/events.
   void write_status(JsonWriter& w) const;
   Controller& controller() { return ctx_.controller; }
+  /// The command layer every command route (and MQTT) runs through.
+  command::Commands& commands() { return commands_; }
+  /// What `caller` was granted by the web's access control.
+  command::Authority authority(const Caller& caller) const;
   WebAuth& auth() { return auth_; }
   /// Saves the settings as POST /api/settings does; false when that fails
   /// (the presets, place_api.hpp).
@@ -212,13 +206,7 @@ class Api {
   Outcome get_events(const Call& call);
   Outcome get_station(const Call& call);
   Outcome get_schema(const Call& call);
-  Outcome post_stop(const Call& call);
-  Outcome post_goto(const Call& call);
-  Outcome post_move(const Call& call);
-  Outcome post_park(const Call& call);
   Outcome post_mode(const Call& call);
-  Outcome post_reset(const Call& call);
-  Outcome post_speed(const Call& call);
   Outcome post_reboot(const Call& call);
   // Set-up (setup_api.cpp).
   Outcome get_setup(const Call& call);
@@ -275,28 +263,19 @@ class Api {
 
   /// Acts on a computed slow hash: a login's session, a password's storage.
   void complete_job();
-  /// 423 with the lock's holder and time left.
-  void send_locked(protocol::ByteSink& out, const ResponseOptions& options);
   /// The lock's state: {"held", "mine", "by", "remaining_s"}.
   void write_lock(JsonWriter& w, const Caller* caller) const;
+  /// 423 with the lock's holder and time left (the command layer's words).
+  void send_locked(protocol::ByteSink& out, const ResponseOptions& options);
   void send_changed(protocol::ByteSink& out, const ResponseOptions& options,
                     const SettingSet& changed);
 
-  /// Hold-to-move's dead-man per axis, on the transport's clock: hold_ms is
-  /// the client's time, whatever `--speedup` or `--clock manual` does to
-  /// controller time.
-  struct DeadMan {
-    bool armed = false;
-    Millis until = 0;
-  };
-  void arm_dead_man(AxisId axis, Millis hold_ms);
-
   ApiContext ctx_;
   WebAuth auth_;
+  command::Commands commands_;
   const StationSource* station_ = nullptr;
   Caller last_caller_;
   Millis transport_now_ = 0;
-  std::array<DeadMan, 2> dead_man_{};
   settings::Settings scratch_;
   settings::Settings backup_;
   SettingErrors errors_;
