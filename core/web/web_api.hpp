@@ -200,6 +200,15 @@ class Api {
     if (ctx_.metrics != nullptr) ctx_.metrics->protocol(metrics::Protocol::kHttp).on_auth_failure();
   }
   static const Route kRoutes[];
+  /// handle()'s steps, each answering (and returning nullptr or false) when
+  /// the request stops there: the route (404, 405), the caller's login or
+  /// token (401, 403), the method and the body's type (405, 415).
+  const Route* find_route(const HttpRequest& request, protocol::ByteSink& out,
+                          const ResponseOptions& options, bool& allows_get);
+  bool authenticate(const Route& route, const Caller& caller, const access::Peer& peer,
+                    protocol::ByteSink& out, const ResponseOptions& options);
+  bool takes_body(const Route& route, const HttpRequest& request, bool allows_get,
+                  protocol::ByteSink& out, const ResponseOptions& options);
 
   // The REST commands (web_api.cpp); the access endpoints are in auth_api.cpp.
   Outcome get_status(const Call& call);
@@ -258,11 +267,17 @@ class Api {
   void post_track(const HttpRequest& request, protocol::ByteSink& out,
                   const ResponseOptions& options);
   void write_track(JsonWriter& w) const;
+  /// Starts the search GET /api/passes asks for; false when refused (answered).
+  bool start_pass_search(const char* object, int hours, double min_el, std::int64_t utc_ms,
+                         protocol::ByteSink& out, const ResponseOptions& options);
   /// Continues a pass search GET /api/passes began (poll()).
   void work_passes(int evaluations);
 
   /// Acts on a computed slow hash: a login's session, a password's storage.
   void complete_job();
+  void fail_login(WebAuth::Job& job, const char* who);
+  void complete_login(WebAuth::Job& job, const char* who);
+  void complete_password(WebAuth::Job& job, const char* who);
   /// The lock's state: {"held", "mine", "by", "remaining_s"}.
   void write_lock(JsonWriter& w, const Caller* caller) const;
   /// 423 with the lock's holder and time left (the command layer's words).
