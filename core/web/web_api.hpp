@@ -210,7 +210,8 @@ class Api {
   bool takes_body(const Route& route, const HttpRequest& request, bool allows_get,
                   protocol::ByteSink& out, const ResponseOptions& options);
 
-  // The REST commands (web_api.cpp); the access endpoints are in auth_api.cpp.
+  // The live state (status_api.cpp); the REST aliases and reboot (web_api.cpp);
+  // the commands themselves are the command layer's (command/commands.hpp).
   Outcome get_status(const Call& call);
   Outcome get_events(const Call& call);
   Outcome get_station(const Call& call);
@@ -234,7 +235,8 @@ class Api {
   /// Saves the settings; false (nothing answered) when that fails.
   bool save();
 
-  // Access control's endpoints (auth_api.cpp).
+  // Access control's endpoints (auth_api.cpp: login, password; token_api.cpp:
+  // tokens, the lock).
   Outcome login(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
                 const access::Peer& peer);
   void logout(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
@@ -250,7 +252,7 @@ class Api {
   void lock(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
             Caller caller);
   void unlock(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
-  // Tracking's endpoints (track_api.cpp).
+  // Tracking's endpoints (track_api.cpp, tle_api.cpp, passes_api.cpp).
   void handle_track(const HttpRequest& request, protocol::ByteSink& out,
                     const ResponseOptions& options);
   Outcome run_track(const Call& call) {
