@@ -10,18 +10,9 @@
 #include "util/text.hpp"
 
 namespace rotord::protocol {
-namespace {
 
-using gs232::detail::parse_field;
-using gs232::detail::send;
 using gs232::detail::upper;
-
 using settings::Id;
-
-constexpr int kMaxStepS = 999;
-constexpr int kMaxElDeg = 180;
-
-}  // namespace
 
 // The command table. Its order is the help pages' order: a row is listed on
 // every page its help_pages bit names (T, N and S on both pages 1 and 2).
