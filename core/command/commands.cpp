@@ -1,6 +1,7 @@
 #include "command/commands.hpp"
 
 #include <cmath>
+#include <cstring>
 
 #include "command/json_args.hpp"
 
@@ -84,16 +85,21 @@ void Commands::arm_dead_man(AxisId axis, Millis hold_ms) {
   d.until = transport_now_ + hold_ms;
 }
 
-Result Commands::stop(const Request&) {
+void Commands::stop_all() {
   dead_man_ = {};
   controller_.stop();
+}
+
+Result Commands::stop(const Request&) {
+  stop_all();
   return ok();
 }
 
 Result Commands::go_to(const Request& r) {
   Member m[] = {
       {"az", JsonType::kNumber}, {"el", JsonType::kNumber}, {"unwrapped", JsonType::kBool}};
-  if (Result bad = read_members(r.body, m); !bad.ok()) return bad;
+  Result done = ok(Reply::kGoto);
+  if (!read_members(r.body, m, done)) return done;
   if (!m[0].present && !m[1].present)
     return refused(Status::kBadRequest, "give az and/or el (degrees)");
   const AzTarget mode =
@@ -117,7 +123,6 @@ Result Commands::go_to(const Request& r) {
   if (const Error e = controller_.go_to(az, el, mode, source); e != Error::kOk)
     return refused_by(e);
   const RotatorStatus s = controller_.status();
-  Result done = ok(Reply::kGoto);
   done.has_az_target = az.has_value();
   done.has_el_target = el.has_value();
   done.az_target_deg = s.az.target_deg;
@@ -156,7 +161,7 @@ Result Commands::move(const Request& r) {
                 {"dir", JsonType::kString},
                 {"speed", JsonType::kNumber},
                 {"hold_ms", JsonType::kNumber}};
-  if (Result bad = read_members(r.body, m); !bad.ok()) return bad;
+  if (Result bad; !read_members(r.body, m, bad)) return bad;
   if (!m[1].present) return refused(Status::kBadRequest, "give dir: cw, ccw, up, down or stop");
   Direction dir = Direction::kNone;
   std::optional<AxisId> axis;
@@ -196,7 +201,7 @@ Result Commands::reset(const Request&) {
 
 Result Commands::speed(const Request& r) {
   Member m[] = {{"speed_pct", JsonType::kNumber}};
-  if (Result bad = read_members(r.body, m); !bad.ok()) return bad;
+  if (Result bad; !read_members(r.body, m, bad)) return bad;
   if (!m[0].present) return refused(Status::kBadRequest, "give speed_pct");
   if (!is_whole(m[0].value.number) ||
       controller_.set_speed_pct(static_cast<int>(m[0].value.number)) != Error::kOk)
@@ -207,24 +212,28 @@ Result Commands::speed(const Request& r) {
 Result Commands::place(const Request& r) {
   Result done = ok(Reply::kPlace);
   if (Result bad = read_place(r.body, done.place); !bad.ok()) return bad;
-  done.aim = aim_at(controller_, done.place);
-  if (!done.aim.reachable) return refused(Status::kUnprocessable, done.aim.why);
-  if (const Error e = turn_to(controller_, done.aim); e != Error::kOk) return refused_by(e);
+  const PlaceAim aim = aim_at(controller_, done.place);
+  if (!aim.reachable) return refused(Status::kUnprocessable, aim.why);
+  if (const Error e = turn_to(controller_, aim); e != Error::kOk) return refused_by(e);
+  done.bearing = aim.bearing;
   return done;
 }
 
 Result Commands::preset(const Request& r) {
   PresetBody b;
   if (const char* why = read_preset_body(r.body, b, true)) return refused(Status::kBadRequest, why);
-  Result done = ok(Reply::kPreset);
-  if (!settings::find_preset(controller_.settings(), b.name, &done.preset))
+  settings::Preset p;
+  if (!settings::find_preset(controller_.settings(), b.name, &p))
     return refused(Status::kNotFound, "no preset of that name");
-  if (const Error e = turn_beam_to(controller_, done.preset.az_deg); e != Error::kOk) {
+  if (const Error e = turn_beam_to(controller_, p.az_deg); e != Error::kOk) {
     const Limits l = controller_.limits();
     return refusedf(e == Error::kFaulted ? Status::kConflict : Status::kUnprocessable,
-                    "%s: heading %.1f, travel %g..%g", error_name(e), done.preset.az_deg,
+                    "%s: heading %.1f, travel %g..%g", error_name(e), p.az_deg,
                     static_cast<double>(l.az_min_deg), static_cast<double>(l.az_max_deg));
   }
+  Result done = ok(Reply::kPreset);
+  done.preset_az_deg = p.az_deg;
+  std::memcpy(done.preset_name, p.name, sizeof done.preset_name);
   return done;
 }
 

@@ -80,6 +80,8 @@ class Commands {
   /// Runs a command whose gate the front end already passed through admit().
   Result execute(Id id, const Request& r) { return (this->*def(id).run)(r); }
 
+  /// STOP, with nothing to answer (MQTT's refused body still stops).
+  void stop_all();
   // The commands (commands.cpp), each with its argument checks.
   Result stop(const Request& r);
   Result go_to(const Request& r);

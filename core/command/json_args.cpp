@@ -10,24 +10,30 @@ using web::JsonObjectReader;
 using web::JsonType;
 using web::JsonValue;
 
-Result read_members(std::string_view body, std::span<Member> members) {
-  if (body.empty()) return {};
+bool read_members(std::string_view body, std::span<Member> members, Result& refusal) {
+  if (body.empty()) return true;
   JsonObjectReader reader(body);
-  if (!reader.valid())
-    return refusedf(Status::kBadRequest, "invalid JSON: %s (byte %u)", reader.error(),
-                    static_cast<unsigned>(reader.error_offset()));
+  if (!reader.valid()) {
+    refusal = refusedf(Status::kBadRequest, "invalid JSON: %s (byte %u)", reader.error(),
+                       static_cast<unsigned>(reader.error_offset()));
+    return false;
+  }
   std::string_view key;
   JsonValue value;
   while (reader.next(key, value)) {
     Member* found = nullptr;
     for (Member& m : members)
       if (key == m.name) found = &m;
-    if (found == nullptr)
-      return refusedf(Status::kBadRequest, "unknown member '%.*s'",
-                      static_cast<int>(key.size() > 40 ? 40 : key.size()), key.data());
-    if (value.type != found->type)
-      return refusedf(Status::kBadRequest, "%s must be a %s", found->name,
-                      json_type_name(found->type));
+    if (found == nullptr) {
+      refusal = refusedf(Status::kBadRequest, "unknown member '%.*s'",
+                         static_cast<int>(key.size() > 40 ? 40 : key.size()), key.data());
+      return false;
+    }
+    if (value.type != found->type) {
+      refusal = refusedf(Status::kBadRequest, "%s must be a %s", found->name,
+                         json_type_name(found->type));
+      return false;
+    }
     found->present = true;
     found->value = value;
     if (value.type == JsonType::kString) {
@@ -41,7 +47,7 @@ Result read_members(std::string_view body, std::span<Member> members) {
       found->value.text = std::string_view(found->text_copy, len);
     }
   }
-  return {};
+  return true;
 }
 
 namespace {

@@ -21,9 +21,10 @@ struct Member {
   char text_copy[16] = {};
 };
 
-/// Reads `body` (empty = {}) into `members`. kOk, or a 400: bad JSON, an
-/// unknown member or a member of the wrong type.
-Result read_members(std::string_view body, std::span<Member> members);
+/// Reads `body` (empty = {}) into `members`; false with `refusal` a 400 on
+/// bad JSON, an unknown member or a member of the wrong type. (The caller's
+/// Result, not a second one: each is ~250 bytes of the Pico W's stack.)
+bool read_members(std::string_view body, std::span<Member> members, Result& refusal);
 
 /// The place a body names ({"locator"} or {"lat","lon"}, "path"); kOk or a 400.
 Result read_place(std::string_view body, PlaceQuery& q);

@@ -99,11 +99,15 @@ void write_result(web::JsonWriter& w, const Result& r) {
         w.null();
       }
       break;
-    case Reply::kPlace:
-      write_aim(w, r.place, r.aim);
+    case Reply::kPlace: {
+      PlaceAim aim;  // a reply only when reachable: no why
+      aim.bearing = r.bearing;
+      aim.reachable = true;
+      write_aim(w, r.place, aim);
       break;
+    }
     case Reply::kPreset:
-      w.member("name", r.preset.name).member("az_deg", r.preset.az_deg);
+      w.member("name", std::string_view(r.preset_name)).member("az_deg", r.preset_az_deg);
       break;
   }
   w.end_object();

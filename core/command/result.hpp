@@ -31,19 +31,21 @@ enum class Reply : unsigned char { kOk, kGoto, kPlace, kPreset };
 
 struct Result {
   Status status = Status::kOk;
-  /// Why, when refused (a sentence in the API's wording).
-  char message[160] = {};
   Reply reply = Reply::kOk;
   // kGoto: the targets the axes took (null when not asked for).
   bool has_az_target = false;
   bool has_el_target = false;
   float az_target_deg = 0;
   float el_target_deg = 0;
-  // kPlace: where, and the bearing.
+  // kPlace: where, and the bearing (a reply only when reachable). Kept
+  // small: a Result lives on the Pico W's 4 KB stack under an lwIP callback.
   PlaceQuery place;
-  PlaceAim aim;
+  tracking::Bearing bearing;
   // kPreset: the preset turned to.
-  settings::Preset preset;
+  double preset_az_deg = 0;
+  char preset_name[settings::kPresetNameMaxBytes + 1] = {};
+  /// Why, when refused (a sentence in the API's wording).
+  char message[128] = {};
 
   bool ok() const { return status == Status::kOk; }
 };

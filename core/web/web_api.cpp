@@ -322,6 +322,16 @@ bool Api::takes_body(const Route& route, const HttpRequest& request, bool allows
   return true;
 }
 
+bool Api::pass_gate(const Route& route, const Caller& caller, protocol::ByteSink& out,
+                    const ResponseOptions& options) {
+  const command::Result r =
+      commands_.admit({route.need, route.locked, route.post}, authority(caller));
+  if (r.ok()) return true;
+  if (r.status == command::Status::kLocked) count_auth_failure(false);
+  send_result(out, options, r);
+  return false;
+}
+
 Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
                          const ResponseOptions& options, const access::Peer& peer) {
   bool allows_get = false;
@@ -333,13 +343,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
   if (!authenticate(*route, caller, peer, out, options)) return Outcome::kDone;
   // The unreadable access settings and the control lock: the command
   // layer's gate, the same for every route and every front end.
-  if (const command::Result r =
-          commands_.admit({route->need, route->locked, route->post}, authority(caller));
-      !r.ok()) {
-    if (r.status == command::Status::kLocked) count_auth_failure(false);
-    send_result(out, options, r);
-    return Outcome::kDone;
-  }
+  if (!pass_gate(*route, caller, out, options)) return Outcome::kDone;
   if (!takes_body(*route, request, allows_get, out, options)) return Outcome::kDone;
   return route->run(*this, Call{request, out, options, caller, peer});
 }
@@ -347,7 +351,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
 Api::Outcome Api::post_mode(const Call& call) {
   // A REST alias: "idle" is STOP, "park" the park command.
   command::Member m[] = {{"mode", JsonType::kString}};
-  if (const command::Result bad = command::read_members(call.request.body, m); !bad.ok()) {
+  if (command::Result bad; !command::read_members(call.request.body, m, bad)) {
     send_result(call.out, call.options, bad);
     return Outcome::kDone;
   }
