@@ -14,7 +14,7 @@
 # Bottom to top (the order the libraries are defined in).
 set(ROTORD_LAYERS
     util hal motion access tracking sensors settings json storage input axis care net rotator
-    protocol metrics loop web mqtt)
+    command protocol metrics loop web mqtt)
 
 # Errors, text, CRC-32, time, and the ids every layer shares (AxisId,
 # Direction) and the ByteSink every writer streams into.
@@ -55,6 +55,12 @@ set(ROTORD_LAYER_care axis json hal)
 set(ROTORD_LAYER_net access settings)
 # The Controller: axes, buttons, park, the control lock.
 set(ROTORD_LAYER_rotator axis care input tracking settings access)
+# The command layer: each command a client may send (go-to, move, stop,
+# park, reset, speed, place, preset) once, with its argument checks (read
+# from JSON: the REST body and the MQTT payload are the same document), who
+# may call it, the control lock, and its errors as values; the front ends
+# above only translate bytes.
+set(ROTORD_LAYER_command rotator json)
 # Byte sessions of the line protocols; the allow-list from net; the settings
 # document's JSON codec for the console's export and import.
 set(ROTORD_LAYER_protocol rotator net json)
@@ -67,10 +73,11 @@ set(ROTORD_LAYER_loop metrics)
 # HTTP session, REST API, the metrics page, the embedded web UI.
 # It reads the tick schedule and the settings saver's counters through the
 # metrics::Registry, not from loop and storage themselves.
-set(ROTORD_LAYER_web protocol rotator json metrics)
-# MQTT (docs/mqtt.md): state, commands through the REST API's handlers, Home
-# Assistant discovery, the station table; above web, whose API it calls.
-set(ROTORD_LAYER_mqtt web)
+set(ROTORD_LAYER_web command protocol rotator json metrics)
+# MQTT (docs/mqtt.md): state, commands straight to the command layer, Home
+# Assistant discovery, the station table; above web, whose status document
+# it publishes.
+set(ROTORD_LAYER_mqtt web command)
 
 # --- Outside the core (checked with -DSOURCE_DIR, as the build does) ---
 # The simulator (sim/) models the plant behind the hal interfaces and the

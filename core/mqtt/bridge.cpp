@@ -5,6 +5,7 @@
 #include <cstring>
 #include <iterator>
 
+#include "command/commands.hpp"
 #include "json/json_writer.hpp"
 #include "mqtt/fixed_sink.hpp"
 #include "net/line_access.hpp"
@@ -15,17 +16,6 @@ namespace {
 
 using settings::Id;
 
-/// The commands the broker may send: the REST API's POST endpoints of the
-/// same names. STOP is obeyed whatever mqtt.control says.
-constexpr std::string_view kCommands[] = {"goto",  "move",  "stop",  "park",
-                                          "reset", "speed", "place", "preset"};
-
-bool known_command(std::string_view name) {
-  for (std::string_view c : kCommands)
-    if (c == name) return true;
-  return false;
-}
-
 int tenths(float deg) {
   return std::isfinite(deg) ? static_cast<int>(std::lround(deg * 10.0f)) : 0;
 }
@@ -35,23 +25,6 @@ std::size_t copy_text(std::string_view from, char* out, std::size_t cap) {
   if (n > 0) std::memcpy(out, from.data(), n);  // an empty view's data() may be null
   out[n] = '\0';
   return n;
-}
-
-/// Splits an HTTP response into its status and body.
-int response_status(std::string_view response, std::string_view& body) {
-  body = {};
-  if (response.size() < 12 || text::slice(response, 0, 5) != "HTTP/") return 500;
-  const std::size_t space = response.find(' ');
-  if (space == std::string_view::npos || space + 4 > response.size()) return 500;
-  int status = 0;
-  for (std::size_t i = space + 1; i < space + 4; ++i) {
-    const char c = response[i];
-    if (c < '0' || c > '9') return 500;
-    status = status * 10 + (c - '0');
-  }
-  const std::size_t end = response.find("\r\n\r\n");
-  if (end != std::string_view::npos) body = text::slice(response, end + 4);
-  return status;
 }
 
 }  // namespace
@@ -164,53 +137,51 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
   }
   ++commands_handled_;
   char name_copy[16];
-  const std::string_view command(name_copy,
-                                 copy_text(text::slice(name, 0, 15), name_copy, sizeof name_copy));
-  if (!known_command(name)) {
+  const std::string_view cmd(name_copy,
+                             copy_text(text::slice(name, 0, 15), name_copy, sizeof name_copy));
+  // The command layer's table: the REST API's POST endpoints of the same
+  // names, with the same arguments, checks and errors.
+  const command::Def* def = command::Commands::find(name);
+  if (def == nullptr) {
     publish_result(
-        command, 404,
+        cmd, 404,
         R"({"error":"unknown command: use goto, move, stop, park, reset, speed, place or preset"})");
     return;
   }
+  command::Commands& commands = api_->commands();
+  const bool stop = def->id == command::Id::kStop;
   if (oversized || payload.size() > kMaxCommandBytes) {
     // STOP needs no body: it is obeyed even when the body is refused.
-    if (command == "stop") api_->controller().stop();
-    publish_result(command, 413, R"j({"error":"command body too large (512 bytes at most)"})j");
+    if (stop) commands.stop_all();
+    publish_result(cmd, 413, R"j({"error":"command body too large (512 bytes at most)"})j");
     return;
   }
-  if (command != "stop" && !api_->settings().b(Id::kMqttControl)) {
-    publish_result(command, 403,
+  if (!stop && !api_->settings().b(Id::kMqttControl)) {
+    publish_result(cmd, 403,
                    R"({"error":"mqtt.control is off: only stop is obeyed from the broker"})");
     return;
   }
-  if (command != "stop" && !access::may_control(api_->settings(), broker_peer_)) {
+  if (!stop && !access::may_control(api_->settings(), broker_peer_)) {
     // The line protocols' allow-list, applied to the broker's address (the
     // REST API's answer to a read-only caller is a 403 too).
     publish_result(
-        command, 403,
+        cmd, 403,
         R"({"error":"read-only: the broker's address is not in access.control_networks"})");
     return;
   }
-  // The REST API's own handler, as the broker (no web login: mqtt.control,
-  // the broker's ACLs and the allow-list above vouch for the command; the
-  // control lock still refuses it): the same bodies, validation and errors.
-  char path[24];
-  std::snprintf(path, sizeof path, "/api/%.*s", static_cast<int>(command.size()), command.data());
-  web::HttpRequest request;
-  request.method = web::Method::kPost;
-  request.method_text = "POST";
-  request.path = path;
-  request.json_body = true;
-  request.keep_alive = true;
-  request.body = payload;
+  // mqtt.control, the broker's ACLs and the allow-list above vouch for the
+  // command (no web login); the control lock still refuses it (the broker
+  // never holds it).
+  const command::Request request{{command::Need::kControl, false}, broker_peer_, payload};
+  const command::Result r = commands.run(def->id, request);
   FixedSink sink(state_, sizeof state_);  // free between state publishes
-  web::ResponseOptions options;
-  api_->handle(request, sink, options, broker_peer_, web::Api::Via::kBroker);
-  std::string_view body;
-  const int status = sink.overflowed() ? 500 : response_status(sink.view(), body);
-  if (body.empty()) body = R"({"error":"no response"})";
+  {
+    web::JsonWriter w(sink);
+    command::write_result(w, r);
+  }
   // state_ holds the body until publish_result copies it into message_.
-  publish_result(command, status, body);
+  publish_result(cmd, sink.overflowed() ? 500 : command::http_status(r.status),
+                 sink.overflowed() ? std::string_view(R"({"error":"no response"})") : sink.view());
 }
 
 void Bridge::publish_result(std::string_view command, int status, std::string_view body) {

@@ -57,49 +57,12 @@ Limits RotctldSession::reported_limits(const Controller& controller) {
   return l;
 }
 
-template <typename... Args>
-void RotctldSession::value(const char* label, const char* fmt, Args... args) {
-  if (extended_) reply_.format("%s: ", label);
-  reply_.format(fmt, args...);
-  reply_.put(separator_);
-}
-
 HamlibError RotctldSession::execute(const Command& command) {
   switch (command.op) {
-    case Op::kSetPos: {
-      double az = 0;
-      double el = 0;
-      if (!rotctld::scan_float(arg(0), az) || !rotctld::scan_float(arg(1), el))
-        return HamlibError::kInvalid;
-      // Checked as rot_set_position() checks against the dump_state limits,
-      // in float like Hamlib, so what model 2 accepts we accept.
-      const float az_deg = static_cast<float>(az);
-      const float el_deg = static_cast<float>(el);
-      const Limits l = reported_limits(controller_);
-      if (az_deg < l.az_min_deg || az_deg > l.az_max_deg || el_deg < l.el_min_deg ||
-          el_deg > l.el_max_deg)
-        return HamlibError::kInvalid;
-      // Hamlib clients send the position they want, overlap included: 420 on
-      // a 450 deg rotator is 420, and 60 is 60 wherever the rotator is;
-      // except in a tracker's stream, which the continuity rule keeps on
-      // its turn (Gpredict sends 0.5 after 359.5, meaning 360.5).
-      std::optional<float> el_target;
-      if (controller_.has_el()) el_target = el_deg;
-      const Error e = controller_.go_to(az_deg, el_target, AzTarget::kUnwrapped, source());
-      if (e == Error::kOk)
-        frame_.note_goto(az_deg, controller_.az_continuity_shift_deg(),
-                         controller_.last_goto_recognised(), el_deg);
-      return from(e);
-    }
-    case Op::kGetPos: {
-      RotatorStatus s = controller_.status();
-      if (!s.az.position_valid || (s.el.present && !s.el.position_valid)) return HamlibError::kIo;
-      frame_.read(s.az.position_deg, s.el.position_deg,
-                  controller_.recognised_az_deg());  // as this client sent it
-      value("Azimuth", "%.2f", az_reading(s, 2));
-      value("Elevation", "%.2f", s.el.present ? two_decimals(s.el.position_deg) : 0.0);
-      return HamlibError::kOk;
-    }
+    case Op::kSetPos:
+      return set_pos();
+    case Op::kGetPos:
+      return get_pos();
     case Op::kPark:
       return from(controller_.park());
     case Op::kStop:
@@ -112,37 +75,15 @@ HamlibError RotctldSession::execute(const Command& command) {
     }
     case Op::kMove:
       return move(arg(0), arg(1));
-    case Op::kSetLevel: {
-      if (arg(0) == "?") {
-        reply_.append("SPEED \n");
-        return HamlibError::kOk;
-      }
-      if (arg(0) != "SPEED") return HamlibError::kNotAvailable;  // as rotctld: no such level
-      long pct = 0;
-      if (!rotctld::scan_whole_int(arg(1), pct)) return HamlibError::kInvalid;
-      if (pct < 1 || pct > 100) return HamlibError::kInvalid;
-      return from(controller_.set_speed_pct(static_cast<int>(pct)));
-    }
+    case Op::kSetLevel:
+      return set_level();
     case Op::kGetLevel:
-      if (arg(0) == "?") {
-        reply_.append("SPEED \n");
-        return HamlibError::kOk;
-      }
-      if (arg(0) != "SPEED") return HamlibError::kInvalid;
-      // Printed "%d\n" even in extended mode, as rotctld does.
-      reply_.format("%d\n", controller_.status().speed_pct);
-      return HamlibError::kOk;
+      return get_level();
     case Op::kSetFunc:
     case Op::kGetFunc:
     case Op::kSetParm:
     case Op::kGetParm:
-      // No functions or parameters: "?" lists none, a name is unknown (the
-      // codes are rotctld's for an unknown name).
-      if (arg(0) == "?") {
-        reply_.put('\n');
-        return HamlibError::kOk;
-      }
-      return command.op == Op::kSetFunc ? HamlibError::kNotAvailable : HamlibError::kInvalid;
+      return func_or_parm(command.op);
     case Op::kSetConf:
       if (arg(1).empty()) return HamlibError::kInvalid;
       return set_conf(arg(0), arg(1));
@@ -170,22 +111,80 @@ HamlibError RotctldSession::execute(const Command& command) {
       // stdout, not to the client) and answers the client RPRT 0 alone; so
       // does rotord. `\get_conf ?` lists the tokens to a client.
       return HamlibError::kOk;
-    case Op::kPause: {
-      long seconds = 0;
-      if (!rotctld::scan_whole_int(arg(0), seconds) || seconds < 0 || seconds > kMaxPauseS)
-        return HamlibError::kInvalid;
-      if (seconds > 0) {
-        paused_ = true;
-        // On the transport's clock, from the next poll(): controller time
-        // runs N times faster under `rotord --speedup N`.
-        pause_started_ = false;
-        pause_ms_ = static_cast<Millis>(seconds) * 1000;
-      }
-      return HamlibError::kOk;
-    }
+    case Op::kPause:
+      return pause();
     default:
       return locator_helper(command.op);
   }
+}
+
+HamlibError RotctldSession::get_pos() {
+  RotatorStatus s = controller_.status();
+  if (!s.az.position_valid || (s.el.present && !s.el.position_valid)) return HamlibError::kIo;
+  frame_.read(s.az.position_deg, s.el.position_deg,
+              controller_.recognised_az_deg());  // as this client sent it
+  value("Azimuth", "%.2f", az_reading(s, 2));
+  value("Elevation", "%.2f", s.el.present ? two_decimals(s.el.position_deg) : 0.0);
+  return HamlibError::kOk;
+}
+
+HamlibError RotctldSession::func_or_parm(Op op) {
+  // No functions or parameters: "?" lists none, a name is unknown (the
+  // codes are rotctld's for an unknown name).
+  if (arg(0) == "?") {
+    reply_.put('\n');
+    return HamlibError::kOk;
+  }
+  return op == Op::kSetFunc ? HamlibError::kNotAvailable : HamlibError::kInvalid;
+}
+
+HamlibError RotctldSession::set_pos() {
+  double az = 0;
+  double el = 0;
+  if (!rotctld::scan_float(arg(0), az) || !rotctld::scan_float(arg(1), el))
+    return HamlibError::kInvalid;
+  // Checked as rot_set_position() checks against the dump_state limits,
+  // in float like Hamlib, so what model 2 accepts we accept.
+  const float az_deg = static_cast<float>(az);
+  const float el_deg = static_cast<float>(el);
+  const Limits l = reported_limits(controller_);
+  if (az_deg < l.az_min_deg || az_deg > l.az_max_deg || el_deg < l.el_min_deg ||
+      el_deg > l.el_max_deg)
+    return HamlibError::kInvalid;
+  // Hamlib clients send the position they want, overlap included: 420 on
+  // a 450 deg rotator is 420, and 60 is 60 wherever the rotator is;
+  // except in a tracker's stream, which the continuity rule keeps on
+  // its turn (Gpredict sends 0.5 after 359.5, meaning 360.5).
+  std::optional<float> el_target;
+  if (controller_.has_el()) el_target = el_deg;
+  const Error e = controller_.go_to(az_deg, el_target, AzTarget::kUnwrapped, source());
+  if (e == Error::kOk)
+    frame_.note_goto(az_deg, controller_.az_continuity_shift_deg(),
+                     controller_.last_goto_recognised(), el_deg);
+  return from(e);
+}
+
+HamlibError RotctldSession::set_level() {
+  if (arg(0) == "?") {
+    reply_.append("SPEED \n");
+    return HamlibError::kOk;
+  }
+  if (arg(0) != "SPEED") return HamlibError::kNotAvailable;  // as rotctld: no such level
+  long pct = 0;
+  if (!rotctld::scan_whole_int(arg(1), pct)) return HamlibError::kInvalid;
+  if (pct < 1 || pct > 100) return HamlibError::kInvalid;
+  return from(controller_.set_speed_pct(static_cast<int>(pct)));
+}
+
+HamlibError RotctldSession::get_level() {
+  if (arg(0) == "?") {
+    reply_.append("SPEED \n");
+    return HamlibError::kOk;
+  }
+  if (arg(0) != "SPEED") return HamlibError::kInvalid;
+  // Printed "%d\n" even in extended mode, as rotctld does.
+  reply_.format("%d\n", controller_.status().speed_pct);
+  return HamlibError::kOk;
 }
 
 HamlibError RotctldSession::move(std::string_view direction, std::string_view speed) {
@@ -386,81 +385,6 @@ HamlibError RotctldSession::get_conf(std::string_view token) {
   reply_.format("%.*s=%.*s\n", static_cast<int>(name.size()), name.data(), static_cast<int>(n),
                 text);
   return HamlibError::kOk;
-}
-
-HamlibError RotctldSession::locator_helper(Op op) {
-  // rotctl's helpers read their numbers with a plain sscanf ("%lf"/"%d").
-  double d[4] = {};
-  long n[4] = {};
-  auto real = [&](std::size_t i) { return rotctld::scan_float(arg(i), d[i], false); };
-  auto integer = [&](std::size_t i) { return rotctld::scan_int(arg(i), n[i]); };
-  switch (op) {
-    case Op::kLonLat2Loc: {
-      if (!real(0) || !real(1) || !integer(2)) return HamlibError::kInvalid;
-      char locator[16];
-      if (!rotctld::lonlat_to_locator(d[0], d[1], static_cast<int>(n[2] / 2), locator,
-                                      sizeof(locator)))
-        return HamlibError::kInvalid;
-      value("Locator", "%s", locator);
-      return HamlibError::kOk;
-    }
-    case Op::kLoc2LonLat: {
-      const std::optional<rotctld::LonLat> p = rotctld::locator_to_lonlat(arg(0));
-      if (!p) return HamlibError::kInvalid;
-      value("Longitude", "%f", p->lon_deg);
-      value("Latitude", "%f", p->lat_deg);
-      return HamlibError::kOk;
-    }
-    case Op::kDms2Dec:
-      if (!integer(0) || !integer(1) || !real(2) || !integer(3)) return HamlibError::kInvalid;
-      value("Dec Degrees", "%f",
-            rotctld::dms_to_decimal(static_cast<int>(n[0]), static_cast<int>(n[1]), d[2],
-                                    static_cast<int>(n[3])));
-      return HamlibError::kOk;
-    case Op::kDec2Dms: {
-      if (!real(0)) return HamlibError::kInvalid;
-      const rotctld::Dms r = rotctld::decimal_to_dms(d[0]);
-      value("Degrees", "%d", r.degrees);
-      value("Minutes", "%d", r.minutes);
-      value("Seconds", "%f", r.seconds);
-      value("S/W", "%d", r.south_west);
-      return HamlibError::kOk;
-    }
-    case Op::kDmmm2Dec:
-      if (!integer(0) || !real(1) || !integer(2)) return HamlibError::kInvalid;
-      value("Dec Deg", "%f",
-            rotctld::dmmm_to_decimal(static_cast<int>(n[0]), d[1], static_cast<int>(n[2])));
-      return HamlibError::kOk;
-    case Op::kDec2Dmmm: {
-      if (!real(0)) return HamlibError::kInvalid;
-      const rotctld::Dms r = rotctld::decimal_to_dms(d[0]);
-      value("Degrees", "%d", r.degrees);
-      value("Dec Minutes", "%f", r.minutes + r.seconds / 60.0);
-      value("S/W", "%d", r.south_west);
-      return HamlibError::kOk;
-    }
-    case Op::kQrb: {
-      if (!real(0) || !real(1) || !real(2) || !real(3)) return HamlibError::kInvalid;
-      const std::optional<rotctld::Qrb> q = rotctld::qrb(d[0], d[1], d[2], d[3]);
-      if (!q) return HamlibError::kInvalid;
-      value("QRB Distance", "%f", q->distance_km);
-      value("QRB Azimuth", "%f", q->azimuth_deg);
-      return HamlibError::kOk;
-    }
-    case Op::kAzSp2AzLp: {
-      if (!real(0)) return HamlibError::kInvalid;
-      const std::optional<double> lp = rotctld::long_path_azimuth(d[0]);
-      if (!lp) return HamlibError::kInvalid;
-      value("Long Path Deg", "%f", *lp);
-      return HamlibError::kOk;
-    }
-    case Op::kDistSp2DistLp:
-      if (!real(0)) return HamlibError::kInvalid;
-      value("Long Path km", "%f", rotctld::long_path_km(d[0]));
-      return HamlibError::kOk;
-    default:
-      return HamlibError::kNotImplemented;
-  }
 }
 
 }  // namespace rotord::protocol

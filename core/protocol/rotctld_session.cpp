@@ -3,6 +3,7 @@
 // argument; see docs/protocols/rotctld.md for the rules and the deviations.
 #include "protocol/rotctld_session.hpp"
 
+#include "protocol/rotctld_number.hpp"
 #include "rotator/controller.hpp"
 #include "util/slice.hpp"
 
@@ -280,6 +281,20 @@ void RotctldSession::end_command() {
   command_ = nullptr;
   arg_count_ = 0;
   state_ = State::kCommand;
+}
+
+rotctld::HamlibError RotctldSession::pause() {
+  long seconds = 0;
+  if (!rotctld::scan_whole_int(arg(0), seconds) || seconds < 0 || seconds > kMaxPauseS)
+    return rotctld::HamlibError::kInvalid;
+  if (seconds > 0) {
+    paused_ = true;
+    // On the transport's clock, from the next poll(): controller time
+    // runs N times faster under `rotord --speedup N`.
+    pause_started_ = false;
+    pause_ms_ = static_cast<Millis>(seconds) * 1000;
+  }
+  return rotctld::HamlibError::kOk;
 }
 
 }  // namespace rotord::protocol

@@ -90,11 +90,21 @@ class RotctldSession final : public Session {
   void value(const char* label, const char* fmt, Args... args);
   rotctld::HamlibError set_conf(std::string_view token, std::string_view text);
   rotctld::HamlibError get_conf(std::string_view token);
+  // The commands with more to them than a line (rotctld_handlers.cpp).
+  rotctld::HamlibError set_pos();
+  rotctld::HamlibError get_pos();
+  /// No functions or parameters: the answers rotctld gives for an unknown one.
+  rotctld::HamlibError func_or_parm(rotctld::Op op);
+  rotctld::HamlibError set_level();
+  rotctld::HamlibError get_level();
+  rotctld::HamlibError pause();
   rotctld::HamlibError move(std::string_view direction, std::string_view speed);
   void status_flags();
   void dump_state();
   void dump_caps();
   rotctld::HamlibError locator_helper(rotctld::Op op);
+  /// The degrees/minutes/seconds helpers (dms2dec and the like).
+  rotctld::HamlibError angle_helper(rotctld::Op op);
 
   Controller& controller_;
   ClientFrame frame_;  // the azimuth frame this client sends in
@@ -129,5 +139,12 @@ class RotctldSession final : public Session {
 
   rotctld::ReplyBuffer reply_{rotctld::kReplyRules};
 };
+
+template <typename... Args>
+inline void RotctldSession::value(const char* label, const char* fmt, Args... args) {
+  if (extended_) reply_.format("%s: ", label);
+  reply_.format(fmt, args...);
+  reply_.put(separator_);
+}
 
 }  // namespace rotord::protocol

@@ -122,7 +122,15 @@ bool HttpRequestParser::parse_head() {
   std::string_view line = text::slice(head, 0, eol);
   std::string_view headers =
       eol == std::string_view::npos ? std::string_view{} : text::slice(head, eol + 1);
+  if (!parse_request_line(line) || !parse_header_lines(headers)) return false;
+  if (content_length_ > kMaxBodyBytes) {
+    fail(413, "request body too large");
+    return false;
+  }
+  return true;
+}
 
+bool HttpRequestParser::parse_request_line(std::string_view line) {
   // Request line: METHOD SP request-target SP HTTP-version
   const std::size_t sp1 = line.find(' ');
   const std::size_t sp2 = sp1 == std::string_view::npos ? sp1 : line.find(' ', sp1 + 1);
@@ -165,7 +173,10 @@ bool HttpRequestParser::parse_head() {
                        ? std::string_view{}
                        : text::slice(target, question + 1, std::string_view::npos);
   request_.keep_alive = version == "HTTP/1.1";
+  return true;
+}
 
+bool HttpRequestParser::parse_header_lines(std::string_view headers) {
   while (!headers.empty()) {
     const std::size_t nl = headers.find('\n');
     const std::string_view field = text::slice(headers, 0, nl);
@@ -187,10 +198,6 @@ bool HttpRequestParser::parse_head() {
       }
     }
     if (!parse_header(name, trim_ows(text::slice(field, colon + 1)))) return false;
-  }
-  if (content_length_ > kMaxBodyBytes) {
-    fail(413, "request body too large");
-    return false;
   }
   return true;
 }

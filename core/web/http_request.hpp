@@ -63,6 +63,8 @@ class HttpRequestParser {
 
   Status fail(int status, const char* message);
   bool parse_head();
+  bool parse_request_line(std::string_view line);
+  bool parse_header_lines(std::string_view headers);
   bool parse_header(std::string_view name, std::string_view value);
 
   State state_ = State::kStart;

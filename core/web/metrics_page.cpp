@@ -84,6 +84,12 @@ void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s
                 c.faults_latched(all[n].id, kind));
     }
   }
+}
+
+/// The counters and outputs of each axis (write_axes: its state).
+void write_axis_counters(PrometheusWriter& w, const Controller& c, const RotatorStatus& s) {
+  const AxisView all[] = {{"az", AxisId::kAz, &s.az}, {"el", AxisId::kEl, &s.el}};
+  const std::size_t count = s.el.present ? 2 : 1;
   w.family("rotord_axis_stalls_total", "counter",
            "Stalls (driven, not moving) latched since the controller started; the same as "
            "rotord_axis_faults_total{kind=\"stall\"}.");
@@ -204,6 +210,7 @@ void write_metrics(PrometheusWriter& w, const Controller& controller,
     w.value({}, static_cast<double>(now_us - registry->start_us) / 1e6);
   }
   write_axes(w, controller, s);
+  write_axis_counters(w, controller, s);
   w.family("rotord_mode", "gauge", "1 for the controller's mode now, 0 for the others.");
   for (const Mode m : {Mode::kIdle, Mode::kGoto, Mode::kManual, Mode::kPark, Mode::kTrack})
     w.integer({{"mode", mode_name(m)}}, s.mode == m ? 1 : 0);

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "json/json_reader.hpp"
+#include "command/result.hpp"
 #include "rotator/place.hpp"
 #include "tracking/sun_moon.hpp"
 #include "web/query.hpp"
@@ -37,59 +37,6 @@ const char* place_from_query(std::string_view query, PlaceQuery& q) {
   return why;
 }
 
-/// The place a POST body names; nullptr, or why not.
-const char* place_from_body(std::string_view body, PlaceQuery& q, char* why_buf, std::size_t cap) {
-  JsonObjectReader reader(body);
-  if (!reader.valid()) return "invalid JSON";
-  std::string_view key;
-  JsonValue value;
-  bool has_locator = false, has_lat = false, has_lon = false;
-  double lat = 0, lon = 0;
-  char path[8] = "short";
-  while (reader.next(key, value)) {
-    const bool number = value.type == JsonType::kNumber;
-    const bool text = value.type == JsonType::kString;
-    if (key == "locator" && text) {
-      if (const char* why = place_from_locator(value.text, q)) return why;
-      has_locator = true;
-    } else if (key == "lat" && number) {
-      lat = value.number;
-      has_lat = true;
-    } else if (key == "lon" && number) {
-      lon = value.number;
-      has_lon = true;
-    } else if (key == "path" && text) {
-      // A word longer than "short" is no path: kept as "?" to be refused.
-      const std::size_t n = value.text.size() < sizeof path ? value.text.size() : 0;
-      if (n > 0) std::memcpy(path, value.text.data(), n);
-      path[n] = n == 0 ? '?' : '\0';
-      path[n == 0 ? 1 : n] = '\0';
-    } else {
-      std::snprintf(why_buf, cap, "'%.*s' is not a member here (locator, lat, lon, path)",
-                    static_cast<int>(key.size() > 24 ? 24 : key.size()), key.data());
-      return why_buf;
-    }
-  }
-  if (!reader.valid()) return "invalid JSON";
-  if (has_locator == (has_lat || has_lon)) return "give locator, or lat and lon";
-  if (!has_locator) {
-    if (!has_lat || !has_lon) return "give both lat and lon";
-    if (const char* why = place_from_lat_lon(lat, lon, q)) return why;
-  }
-  return place_path(path, q);
-}
-
-void write_aim(JsonWriter& w, const PlaceQuery& q, const PlaceAim& aim) {
-  w.key("to").begin_object();
-  if (q.locator[0] != '\0') w.member("locator", q.locator);
-  w.member("lat_deg", q.to.lat_deg).member("lon_deg", q.to.lon_deg).end_object();
-  w.member("path", q.path == tracking::Path::kLong ? "long" : "short")
-      .member("bearing_deg", std::round(aim.bearing.azimuth_deg * 100.0) / 100.0)
-      .member("distance_km", std::round(aim.bearing.distance_km * 10.0) / 10.0)
-      .member("reachable", aim.reachable);
-  if (!aim.reachable) w.member("why", aim.why);
-}
-
 /// A body's sub-point (where it is overhead) and where the station sees it.
 void write_body(JsonWriter& w, const tracking::Observer& o, tracking::Body body,
                 std::int64_t unix_ms) {
@@ -115,35 +62,7 @@ Api::Outcome get_place(Api& api, const Api::Call& call) {
   const PlaceAim aim = aim_at(api.controller(), q);
   send_json(call.out, 200, call.options, [&](JsonWriter& w) {
     w.begin_object();
-    write_aim(w, q, aim);
-    w.end_object();
-  });
-  return Api::Outcome::kDone;
-}
-
-Api::Outcome post_place(Api& api, const Api::Call& call) {
-  PlaceQuery q;
-  char why_buf[80];
-  if (const char* why = place_from_body(call.request.body, q, why_buf, sizeof why_buf)) {
-    send_error(call.out, 400, why, call.options);
-    return Api::Outcome::kDone;
-  }
-  const PlaceAim aim = aim_at(api.controller(), q);
-  if (!aim.reachable) {
-    send_error(call.out, 422, aim.why, call.options);
-    return Api::Outcome::kDone;
-  }
-  const Error e = turn_to(api.controller(), aim);
-  if (e != Error::kOk) {
-    send_error(call.out, e == Error::kFaulted ? 409 : 422,
-               e == Error::kFaulted ? "an axis has a latched fault: clear it with POST /api/reset"
-                                    : error_name(e),
-               call.options);
-    return Api::Outcome::kDone;
-  }
-  send_json(call.out, 200, call.options, [&](JsonWriter& w) {
-    w.begin_object().member("ok", true);
-    write_aim(w, q, aim);
+    command::write_aim(w, q, aim);
     w.end_object();
   });
   return Api::Outcome::kDone;

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "json/json_reader.hpp"
+#include "command/json_args.hpp"
 #include "rotator/place.hpp"
 #include "settings/preset.hpp"
 #include "web/place_api.hpp"
@@ -15,44 +15,7 @@ namespace {
 
 using settings::Preset;
 
-struct PresetBody {
-  char name[settings::kPresetNameMaxBytes + 1] = {};
-  bool has_name = false;
-  bool has_az = false;
-  double az_deg = 0;
-  bool long_path = false;
-};
-
-/// Reads {"name", "az", "long_path"}; nullptr, or why not.
-const char* read_body(std::string_view body, PresetBody& b, bool name_only) {
-  JsonObjectReader reader(body);
-  if (!reader.valid()) return "invalid JSON";
-  std::string_view key;
-  JsonValue value;
-  while (reader.next(key, value)) {
-    if (key == "name" && value.type == JsonType::kString) {
-      if (value.truncated) return "a preset name is at most 20 bytes";
-      if (const char* why = settings::check_preset_name(value.text)) return why;
-      std::memcpy(b.name, value.text.data(), value.text.size());
-      b.name[value.text.size()] = '\0';
-      b.has_name = true;
-    } else if (!name_only && key == "az" && value.type == JsonType::kNumber) {
-      b.az_deg = value.number;
-      b.has_az = true;
-    } else if (!name_only && key == "long_path" && value.type == JsonType::kBool) {
-      b.long_path = value.boolean;
-    } else {
-      return name_only ? "the body is {\"name\": ...}"
-                       : "the body is {\"name\": ..., \"az\": degrees, \"long_path\": bool}";
-    }
-  }
-  if (!reader.valid()) return "invalid JSON";
-  if (!b.has_name) return "give the preset's name";
-  if (!name_only && !b.has_az) return "give az (degrees, 0..360)";
-  if (!name_only && (!std::isfinite(b.az_deg) || b.az_deg < 0.0 || b.az_deg > 360.0))
-    return "az is outside 0..360";
-  return nullptr;
-}
+using command::PresetBody;
 
 void write_presets(JsonWriter& w, const settings::Settings& s) {
   w.begin_object().member("max", static_cast<int>(settings::kPresetCount));
@@ -100,7 +63,7 @@ Api::Outcome get_presets(Api& api, const Api::Call& call) {
 
 Api::Outcome post_presets(Api& api, const Api::Call& call) {
   PresetBody b;
-  if (const char* why = read_body(call.request.body, b, false)) {
+  if (const char* why = command::read_preset_body(call.request.body, b, false)) {
     send_error(call.out, 400, why, call.options);
     return Api::Outcome::kDone;
   }
@@ -127,7 +90,7 @@ Api::Outcome post_presets(Api& api, const Api::Call& call) {
 
 Api::Outcome delete_preset(Api& api, const Api::Call& call) {
   PresetBody b;
-  if (const char* why = read_body(call.request.body, b, true)) {
+  if (const char* why = command::read_preset_body(call.request.body, b, true)) {
     send_error(call.out, 400, why, call.options);
     return Api::Outcome::kDone;
   }
@@ -140,33 +103,6 @@ Api::Outcome delete_preset(Api& api, const Api::Call& call) {
   if (!store(api, *slot, {}, call)) return Api::Outcome::kDone;
   send_json(call.out, 200, call.options,
             [&](JsonWriter& w) { write_presets(w, api.controller().settings()); });
-  return Api::Outcome::kDone;
-}
-
-Api::Outcome post_preset(Api& api, const Api::Call& call) {
-  PresetBody b;
-  if (const char* why = read_body(call.request.body, b, true)) {
-    send_error(call.out, 400, why, call.options);
-    return Api::Outcome::kDone;
-  }
-  Preset p;
-  if (!settings::find_preset(api.controller().settings(), b.name, &p)) {
-    send_error(call.out, 404, "no preset of that name", call.options);
-    return Api::Outcome::kDone;
-  }
-  const Error e = turn_beam_to(api.controller(), p.az_deg);
-  if (e != Error::kOk) {
-    char why[96];
-    const Limits l = api.controller().limits();
-    std::snprintf(why, sizeof why, "%s: heading %.1f, travel %g..%g", error_name(e), p.az_deg,
-                  static_cast<double>(l.az_min_deg), static_cast<double>(l.az_max_deg));
-    send_error(call.out, e == Error::kFaulted ? 409 : 422, why, call.options);
-    return Api::Outcome::kDone;
-  }
-  send_json(call.out, 200, call.options, [&](JsonWriter& w) {
-    w.begin_object().member("ok", true).member("name", p.name).member("az_deg", p.az_deg);
-    w.end_object();
-  });
   return Api::Outcome::kDone;
 }
 

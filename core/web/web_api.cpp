@@ -4,174 +4,41 @@
 #include <cstdio>
 #include <cstring>
 
+#include "command/json_args.hpp"
 #include "json/json_reader.hpp"
 #include "util/slice.hpp"
 #include "util/utc_time.hpp"
 #include "web/care_api.hpp"
 #include "web/place_api.hpp"
-#include "web/recognition_report.hpp"
 
 namespace rotord::web {
 namespace {
 
 using settings::Id;
 
-const char* dir_name(Direction d) {
-  return d == Direction::kCw ? "cw" : d == Direction::kCcw ? "ccw" : "none";
+/// A command's result as the REST API's response.
+void send_result(protocol::ByteSink& out, const ResponseOptions& options,
+                 const command::Result& r) {
+  send_json(out, command::http_status(r.status), options,
+            [&](JsonWriter& w) { command::write_result(w, r); });
 }
 
-const char* lower_name(const char* upper, char* buf, std::size_t cap) {
-  std::size_t n = 0;
-  for (; upper[n] != '\0' && n + 1 < cap; ++n)
-    buf[n] = (upper[n] >= 'A' && upper[n] <= 'Z') ? static_cast<char>(upper[n] + 32) : upper[n];
-  buf[n] = '\0';
-  return buf;
+/// A command route's handler: the command layer runs it (the gate was
+/// passed in Api::handle).
+template <command::Id kId>
+Api::Outcome run_command(Api& api, const Api::Call& call) {
+  const command::Request request{api.authority(call.caller), call.peer, call.request.body};
+  send_result(call.out, call.options, api.commands().execute(kId, request));
+  return Api::Outcome::kDone;
 }
 
-/// `sensor` is the *.sensor choice: 0 pot, 1 MA3, 2 magnetometer.
-void write_axis(JsonWriter& w, const AxisStatus& a, int sensor) {
-  static constexpr const char* kSensors[] = {"pot", "ma3", "mag"};
-  static constexpr const char* kRawUnits[] = {"counts", "code", "deg"};
-  const std::size_t s = sensor >= 0 && sensor <= 2 ? static_cast<std::size_t>(sensor) : 0;
-  char name[24];
-  w.begin_object()
-      .member("position_deg", a.position_deg)
-      .member("valid", a.position_valid)
-      .member("speed_deg_s", a.speed_deg_s)
-      .member("sensor", kSensors[s])
-      .member("raw", a.raw)
-      .member("raw_unit", kRawUnits[s]);
-  // For the calibration page: the pot's wiper voltage and what raw spans.
-  w.key("raw_volts");
-  if (a.raw_full_scale > 0.0f && a.adc_ref_v > 0.0f) {
-    w.number(static_cast<double>(a.raw) * a.adc_ref_v / a.raw_full_scale);
-  } else {
-    w.null();
-  }
-  w.key("raw_full_scale");
-  if (a.raw_full_scale > 0.0f) {
-    w.number(a.raw_full_scale);
-  } else {
-    w.null();
-  }
-  w.key("mag");
-  if (a.mag_valid) {
-    w.begin_object()
-        .member("x", static_cast<int>(a.mag_x))
-        .member("y", static_cast<int>(a.mag_y))
-        .member("z", static_cast<int>(a.mag_z))
-        .end_object();
-  } else {
-    w.null();
-  }
-  w.key("target_deg");
-  if (a.has_target) {
-    w.number(a.target_deg);
-  } else {
-    w.null();
-  }
-  w.member("jogging", a.jogging)
-      .member("arrived", a.arrived)
-      .member("state", lower_name(axis_state_name(a.state), name, sizeof(name)))
-      .member("dir", dir_name(a.drive_dir))
-      .member("fault", lower_name(axis_fault_name(a.fault), name, sizeof(name)))
-      .member("limit_cw", a.limit_cw)
-      .member("limit_ccw", a.limit_ccw)
-      .member("switch_cw", a.switch_cw)
-      .member("switch_ccw", a.switch_ccw)
-      .member("coast_s", a.coast_s)
-      .member("moves", a.moves)
-      .member("readings_rejected", a.readings_rejected)
-      .member("slips", a.slips)
-      .member("slipping", a.slipping);
-  w.key("outputs").begin_object();
-  for (std::size_t n = 0; n < kOutputChannelCount; ++n)
-    w.member(kOutputChannelNames[n], a.outputs.value[n]);
-  w.end_object().end_object();
-}
-
-/// The members of a small command body, checked against what the endpoint takes.
-struct Member {
-  Member(const char* member_name, JsonType member_type) : name(member_name), type(member_type) {}
-  const char* name;
-  JsonType type;
-  bool present = false;
-  JsonValue value;
-  char text_copy[16] = {};
-};
-
-/// Reads `body` (empty = {}) into `members`. On failure writes the 400 and
-/// returns false: bad JSON, an unknown member or a member of the wrong type.
-template <std::size_t N>
-bool read_members(std::string_view body, Member (&members)[N], protocol::ByteSink& out,
-                  const ResponseOptions& options) {
-  if (body.empty()) return true;
-  JsonObjectReader reader(body);
-  char message[160];
-  if (!reader.valid()) {
-    std::snprintf(message, sizeof(message), "invalid JSON: %s (byte %u)", reader.error(),
-                  static_cast<unsigned>(reader.error_offset()));
-    send_error(out, 400, message, options);
-    return false;
-  }
-  std::string_view key;
-  JsonValue value;
-  while (reader.next(key, value)) {
-    Member* found = nullptr;
-    for (Member& m : members)
-      if (key == m.name) found = &m;
-    if (found == nullptr) {
-      std::snprintf(message, sizeof(message), "unknown member '%.*s'",
-                    static_cast<int>(key.size() > 40 ? 40 : key.size()), key.data());
-      send_error(out, 400, message, options);
-      return false;
-    }
-    if (value.type != found->type) {
-      std::snprintf(message, sizeof(message), "%s must be a %s", found->name,
-                    json_type_name(found->type));
-      send_error(out, 400, message, options);
-      return false;
-    }
-    found->present = true;
-    found->value = value;
-    if (value.type == JsonType::kString) {
-      // The reader's scratch is reused for the next member; keep the few
-      // bytes the commands need (axis, dir, mode names).
-      found->value.text = {};
-      static_assert(JsonObjectReader::kMaxStringBytes >= 16);
-      std::size_t len = value.text.size() < 15 ? value.text.size() : 15;
-      if (value.text.size() > 15) len = 0;  // never a valid name
-      std::memcpy(found->text_copy, value.text.data(), len);
-      found->value.text = std::string_view(found->text_copy, len);
-    }
-  }
-  return true;
-}
-
-void send_ok(protocol::ByteSink& out, const ResponseOptions& options) {
-  send_json(out, 200, options,
-            [](JsonWriter& w) { w.begin_object().member("ok", true).end_object(); });
-}
-
-/// Maps a refused command onto its HTTP status and message.
-void send_command_error(Error e, protocol::ByteSink& out, const ResponseOptions& options) {
-  switch (e) {
-    case Error::kFaulted:
-      return send_error(out, 409, "an axis has a latched fault: clear it with POST /api/reset",
-                        options);
-    case Error::kLimit:
-      return send_error(out, 409, "that direction is blocked by a limit", options);
-    case Error::kNotSupported:
-      return send_error(out, 422, "this rotator has no elevation axis", options);
-    case Error::kOutOfRange:
-      return send_error(out, 422, "outside the allowed range", options);
-    default:
-      return send_error(out, 422, error_name(e), options);
-  }
-}
-
-bool is_whole(double v) {
-  return std::floor(v) == v;
+/// A route row for a command of the command layer: its gate and help are
+/// the command's. Only STOP takes a body of any type: it must always work.
+template <command::Id kId>
+constexpr Api::Route command_route(std::string_view path) {
+  const command::Def& d = command::kCommandTable[static_cast<std::size_t>(kId)];
+  return {path,  true, d.gate.need, d.gate.locked, kId != command::Id::kStop, run_command<kId>,
+          d.help};
 }
 
 }  // namespace
@@ -179,76 +46,20 @@ bool is_whole(double v) {
 Api::Api(const ApiContext& context)
     : ctx_(context),
       auth_(WebAuth::Config{context.crypto, context.pbkdf2_iterations, context.pbkdf2_slice,
-                            context.log, context.log_gate}) {}
+                            context.log, context.log_gate}),
+      commands_(context.controller) {}
 
-void Api::write_status(JsonWriter& w) const {
-  const Controller& c = ctx_.controller;
-  const RotatorStatus s = c.status();
-  Controller& mutable_c = ctx_.controller;  // settings() is not const
-  const settings::Settings& values = mutable_c.settings();
-  w.begin_object()
-      .member("version", ctx_.version)
-      .member("time_ms", static_cast<long long>(c.now()));
-  // Calendar time for the user (SNTP on the Pico W, the system clock on
-  // Linux); null until known. The control tick never uses it.
-  w.key("time_utc");
-  char utc[32];
-  const std::optional<std::int64_t> unix_ms =
-      ctx_.wall_clock != nullptr ? ctx_.wall_clock->unix_ms() : std::nullopt;
-  const std::size_t utc_len = unix_ms ? format_utc_iso8601(*unix_ms, utc, sizeof utc) : 0;
-  if (utc_len > 0) {
-    w.string(std::string_view(utc, utc_len));
-  } else {
-    w.null();
+command::Authority Api::authority(const Caller& caller) const {
+  const access::ControlLock& lock = ctx_.controller.control_lock();
+  command::Authority who;
+  if (WebAuth::enabled(ctx_.controller.settings())) {
+    who.granted = caller.may_administer() ? Need::kAdmin
+                  : caller.may_control()  ? Need::kControl
+                  : caller.may_read()     ? Need::kRead
+                                          : Need::kPublic;
   }
-  w.member("mode", mode_name(s.mode))
-      .member("speed_pct", s.speed_pct)
-      .member("speed_applies", ctx_.controller.speed_applies())
-      .member("moving", s.moving())
-      .member("fault", s.any_fault());
-  w.key("limits")
-      .begin_object()
-      .member("az_min", s.limits.az_min_deg)
-      .member("az_max", s.limits.az_max_deg)
-      .member("az_continuous", s.limits.az_continuous)
-      .member("has_el", s.limits.has_el)
-      .member("el_min", s.limits.el_min_deg)
-      .member("el_max", s.limits.el_max_deg)
-      .end_object();
-  w.key("park")
-      .begin_object()
-      .member("az", values.get(Id::kParkAzDeg))
-      .member("el", values.get(Id::kParkElDeg))
-      .end_object();
-  w.key("lock");
-  write_lock(w, nullptr);
-  write_beam(w, s);
-  write_recognition(w, c.recognition());
-  write_odometer_status(w, ctx_.controller);
-  // Only when something is wrong: a status every 100 ms stays short.
-  const LoadReport* load = ctx_.load_report;
-  if (values.access_unreadable() || (load != nullptr && !load->empty())) {
-    w.key("settings_load").begin_object();
-    w.member("access_unreadable", values.access_unreadable());
-    w.key("dropped").begin_array();
-    for (std::size_t n = 0; load != nullptr && n < load->size(); ++n)
-      w.begin_object()
-          .member("key", (*load)[n].key)
-          .member("reason", (*load)[n].reason)
-          .end_object();
-    w.end_array();
-    w.member("more", static_cast<long long>(load != nullptr ? load->more() : 0));
-    w.end_object();
-  }
-  w.key("az");
-  write_axis(w, s.az, values.i(Id::kAzSensor));
-  w.key("el");
-  if (s.el.present) {
-    write_axis(w, s.el, values.i(Id::kElSensor));
-  } else {
-    w.null();
-  }
-  w.end_object();
+  who.holds_lock = lock.held() && caller.can_hold_lock() && lock.held_by(caller.holder);
+  return who;
 }
 
 void Api::poll(Millis transport_now) {
@@ -262,22 +73,7 @@ void Api::poll(Millis transport_now) {
   auth_.sessions().expire(transport_now);
   work();
   work_passes(ctx_.passes_poll_budget);
-  for (std::size_t n = 0; n < dead_man_.size(); ++n) {
-    DeadMan& d = dead_man_[n];
-    if (!d.armed || transport_now < d.until) continue;
-    d.armed = false;
-    const auto axis = static_cast<AxisId>(n);
-    const RotatorStatus s = ctx_.controller.status();
-    const AxisStatus& a = axis == AxisId::kAz ? s.az : s.el;
-    // Only the jog the hold started: a go-to given since stays.
-    if (a.jogging) ctx_.controller.move(axis, Direction::kNone);
-  }
-}
-
-void Api::arm_dead_man(AxisId axis, Millis hold_ms) {
-  DeadMan& d = dead_man_[static_cast<std::size_t>(axis)];
-  d.armed = hold_ms > 0;
-  d.until = transport_now_ + hold_ms;
+  commands_.poll(transport_now);
 }
 
 // The route table: every endpoint of the REST API, once. Paths are exact;
@@ -313,21 +109,15 @@ const Api::Route Api::kRoutes[] = {
        return O::kDone;
      },
      "the bearer tokens' names and scopes"},
-    {"/api/goto", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_goto(c); },
-     "go to az and/or el"},
-    {"/api/move", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_move(c); },
-     "hold-to-move with a dead-man"},
+    command_route<command::Id::kGoto>("/api/goto"),
+    command_route<command::Id::kMove>("/api/move"),
     // STOP: always, for anyone, with any body.
-    {"/api/stop", true, N::kPublic, false, false, [](Api& a, const Call& c) { return a.post_stop(c); },
-     "stop everything"},
-    {"/api/park", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_park(c); },
-     "go to the park position"},
+    command_route<command::Id::kStop>("/api/stop"),
+    command_route<command::Id::kPark>("/api/park"),
     {"/api/mode", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_mode(c); },
      "idle (stop) or park"},
-    {"/api/reset", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_reset(c); },
-     "stop, clear latched faults"},
-    {"/api/speed", true, N::kControl, true, true, [](Api& a, const Call& c) { return a.post_speed(c); },
-     "speed in %"},
+    command_route<command::Id::kReset>("/api/reset"),
+    command_route<command::Id::kSpeed>("/api/speed"),
     {"/api/settings", true, N::kControl, true, true,
      [](Api& a, const Call& c) {
        a.post_settings(c.request.body, c.out, c.options, c.caller);
@@ -417,15 +207,14 @@ const Api::Route Api::kRoutes[] = {
     // Where the beam points (place_api.cpp, preset_api.cpp).
     {"/api/place", false, N::kRead, false, false, get_place,
      "the bearing and distance to a locator or lat/lon (no move)"},
-    {"/api/place", true, N::kControl, true, true, post_place,
-     "turn the beam to a locator or lat/lon, short or long path"},
+    command_route<command::Id::kPlace>("/api/place"),
     {"/api/sky", false, N::kRead, false, false, get_sky,
      "the station, the beamwidth, the Sun's and the Moon's positions (the map)"},
     {"/api/presets", false, N::kRead, false, false, get_presets, "the named headings"},
     {"/api/presets", true, N::kControl, true, true, post_presets,
      "add or replace a named heading (16 at most), saved"},
     {"/api/presets/delete", true, N::kControl, true, true, delete_preset, "remove a named heading"},
-    {"/api/preset", true, N::kControl, true, true, post_preset, "turn the beam to a named heading"},
+    command_route<command::Id::kPreset>("/api/preset"),
     {"/api/odometer", false, N::kRead, false, false, get_odometer, "the wear odometer"},
     {"/api/odometer/reset", true, N::kControl, true, true, post_odometer_reset,
      "reset the wear odometer, dated"},
@@ -446,24 +235,23 @@ bool Api::takes_method(const Route& route, std::string_view method) {
   return false;
 }
 
-Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
-                         const ResponseOptions& options, const access::Peer& peer, Via via) {
-  const std::string_view path = request.path;
+const Api::Route* Api::find_route(const HttpRequest& request, protocol::ByteSink& out,
+                                  const ResponseOptions& options, bool& allows_get) {
   // PUT and DELETE change state as POST does (the tracking routes).
   const bool is_post = request.method == Method::kPost || request.method == Method::kPut ||
                        request.method == Method::kDelete;
   const bool is_get = request.method == Method::kGet || request.method == Method::kHead;
-  bool allows_get = false;
+  allows_get = false;
   bool allows_post = false;
   const Route* route = nullptr;
   for (const Route& r : kRoutes) {
-    if (path != r.path) continue;
+    if (request.path != r.path) continue;
     (r.post ? allows_post : allows_get) = true;
     if (r.post == is_post) route = &r;
   }
   if (!allows_get && !allows_post) {
     send_error(out, 404, "no such API endpoint", options);
-    return Outcome::kDone;
+    return nullptr;
   }
   if ((is_post && !allows_post) || (is_get && !allows_get) || (!is_post && !is_get)) {
     ResponseOptions o = options;
@@ -471,330 +259,116 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
                       : allows_get              ? "Allow: GET, HEAD\r\n"
                                                 : "Allow: POST\r\n";
     send_error(out, 405, "method not allowed here", o);
-    return Outcome::kDone;
+    return nullptr;
   }
+  return route;
+}
 
-  // Access control (docs/security.md).
-  const Caller caller = auth_.identify(request, settings(), transport_now_);
-  last_caller_ = caller;
-  if (via == Via::kBroker && route->need != Need::kPublic && route->need != Need::kControl) {
-    // The broker's authority covers commands, never access or reading state.
-    send_error(out, 403, "not from the broker: this needs the web login", options);
-    return Outcome::kDone;
+bool Api::authenticate(const Route& route, const Caller& caller, const access::Peer& peer,
+                       protocol::ByteSink& out, const ResponseOptions& options) {
+  if (!WebAuth::enabled(settings()) || route.need == Need::kPublic) return true;
+  ResponseOptions o = options;
+  o.extra_headers = "WWW-Authenticate: Bearer realm=\"rotord\"\r\n";
+  if (ctx_.crypto == nullptr) {
+    send_error(out, 503, "a web password is set but this build has no cryptography", options);
+    return false;
   }
-  if (via == Via::kHttp && WebAuth::enabled(settings()) && route->need != Need::kPublic) {
-    ResponseOptions o = options;
-    o.extra_headers = "WWW-Authenticate: Bearer realm=\"rotord\"\r\n";
-    if (ctx_.crypto == nullptr) {
-      send_error(out, 503, "a web password is set but this build has no cryptography", options);
-      return Outcome::kDone;
-    }
-    if (caller.kind == Caller::Kind::kBadToken) {
-      count_auth_failure(false);
-      char address[access::kAddressTextBytes];
-      auth_.refused(peer, "rotord: unknown bearer token from %s refused",
-                    access::peer_text(peer, address));
-      send_error(out, 401, "unknown or revoked token", o);
-      return Outcome::kDone;
-    }
-    if (!caller.may_read()) {
-      count_auth_failure(false);
-      send_error(out, 401, "log in first (POST /api/login) or send a bearer token", o);
-      return Outcome::kDone;
-    }
-    if (route->need == Need::kControl && !caller.may_control()) {
-      count_auth_failure(false);
-      send_error(out, 403, "this token is read-only", options);
-      return Outcome::kDone;
-    }
-    if (route->need == Need::kAdmin && !caller.may_administer()) {
-      count_auth_failure(false);
-      send_error(out, 403, "tokens cannot do this: it needs the web login", options);
-      return Outcome::kDone;
-    }
-  }
-  // Failed closed (the access settings could not be read at start-up):
-  // STOP, login and logout, and reading only, from anyone, until fixed.
-  if (settings().access_unreadable() && route->post && route->need != Need::kPublic) {
-    send_error(out, 503,
-               "the access settings in the stored settings cannot be read: only STOP and status "
-               "until they are fixed (docs/security.md)",
-               options);
-    return Outcome::kDone;
-  }
-  const access::ControlLock& held = ctx_.controller.control_lock();
-  if (route->locked && held.held() && (!caller.can_hold_lock() || !held.held_by(caller.holder))) {
+  if (caller.kind == Caller::Kind::kBadToken) {
     count_auth_failure(false);
-    send_locked(out, options);
-    return Outcome::kDone;
+    char address[access::kAddressTextBytes];
+    auth_.refused(peer, "rotord: unknown bearer token from %s refused",
+                  access::peer_text(peer, address));
+    send_error(out, 401, "unknown or revoked token", o);
+    return false;
   }
+  const char* refusal = nullptr;
+  int status = 403;
+  if (!caller.may_read()) {
+    refusal = "log in first (POST /api/login) or send a bearer token";
+    status = 401;
+  } else if (route.need == Need::kControl && !caller.may_control()) {
+    refusal = "this token is read-only";
+  } else if (route.need == Need::kAdmin && !caller.may_administer()) {
+    refusal = "tokens cannot do this: it needs the web login";
+  }
+  if (refusal == nullptr) return true;
+  count_auth_failure(false);
+  send_error(out, status, refusal, status == 401 ? o : options);
+  return false;
+}
+
+bool Api::takes_body(const Route& route, const HttpRequest& request, bool allows_get,
+                     protocol::ByteSink& out, const ResponseOptions& options) {
+  if (!route.post) return true;
   // A state-changing row takes POST, or the methods it names (verbs).
-  if (route->post && !takes_method(*route, request.method_text)) {
+  if (!takes_method(route, request.method_text)) {
     char allow[64];
     std::snprintf(allow, sizeof allow, "Allow: %s%.*s\r\n", allows_get ? "GET, HEAD, " : "",
-                  static_cast<int>(route->verbs.empty() ? 4 : route->verbs.size()),
-                  route->verbs.empty() ? "POST" : route->verbs.data());
+                  static_cast<int>(route.verbs.empty() ? 4 : route.verbs.size()),
+                  route.verbs.empty() ? "POST" : route.verbs.data());
     for (char* c = allow; *c != '\0'; ++c)
       if (*c == ' ' && c[-1] != ',' && c[-1] != ':') *c = ',';  // "PUT DELETE" -> "PUT,DELETE"
     ResponseOptions o = options;
     o.extra_headers = allow;
     send_error(out, 405, "method not allowed here", o);
-    return Outcome::kDone;
+    return false;
   }
   // A POST body must be JSON, declared as such: a cross-site HTML form or
   // no-cors fetch cannot send that header, so another web page open in the
   // same browser cannot move the antenna.
-  if (route->post && route->json_body && !request.json_body) {
+  if (route.json_body && !request.json_body) {
     send_error(out, 415, "send Content-Type: application/json", options);
-    return Outcome::kDone;
+    return false;
   }
+  return true;
+}
+
+bool Api::pass_gate(const Route& route, const Caller& caller, protocol::ByteSink& out,
+                    const ResponseOptions& options) {
+  const command::Result r =
+      commands_.admit({route.need, route.locked, route.post}, authority(caller));
+  if (r.ok()) return true;
+  if (r.status == command::Status::kLocked) count_auth_failure(false);
+  send_result(out, options, r);
+  return false;
+}
+
+Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
+                         const ResponseOptions& options, const access::Peer& peer) {
+  bool allows_get = false;
+  const Route* route = find_route(request, out, options, allows_get);
+  if (route == nullptr) return Outcome::kDone;
+  // Access control (docs/security.md).
+  const Caller caller = auth_.identify(request, settings(), transport_now_);
+  last_caller_ = caller;
+  if (!authenticate(*route, caller, peer, out, options)) return Outcome::kDone;
+  // The unreadable access settings and the control lock: the command
+  // layer's gate, the same for every route and every front end.
+  if (!pass_gate(*route, caller, out, options)) return Outcome::kDone;
+  if (!takes_body(*route, request, allows_get, out, options)) return Outcome::kDone;
   return route->run(*this, Call{request, out, options, caller, peer});
 }
 
-Api::Outcome Api::get_status(const Call& call) {
-  send_json(call.out, 200, call.options, [this](JsonWriter& w) { write_status(w); });
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::get_station(const Call& call) {
-  if (station_ == nullptr) {
-    // 200, not 404: the station page asks for this, and a page that meets a
-    // 404 shows an error in the browser's console for a setting left off.
-    send_json(call.out, 200, call.options, [](JsonWriter& w) {
-      w.begin_object()
-          .member("available", false)
-          .member("reason",
-                  "no station here: MQTT is off (mqtt.enabled), or this is a Pico W (a Linux "
-                  "rotord on the same broker shows the station)")
-          .key("rotators")
-          .begin_array()
-          .end_array()
-          .end_object();
-    });
-  } else {
-    send_json(call.out, 200, call.options, [this](JsonWriter& w) { station_->write_station(w); });
-  }
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::get_events(const Call& call) {
-  if (call.request.method == Method::kHead) {
-    write_head(call.out, 200, "text/event-stream", -1, {false, true, {}});
-    return Outcome::kClose;
-  }
-  // The stream ends when the connection closes: no length, no keep-alive.
-  write_head(call.out, 200, "text/event-stream", -1, {false, false, "Cache-Control: no-store\r\n"});
-  return Outcome::kStartEvents;
-}
-
-Api::Outcome Api::get_schema(const Call& call) {
-  send_json(call.out, 200, call.options, [this](JsonWriter& w) {
-    write_settings_schema(ctx_.defaults != nullptr ? *ctx_.defaults : settings::Settings(), w,
-                          settings::platform_name(ctx_.platform));
-  });
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_stop(const Call& call) {
-  dead_man_ = {};
-  ctx_.controller.stop();
-  send_ok(call.out, call.options);
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_goto(const Call& call) {
-  protocol::ByteSink& out = call.out;
-  const ResponseOptions& options = call.options;
-  Controller& c = ctx_.controller;
-  Member m[] = {
-      {"az", JsonType::kNumber}, {"el", JsonType::kNumber}, {"unwrapped", JsonType::kBool}};
-  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
-  if (!m[0].present && !m[1].present) {
-    send_error(out, 400, "give az and/or el (degrees)", options);
-    return Outcome::kDone;
-  }
-  const AzTarget mode =
-      m[2].present && m[2].value.boolean ? AzTarget::kUnwrapped : AzTarget::kCompass;
-  const Limits l = c.limits();
-  char message[128];
-  if (m[0].present && !c.resolve_az(static_cast<float>(m[0].value.number), mode)) {
-    std::snprintf(message, sizeof(message), "az %g is outside the travel %g..%g", m[0].value.number,
-                  static_cast<double>(l.az_min_deg), static_cast<double>(l.az_max_deg));
-    send_error(out, 422, message, options);
-    return Outcome::kDone;
-  }
-  if (m[1].present && l.has_el &&
-      (m[1].value.number < l.el_min_deg || m[1].value.number > l.el_max_deg)) {
-    std::snprintf(message, sizeof(message), "el %g is outside the travel %g..%g", m[1].value.number,
-                  static_cast<double>(l.el_min_deg), static_cast<double>(l.el_max_deg));
-    send_error(out, 422, message, options);
-    return Outcome::kDone;
-  }
-  std::optional<float> az;
-  std::optional<float> el;
-  if (m[0].present) az = static_cast<float>(m[0].value.number);
-  if (m[1].present) el = static_cast<float>(m[1].value.number);
-  // Each caller's address is its own stream for the continuity rule (MQTT
-  // arrives here as the broker).
-  const CommandSource source = (CommandSource{1} << 62) |
-                               (static_cast<CommandSource>(call.peer.kind) << 32) |
-                               call.peer.address_hash();
-  const Error e = c.go_to(az, el, mode, source);
-  if (e != Error::kOk) {
-    send_command_error(e, out, options);
-    return Outcome::kDone;
-  }
-  const RotatorStatus s = c.status();
-  send_json(out, 200, options, [&](JsonWriter& w) {
-    w.begin_object().member("ok", true).key("az_target");
-    if (az) {
-      w.number(s.az.target_deg);
-    } else {
-      w.null();
-    }
-    w.key("el_target");
-    if (el) {
-      w.number(s.el.target_deg);
-    } else {
-      w.null();
-    }
-    w.end_object();
-  });
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_move(const Call& call) {
-  protocol::ByteSink& out = call.out;
-  const ResponseOptions& options = call.options;
-  Controller& c = ctx_.controller;
-  Member m[] = {{"axis", JsonType::kString},
-                {"dir", JsonType::kString},
-                {"speed", JsonType::kNumber},
-                {"hold_ms", JsonType::kNumber}};
-  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
-  if (!m[1].present) {
-    send_error(out, 400, "give dir: cw, ccw, up, down or stop", options);
-    return Outcome::kDone;
-  }
-  const std::string_view dir_text = m[1].value.text;
-  Direction dir = Direction::kNone;
-  std::optional<AxisId> axis;
-  if (dir_text == "cw" || dir_text == "ccw") {
-    dir = dir_text == "cw" ? Direction::kCw : Direction::kCcw;
-  } else if (dir_text == "up" || dir_text == "down") {
-    dir = dir_text == "up" ? Direction::kCw : Direction::kCcw;
-    axis = AxisId::kEl;
-  } else if (dir_text != "stop") {
-    send_error(out, 422, "dir must be cw, ccw, up, down or stop", options);
-    return Outcome::kDone;
-  }
-  if (m[0].present) {
-    const std::string_view a = m[0].value.text;
-    if (a != "az" && a != "el") {
-      send_error(out, 422, "axis must be az or el", options);
-      return Outcome::kDone;
-    }
-    const AxisId named = a == "az" ? AxisId::kAz : AxisId::kEl;
-    if (axis && *axis != named) {
-      send_error(out, 422, "up and down move the elevation axis", options);
-      return Outcome::kDone;
-    }
-    axis = named;
-  }
-  int speed = -1;
-  if (m[2].present) {
-    const double v = m[2].value.number;
-    if (!is_whole(v) || v < 1 || v > 100) {
-      send_error(out, 422, "speed must be a whole number 1..100 (%)", options);
-      return Outcome::kDone;
-    }
-    speed = static_cast<int>(v);
-  }
-  Millis hold = kDefaultHoldMs;
-  if (m[3].present) {
-    const double v = m[3].value.number;
-    if (!is_whole(v) ||
-        (v != 0 && (v < static_cast<double>(kMinHoldMs) || v > static_cast<double>(kMaxHoldMs)))) {
-      send_error(out, 422, "hold_ms must be 0 (no dead-man) or 100..10000", options);
-      return Outcome::kDone;
-    }
-    hold = static_cast<Millis>(v);
-  }
-  if (dir == Direction::kNone && !axis) {
-    dead_man_ = {};
-    c.stop();
-    send_ok(out, options);
-    return Outcome::kDone;
-  }
-  const AxisId moved = axis.value_or(AxisId::kAz);
-  const Error e = c.move(moved, dir, speed);
-  if (e != Error::kOk) {
-    send_command_error(e, out, options);
-    return Outcome::kDone;
-  }
-  arm_dead_man(moved, dir == Direction::kNone ? 0 : hold);
-  send_ok(out, options);
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_park(const Call& call) {
-  if (const Error e = ctx_.controller.park(); e != Error::kOk) {
-    send_command_error(e, call.out, call.options);
-    return Outcome::kDone;
-  }
-  send_ok(call.out, call.options);
-  return Outcome::kDone;
-}
-
 Api::Outcome Api::post_mode(const Call& call) {
-  protocol::ByteSink& out = call.out;
-  const ResponseOptions& options = call.options;
-  Controller& c = ctx_.controller;
-  Member m[] = {{"mode", JsonType::kString}};
-  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
+  // A REST alias: "idle" is STOP, "park" the park command.
+  command::Member m[] = {{"mode", JsonType::kString}};
+  if (command::Result bad; !command::read_members(call.request.body, m, bad)) {
+    send_result(call.out, call.options, bad);
+    return Outcome::kDone;
+  }
   const std::string_view mode = m[0].value.text;
+  const command::Request request{authority(call.caller), call.peer, {}};
   if (!m[0].present) {
-    send_error(out, 400, "give mode: idle or park", options);
-  } else if (mode == "idle") {
-    c.stop();
-    send_ok(out, options);
-  } else if (mode == "park") {
-    const Error e = c.park();
-    if (e != Error::kOk) {
-      send_command_error(e, out, options);
-    } else {
-      send_ok(out, options);
-    }
+    send_error(call.out, 400, "give mode: idle or park", call.options);
+  } else if (mode == "idle" || mode == "park") {
+    send_result(
+        call.out, call.options,
+        commands_.execute(mode == "idle" ? command::Id::kStop : command::Id::kPark, request));
   } else if (mode == "goto" || mode == "manual") {
-    send_error(out, 422, "goto and manual start with POST /api/goto and /api/move", options);
+    send_error(call.out, 422, "goto and manual start with POST /api/goto and /api/move",
+               call.options);
   } else {
-    send_error(out, 422, "mode must be idle or park", options);
-  }
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_reset(const Call& call) {
-  if (ctx_.controller.reset() == Error::kOk) {
-    send_ok(call.out, call.options);
-  } else {
-    send_error(call.out, 409, "the emergency stop is active: release it, then reset", call.options);
-  }
-  return Outcome::kDone;
-}
-
-Api::Outcome Api::post_speed(const Call& call) {
-  protocol::ByteSink& out = call.out;
-  const ResponseOptions& options = call.options;
-  Controller& c = ctx_.controller;
-  Member m[] = {{"speed_pct", JsonType::kNumber}};
-  if (!read_members(call.request.body, m, out, options)) return Outcome::kDone;
-  if (!m[0].present) {
-    send_error(out, 400, "give speed_pct", options);
-  } else if (!is_whole(m[0].value.number) ||
-             c.set_speed_pct(static_cast<int>(m[0].value.number)) != Error::kOk) {
-    send_error(out, 422, "speed_pct must be a whole number 1..100", options);
-  } else {
-    send_ok(out, options);
+    send_error(call.out, 422, "mode must be idle or park", call.options);
   }
   return Outcome::kDone;
 }
@@ -810,115 +384,6 @@ Api::Outcome Api::post_reboot(const Call& call) {
     w.begin_object().member("ok", true).member("rebooting", true).end_object();
   });
   return Outcome::kClose;
-}
-
-void Api::get_settings(protocol::ByteSink& out, const ResponseOptions& options) {
-  const settings::Settings& values = ctx_.controller.settings();
-  send_json(out, 200, options, [&](JsonWriter& w) { write_settings(values, w); });
-}
-
-void Api::post_settings(std::string_view body, protocol::ByteSink& out,
-                        const ResponseOptions& options, const Caller& caller) {
-  settings::Settings& values = ctx_.controller.settings();
-  if (WebAuth::enabled(values) && !caller.may_administer()) {
-    // A control token changes the rotator's settings, never the access
-    // rules or a secret: it cannot widen its own rights.
-    JsonObjectReader reader(body);
-    std::string_view key;
-    JsonValue value;
-    while (reader.valid() && reader.next(key, value)) {
-      const std::optional<Id> id = settings::find(key);
-      if (id && !settings::line_writable(*id)) {
-        count_auth_failure(false);
-        char message[128];
-        std::snprintf(message, sizeof message, "%s needs the web login, not a token",
-                      settings::def(*id).key);
-        send_error(out, 403, message, options);
-        return;
-      }
-    }
-  }
-  backup_ = values;
-  const ApplyOutcome r = apply_settings_json(body, values, scratch_, errors_, true);
-  if (r.status == ApplyOutcome::kBadJson) {
-    char message[160];
-    std::snprintf(message, sizeof(message), "invalid JSON: %s", r.message);
-    send_error(out, 400, message, options);
-    return;
-  }
-  if (r.status == ApplyOutcome::kInvalid) {
-    send_json(out, 422, options, [&](JsonWriter& w) {
-      w.begin_object().member("error", r.message).key("errors").begin_object();
-      for (std::size_t n = 0; n < errors_.size(); ++n) w.member(errors_[n].key, errors_[n].reason);
-      w.end_object().end_object();
-    });
-    return;
-  }
-  if (r.changed.any() && !persist(out, options)) {
-    for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (r.changed[n]) values.copy_value(static_cast<Id>(n), backup_);
-    return;
-  }
-  send_changed(out, options, r.changed);
-}
-
-void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options) {
-  settings::Settings& values = ctx_.controller.settings();
-  if (ctx_.defaults != nullptr) {
-    scratch_ = *ctx_.defaults;
-  } else {
-    scratch_.reset_to_defaults();
-  }
-  const settings::Settings& defaults = scratch_;
-  backup_ = values;
-  SettingSet changed;
-  for (std::size_t n = 0; n < settings::kCount; ++n) {
-    const auto id = static_cast<Id>(n);
-    // The web password and the tokens stay: a reset must not open the
-    // controller to everyone (POST /api/password with "" does that).
-    if ((settings::def(id).flags & settings::kHidden) != 0) continue;
-    if (!values.same_value(id, defaults)) {
-      changed[n] = true;
-      values.copy_value(id, defaults);
-    }
-  }
-  if (changed.any() && !persist(out, options)) {
-    for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed[n]) values.copy_value(static_cast<Id>(n), backup_);
-    return;
-  }
-  send_changed(out, options, changed);
-}
-
-bool Api::save() {
-  if (ctx_.storage == nullptr) return true;
-  // Only the user's layer over the defaults is stored (settings_layers.hpp).
-  // scratch_ is free again here: post and reset are done with it.
-  if (ctx_.defaults == nullptr) scratch_.reset_to_defaults();
-  const settings::Settings& base = ctx_.defaults != nullptr ? *ctx_.defaults : scratch_;
-  return save_settings(*ctx_.storage, ctx_.controller.settings(), base, document_,
-                       sizeof(document_));
-}
-
-bool Api::persist(protocol::ByteSink& out, const ResponseOptions& options) {
-  if (save()) return true;
-  send_error(out, 500, "the settings could not be saved; nothing was changed", options);
-  return false;
-}
-
-void Api::send_changed(protocol::ByteSink& out, const ResponseOptions& options,
-                       const SettingSet& changed) {
-  send_json(out, 200, options, [&](JsonWriter& w) {
-    w.begin_object().member("ok", true).member("saved", ctx_.storage != nullptr);
-    w.key("changed").begin_array();
-    for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed[n]) w.string(settings::def(static_cast<Id>(n)).key);
-    w.end_array().key("restart_required").begin_array();
-    for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed[n] && (settings::def(static_cast<Id>(n)).flags & settings::kRestart))
-        w.string(settings::def(static_cast<Id>(n)).key);
-    w.end_array().end_object();
-  });
 }
 
 }  // namespace rotord::web

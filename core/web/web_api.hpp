@@ -4,6 +4,7 @@
 #include <span>
 #include <string_view>
 
+#include "command/commands.hpp"
 #include "hal/clock_sync.hpp"
 #include "hal/storage.hpp"
 #include "hal/wall_clock.hpp"
@@ -88,9 +89,6 @@ struct ApiContext {
 /// too (it would not fit the Pico's stack).
 class Api {
  public:
-  static constexpr Millis kDefaultHoldMs = 1000;
-  static constexpr Millis kMinHoldMs = 100;
-  static constexpr Millis kMaxHoldMs = 10000;
   /// The stored settings document (json/settings_json.hpp).
   static constexpr std::size_t kMaxDocumentBytes = kMaxSettingsDocumentBytes;
 
@@ -103,8 +101,8 @@ class Api {
 
   /// Who may call a route once access control is on (web.password set):
   /// kPublic anyone, kRead a login or any token, kControl a login or a
-  /// control token, kAdmin the web login only.
-  enum class Need : unsigned char { kPublic, kRead, kControl, kAdmin };
+  /// control token, kAdmin the web login only (command/commands.hpp).
+  using Need = command::Need;
   /// What a route's handler is given.
   struct Call {
     const HttpRequest& request;
@@ -135,20 +133,12 @@ class Api {
   static std::span<const Route> routes();
   /// Whether a state-changing row takes `method` ("POST", or its verbs).
   static bool takes_method(const Route& route, std::string_view method);
-  /// Who vouches for a request. kHttp: the web's own access control (a
-  /// login or a token once web.password is set). kBroker: a command from the
-  /// MQTT broker, which carries no login: mqtt.control, the broker's ACLs and
-  /// access.control_networks (checked by the MQTT bridge) are its authority,
-  /// so the web login is not asked for; the control lock still is (the
-  /// broker never holds it), and the web-login-only routes are refused.
-  enum class Via : unsigned char { kHttp, kBroker };
   /// Answers one request whose path starts with /api/, from `peer`.
   /// kStartEvents: the response head of an event stream went out and events
   /// follow (poll). kPending: a login or a new password is being hashed;
   /// the session asks finish_pending() on each poll until it answers.
   Outcome handle(const HttpRequest& request, protocol::ByteSink& out,
-                 const ResponseOptions& options, const access::Peer& peer = {},
-                 Via via = Via::kHttp);
+                 const ResponseOptions& options, const access::Peer& peer = {});
 
   /// The ticket of the request that just went kPending.
   std::uint32_t pending_ticket() const { return auth_.job().ticket; }
@@ -191,6 +181,10 @@ class Api {
   /// The live state: GET /api/status and every event of /api/events.
   void write_status(JsonWriter& w) const;
   Controller& controller() { return ctx_.controller; }
+  /// The command layer every command route (and MQTT) runs through.
+  command::Commands& commands() { return commands_; }
+  /// What `caller` was granted by the web's access control.
+  command::Authority authority(const Caller& caller) const;
   WebAuth& auth() { return auth_; }
   /// Saves the settings as POST /api/settings does; false when that fails
   /// (the presets, place_api.hpp).
@@ -209,19 +203,27 @@ class Api {
     if (ctx_.metrics != nullptr) ctx_.metrics->protocol(metrics::Protocol::kHttp).on_auth_failure();
   }
   static const Route kRoutes[];
+  /// handle()'s steps, each answering (and returning nullptr or false) when
+  /// the request stops there: the route (404, 405), the caller's login or
+  /// token (401, 403), the method and the body's type (405, 415).
+  const Route* find_route(const HttpRequest& request, protocol::ByteSink& out,
+                          const ResponseOptions& options, bool& allows_get);
+  bool authenticate(const Route& route, const Caller& caller, const access::Peer& peer,
+                    protocol::ByteSink& out, const ResponseOptions& options);
+  /// The command layer's gate for the route (503, 423). Not inlined: its
+  /// Result stays off the stack while the route runs (the Pico W's 4 KB).
+  __attribute__((noinline)) bool pass_gate(const Route& route, const Caller& caller,
+                                           protocol::ByteSink& out, const ResponseOptions& options);
+  bool takes_body(const Route& route, const HttpRequest& request, bool allows_get,
+                  protocol::ByteSink& out, const ResponseOptions& options);
 
-  // The REST commands (web_api.cpp); the access endpoints are in auth_api.cpp.
+  // The live state (status_api.cpp); the REST aliases and reboot (web_api.cpp);
+  // the commands themselves are the command layer's (command/commands.hpp).
   Outcome get_status(const Call& call);
   Outcome get_events(const Call& call);
   Outcome get_station(const Call& call);
   Outcome get_schema(const Call& call);
-  Outcome post_stop(const Call& call);
-  Outcome post_goto(const Call& call);
-  Outcome post_move(const Call& call);
-  Outcome post_park(const Call& call);
   Outcome post_mode(const Call& call);
-  Outcome post_reset(const Call& call);
-  Outcome post_speed(const Call& call);
   Outcome post_reboot(const Call& call);
   // Set-up (setup_api.cpp).
   Outcome get_setup(const Call& call);
@@ -240,7 +242,8 @@ class Api {
   /// Saves the settings; false (nothing answered) when that fails.
   bool save();
 
-  // Access control's endpoints (auth_api.cpp).
+  // Access control's endpoints (auth_api.cpp: login, password; token_api.cpp:
+  // tokens, the lock).
   Outcome login(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
                 const access::Peer& peer);
   void logout(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
@@ -256,7 +259,7 @@ class Api {
   void lock(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
             Caller caller);
   void unlock(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
-  // Tracking's endpoints (track_api.cpp).
+  // Tracking's endpoints (track_api.cpp, tle_api.cpp, passes_api.cpp).
   void handle_track(const HttpRequest& request, protocol::ByteSink& out,
                     const ResponseOptions& options);
   Outcome run_track(const Call& call) {
@@ -273,33 +276,30 @@ class Api {
   void post_track(const HttpRequest& request, protocol::ByteSink& out,
                   const ResponseOptions& options);
   void write_track(JsonWriter& w) const;
+  /// Starts the search GET /api/passes asks for; false when refused (answered).
+  bool start_pass_search(const char* object, int hours, double min_el, std::int64_t utc_ms,
+                         protocol::ByteSink& out, const ResponseOptions& options);
   /// Continues a pass search GET /api/passes began (poll()).
   void work_passes(int evaluations);
 
   /// Acts on a computed slow hash: a login's session, a password's storage.
   void complete_job();
-  /// 423 with the lock's holder and time left.
-  void send_locked(protocol::ByteSink& out, const ResponseOptions& options);
+  void fail_login(WebAuth::Job& job, const char* who);
+  void complete_login(WebAuth::Job& job, const char* who);
+  void complete_password(WebAuth::Job& job, const char* who);
   /// The lock's state: {"held", "mine", "by", "remaining_s"}.
   void write_lock(JsonWriter& w, const Caller* caller) const;
+  /// 423 with the lock's holder and time left (the command layer's words).
+  void send_locked(protocol::ByteSink& out, const ResponseOptions& options);
   void send_changed(protocol::ByteSink& out, const ResponseOptions& options,
                     const SettingSet& changed);
 
-  /// Hold-to-move's dead-man per axis, on the transport's clock: hold_ms is
-  /// the client's time, whatever `--speedup` or `--clock manual` does to
-  /// controller time.
-  struct DeadMan {
-    bool armed = false;
-    Millis until = 0;
-  };
-  void arm_dead_man(AxisId axis, Millis hold_ms);
-
   ApiContext ctx_;
   WebAuth auth_;
+  command::Commands commands_;
   const StationSource* station_ = nullptr;
   Caller last_caller_;
   Millis transport_now_ = 0;
-  std::array<DeadMan, 2> dead_man_{};
   settings::Settings scratch_;
   settings::Settings backup_;
   SettingErrors errors_;

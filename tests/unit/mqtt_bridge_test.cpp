@@ -1,6 +1,6 @@
 // The portable MQTT bridge on a controller with fake hardware: topics, the
-// state on change and while moving, commands through the REST API's own
-// handlers (same errors), mqtt.control, STOP always, discovery messages.
+// state on change and while moving, commands through the command layer the
+// REST API runs too (same errors), mqtt.control, STOP always, discovery messages.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,0 +1,38 @@
+#pragma once
+// What the access-control endpoints (auth_api.cpp, token_api.cpp) share:
+// reading their small bodies, the session cookie.
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+#include "json/json_reader.hpp"
+#include "settings/settings.hpp"
+#include "util/byte_sink.hpp"
+#include "web/http_response.hpp"
+
+namespace rotord::web {
+
+/// A small body's string and number members, read by name.
+struct BodyField {
+  const char* name;
+  JsonType type;
+  bool present = false;
+  char text[72] = {};  ///< strings: the value (a password of up to 63 bytes fits)
+  bool too_long = false;
+  double number = 0.0;
+};
+
+/// Reads `body` (empty = {}) into `fields`; on failure the 400 has gone
+/// out and it returns false.
+bool read_body(std::string_view body, std::span<BodyField> fields, protocol::ByteSink& out,
+               const ResponseOptions& options);
+
+/// "Set-Cookie: rotord_session=...; ..." for a session, or the header that
+/// deletes the cookie when `id` is null. HttpOnly: no script reads it;
+/// SameSite=Strict: no other site's page makes the browser send it.
+std::string_view session_cookie(char (&buf)[160], const char* id, long max_age_s);
+
+/// How long a web session lasts (web.session_minutes).
+long session_seconds(const settings::Settings& s);
+
+}  // namespace rotord::web
