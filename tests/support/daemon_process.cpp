@@ -20,6 +20,22 @@
 namespace rotord::testing {
 
 int free_port() {
+  // Free on every address, IPv6 and IPv4 (a dual-stack socket), as a daemon
+  // started with --bind :: needs it: a port free on 127.0.0.1 alone may be
+  // held on another loopback address by a test's client.
+  int fd6 = ::socket(AF_INET6, SOCK_STREAM, 0);
+  if (fd6 >= 0) {
+    int v6only = 0;
+    ::setsockopt(fd6, IPPROTO_IPV6, IPV6_V6ONLY, &v6only, sizeof v6only);
+    sockaddr_in6 any{};
+    any.sin6_family = AF_INET6;
+    any.sin6_addr = in6addr_any;
+    socklen_t len6 = sizeof(any);
+    const bool ok = ::bind(fd6, reinterpret_cast<sockaddr*>(&any), sizeof(any)) == 0 &&
+                    ::getsockname(fd6, reinterpret_cast<sockaddr*>(&any), &len6) == 0;
+    ::close(fd6);
+    if (ok) return ntohs(any.sin6_port);
+  }
   int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
@@ -41,7 +57,7 @@ DaemonProcess::DaemonProcess(std::vector<std::string> extra_args) {
   // daemon binds it: then start again on other ports.
   for (int attempt = 0; attempt < 5; ++attempt) {
     if (spawn(extra_args)) return;
-    if (output_.find("Address already in use") == std::string::npos) return;
+    if (output_.find("Address already in use") == std::string::npos || attempt == 4) return;
     output_.clear();
   }
 }

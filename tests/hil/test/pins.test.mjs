@@ -6,7 +6,13 @@ import assert from 'node:assert/strict';
 import { dirname, join } from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
-import { crc32, readSettings, writeSettingsSlot, FLASH_BYTES } from '../lib/flash.mjs';
+import {
+  crc32,
+  readSettings,
+  writeSettingsSlot,
+  FLASH_BYTES,
+  SETTINGS_REGION_BYTES,
+} from '../lib/flash.mjs';
 import {
   adcChannel,
   driveDirection,
@@ -238,7 +244,8 @@ test('the settings document for a profile, in a flash slot the firmware reads', 
     const flash = new Uint8Array(FLASH_BYTES).fill(0xff);
     writeSettingsSlot(flash, doc, { slot: 1, sequence: 7 });
     assert.deepEqual(readSettings(flash), { slot: 1, sequence: 7, document: doc });
-    flash[FLASH_BYTES - 8192 + 256] ^= 1; // a flipped payload bit invalidates the slot
+    // A flipped payload bit (slot 1 is the second half of the region) invalidates the slot.
+    flash[FLASH_BYTES - SETTINGS_REGION_BYTES / 2 + 256] ^= 1;
     assert.equal(readSettings(flash), null);
   } finally {
     plant.close();
