@@ -159,10 +159,10 @@ TEST(LogFlood, ConnectionsToAFullLinePortFromManyHostsStayWithinTheBudget) {
   // The budget and at most one summary per source followed, one for the rest.
   EXPECT_LE(lines, 120u + 8u + 1u);
   EXPECT_LT(logged.size(), 20000u);
-  for (auto& c : busy) {
-    const std::string reply = c->ask("AZ?\n");
-    EXPECT_EQ(reply.rfind("OK AZ", 0), 0u) << reply;  // served throughout
-  }
+  // The busy clients were served through the flood (asked above, before the
+  // minute). Not asked again here: idle for the minute, net.idle_evict_s
+  // lets a newcomer the daemon takes off its queue late (ASan, a loaded
+  // machine) replace them, as it should.
 }
 
 }  // namespace
