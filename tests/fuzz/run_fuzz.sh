@@ -13,7 +13,7 @@ core_sources=$(find "$src/core" -name '*.cpp' | sort)
 cmake -DGZIP="$(command -v gzip)" -DWEB_DIR="$src/web" -DOUT="$out/web_assets.cpp" \
   -P "$src/core/web/embed_assets.cmake"
 core_sources="$core_sources $out/web_assets.cpp"
-common=(-std=c++20 -O1 -g -fno-exceptions -fno-rtti -fno-sanitize-recover=undefined
+common=(-std=c++20 -O1 -g1 -fno-exceptions -fno-rtti -fno-sanitize-recover=undefined
         -I"$src/core" -I"$src/tests/unit" -DROTORD_VERSION='"fuzz"')
 # The core is compiled once (instrumented for coverage, not linked with the
 # fuzzer's main) and archived; each target then compiles only itself.
