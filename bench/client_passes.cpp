@@ -5,10 +5,15 @@
 // 80 deg elevation, as issue 13 decides) every 0.1 s from AOS to LOS, the
 // seconds off by more than 5 deg, the unwinds (one azimuth run of more than
 // 200 deg; the tracking mode counts its own), the motor starts of both axes
-// in the pass and the commands the client had refused.
+// in the pass and the commands the client had refused. Each client runs
+// three times: the lead rule off (`_before`), on (the default), and on with
+// the ISS in the TLE store (`_recognised`: rotord may recognise the pass and
+// follow it between the client's go-tos; how long it took from AOS, how
+// long it lasted and the error once recognised are reported too).
 #include "client_passes.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -19,6 +24,7 @@
 #include "tracker_clients.hpp"
 #include "tracking/julian.hpp"
 #include "tracking/pass_finder.hpp"
+#include "tracking/tle_catalog.hpp"
 
 namespace rotord::bench {
 namespace {
@@ -157,6 +163,7 @@ struct Who {
   bool onboard;
   ClientKind kind;
   bool lead;
+  bool recognise;  ///< the ISS in the TLE store: rotord may recognise the pass
 };
 
 Result run_one(const char* profile_name, const PassCase& pc, const Who& who, bool flip_pass) {
@@ -185,6 +192,14 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
   Utc utc(pc.from_ms, &now);
   Controller c(settings, sim.io(AxisId::kAz), sim.io(AxisId::kEl));
   c.attach_utc_clock(&utc);
+  tracking::TleCatalog catalog;
+  if (who.recognise) {
+    const std::string text = std::string("ISS (ZARYA)\n") + kIss1 + "\n" + kIss2 + "\n";
+    if (!catalog.put(text, pc.from_ms).ok())
+      std::fprintf(stderr, "bench: the ISS TLE not stored\n");
+    c.attach_catalog(&catalog);
+  }
+  settings.set(Id::kTrackRecognise, who.recognise ? 1.0 : 0.0);
   c.begin(now);
   protocol::RotctldSession session(c, "bench");
   tracking::SkyTarget sat = iss();
@@ -195,7 +210,9 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
     tracking::parse_tle(kIss1, kIss2, r.tle);
     c.track(r);
   }
-  double sum = 0, max_err = 0, s_over_5 = 0;
+  double sum = 0, max_err = 0, s_over_5 = 0, s_recognised = 0, s_to_recognise = -1;
+  double sum_recognised = 0, max_recognised = 0;
+  long n_recognised = 0;
   long n = 0;
   std::uint32_t starts_at_aos = 0;
   bool in_pass = false;
@@ -225,6 +242,14 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
     ++n;
     max_err = std::fmax(max_err, e);
     if (e > 5.0) s_over_5 += kSampleMs / 1000.0;
+    if (c.recognition().active) {
+      if (s_to_recognise < 0)
+        s_to_recognise = static_cast<double>(pc.from_ms + now - pc.pass.aos_ms) / 1000.0;
+      s_recognised += kSampleMs / 1000.0;
+      sum_recognised += e * e;
+      max_recognised = std::fmax(max_recognised, e);
+      ++n_recognised;
+    }
   }
   const RotatorStatus s = c.status();
   const double starts = s.az.moves + s.el.moves - starts_at_aos;
@@ -240,7 +265,15 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
            {"s_error_over_5deg", s_over_5},
            {"unwinds", unwound},
            {"motor_starts", starts},
-           {"refused", static_cast<double>(client.refused())}}};
+           {"refused", static_cast<double>(client.refused())},
+           // How long the pass was followed as recognised, and how often a
+           // recognition ended before LOS (a mirrored or departing go-to).
+           {"s_recognised", s_recognised},
+           {"s_to_recognise", s_to_recognise},
+           {"rms_recognised_deg",
+            n_recognised > 0 ? std::sqrt(sum_recognised / static_cast<double>(n_recognised)) : 0.0},
+           {"max_recognised_deg", max_recognised},
+           {"recognition_endings", static_cast<double>(c.recognition().endings)}}};
 }
 
 }  // namespace
@@ -253,13 +286,16 @@ std::vector<Result> run_client_passes() {
   cases.push_back(find_case("north", 45.0, true));
   cases.push_back(find_case("flip", 82.0, true));
   const Who whos[] = {
-      {"onboard", true, ClientKind::kSatdump, true},
-      {"gpredict_before", false, ClientKind::kGpredict, false},
-      {"gpredict", false, ClientKind::kGpredict, true},
-      {"satnogs_before", false, ClientKind::kSatnogs, false},
-      {"satnogs", false, ClientKind::kSatnogs, true},
-      {"satdump_before", false, ClientKind::kSatdump, false},
-      {"satdump", false, ClientKind::kSatdump, true},
+      {"onboard", true, ClientKind::kSatdump, true, false},
+      {"gpredict_before", false, ClientKind::kGpredict, false, false},
+      {"gpredict", false, ClientKind::kGpredict, true, false},
+      {"gpredict_recognised", false, ClientKind::kGpredict, true, true},
+      {"satnogs_before", false, ClientKind::kSatnogs, false, false},
+      {"satnogs", false, ClientKind::kSatnogs, true, false},
+      {"satnogs_recognised", false, ClientKind::kSatnogs, true, true},
+      {"satdump_before", false, ClientKind::kSatdump, false, false},
+      {"satdump", false, ClientKind::kSatdump, true, false},
+      {"satdump_recognised", false, ClientKind::kSatdump, true, true},
   };
   std::vector<Result> rows;
   for (const char* profile : {"g5500", "spid"}) {

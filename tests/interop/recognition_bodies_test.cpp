@@ -45,11 +45,11 @@ std::vector<std::pair<double, double>> body_path(const std::string& body,
 }
 
 struct BodyCase {
-  const char* body;     ///< rotord predict --body
-  const char* name;     ///< as GET /api/status names it
-  const char* kind;     ///< "sun" / "moon"
-  const char* from;     ///< the body is up over Boulder
-  const char* to;       ///< from + 10 min
+  const char* body;         ///< rotord predict --body
+  const char* name;         ///< as GET /api/status names it
+  const char* kind;         ///< "sun" / "moon"
+  const char* from;         ///< the body is up over Boulder
+  const char* to;           ///< from + 10 min
   double away_az, away_el;  ///< a go-to far from the body
 };
 
@@ -132,13 +132,13 @@ void recognise_and_depart(const BodyCase& bc) {
 }
 
 TEST(RecognitionBodies, RotctlFollowingTheSunIsRecognisedAndADepartingGotoIsObeyed) {
-  recognise_and_depart({"sun", "Sun", "sun", "2019-12-09T18:00:00Z", "2019-12-09T18:10:00Z", 300.0,
-                        40.0});
+  recognise_and_depart(
+      {"sun", "Sun", "sun", "2019-12-09T18:00:00Z", "2019-12-09T18:10:00Z", 300.0, 40.0});
 }
 
 TEST(RecognitionBodies, RotctlFollowingTheMoonIsRecognisedAndADepartingGotoIsObeyed) {
-  recognise_and_depart({"moon", "Moon", "moon", "2019-12-10T03:00:00Z", "2019-12-10T03:10:00Z",
-                        300.0, 20.0});
+  recognise_and_depart(
+      {"moon", "Moon", "moon", "2019-12-10T03:00:00Z", "2019-12-10T03:10:00Z", 300.0, 20.0});
 }
 
 }  // namespace
