@@ -21,6 +21,7 @@
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
+#include "sky_pass.hpp"
 #include "tracker_clients.hpp"
 #include "tracking/julian.hpp"
 #include "tracking/pass_finder.hpp"
@@ -31,11 +32,6 @@ namespace {
 
 using settings::Id;
 
-constexpr const char* kIss1 =
-    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
-constexpr const char* kIss2 =
-    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
-constexpr double kPi = 3.14159265358979323846;
 constexpr Millis kTickMs = 10;
 constexpr Millis kSampleMs = 100;
 
@@ -45,16 +41,6 @@ struct PassCase {
   std::int64_t from_ms = 0;  ///< the run starts here (before AOS)
   tracking::Pass pass;
   bool crosses_north = false;
-};
-
-class Utc final : public hal::WallClock {
- public:
-  Utc(std::int64_t start, const Millis* now) : start_(start), now_(now) {}
-  std::optional<std::int64_t> unix_ms() const override { return start_ + *now_; }
-
- private:
-  std::int64_t start_;
-  const Millis* now_;
 };
 
 tracking::SkyTarget iss() {
@@ -111,21 +97,6 @@ PassCase find_case(const char* name, double max_el_deg, bool north) {
   }
   best.name = name;
   return best;
-}
-
-double rad(double d) {
-  return d * kPi / 180.0;
-}
-
-double pointing_error(double ant_az, double ant_el, double az, double el) {
-  if (ant_el > 90.0) {
-    ant_az += 180.0;
-    ant_el = 180.0 - ant_el;
-  }
-  if (el > 80.0) return std::fabs(ant_el - el);
-  const double c = std::sin(rad(ant_el)) * std::sin(rad(el)) +
-                   std::cos(rad(ant_el)) * std::cos(rad(el)) * std::cos(rad(ant_az - az));
-  return std::acos(std::fmin(1.0, std::fmax(-1.0, c))) * 180.0 / kPi;
 }
 
 /// Unwinds as the antenna makes them: an azimuth run of more than 200 deg.
@@ -189,7 +160,7 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
   sim.set_theta_deg(AxisId::kAz, start.az_deg);
   sim.set_theta_deg(AxisId::kEl, start.el_deg);
   Millis now = 0;
-  Utc utc(pc.from_ms, &now);
+  VirtualUtc utc(pc.from_ms, &now);
   Controller c(settings, sim.io(AxisId::kAz), sim.io(AxisId::kEl));
   c.attach_utc_clock(&utc);
   tracking::TleCatalog catalog;

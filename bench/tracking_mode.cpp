@@ -15,6 +15,7 @@
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
+#include "sky_pass.hpp"
 #include "tracking/julian.hpp"
 #include "tracking_mode.hpp"
 
@@ -22,36 +23,6 @@ namespace rotord::bench {
 namespace {
 
 using settings::Id;
-
-constexpr const char* kIss1 =
-    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
-constexpr const char* kIss2 =
-    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
-
-class Utc final : public hal::WallClock {
- public:
-  Utc(std::int64_t start, const Millis* now) : start_(start), now_(now) {}
-  std::optional<std::int64_t> unix_ms() const override { return start_ + *now_; }
-
- private:
-  std::int64_t start_;
-  const Millis* now_;
-};
-
-double rad(double d) {
-  return d * 3.14159265358979323846 / 180.0;
-}
-
-double pointing_error(double ant_az, double ant_el, double az, double el) {
-  if (ant_el > 90.0) {
-    ant_az += 180.0;
-    ant_el = 180.0 - ant_el;
-  }
-  if (el > 80.0) return std::fabs(ant_el - el);
-  const double c = std::sin(rad(ant_el)) * std::sin(rad(el)) +
-                   std::cos(rad(ant_el)) * std::cos(rad(el)) * std::cos(rad(ant_az - az));
-  return std::acos(std::fmin(1.0, std::fmax(-1.0, c))) * 180.0 / 3.14159265358979323846;
-}
 
 struct Scenario {
   const char* profile;
@@ -88,7 +59,7 @@ Measured measure(const Scenario& sc, float lead_bands, double tolerance_deg) {
     Millis now = 0;
     std::int64_t start = 0;
     tracking::parse_utc(sc.start_utc, start);
-    Utc utc(start, &now);
+    VirtualUtc utc(start, &now);
     Controller c(settings, sim.io(AxisId::kAz), sim.io(AxisId::kEl));
     c.attach_utc_clock(&utc);
     c.set_follow_lead(lead_bands);
