@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "http_client.hpp"
 #include "rotctl_session.hpp"
 #include "shell.hpp"
 
@@ -60,15 +61,13 @@ void recognise_and_depart(const BodyCase& bc) {
   DaemonProcess daemon({"--sim", "g5500", "--clock", "manual", "--utc-start", bc.from, "--config",
                         dir + "/conf/settings.json"});
   ASSERT_TRUE(daemon.ready()) << daemon.output();
-  const std::string base = "http://127.0.0.1:" + std::to_string(daemon.ports().web);
-  const auto curl = [&](const std::string& args) {
-    return run_command("timeout 20 curl -s " + args + " 2>&1").out;
-  };
-  ASSERT_EQ(curl("-o /dev/null -w '%{http_code}' --json '{\"station.lat_deg\":40.015,"
-                 "\"station.lon_deg\":-105.27,\"station.alt_m\":1655}' " +
-                 base + "/api/settings"),
-            "200");
-  EXPECT_NE(curl(base + "/api/status").find("\"recognised\":null"), std::string::npos);
+  const int web = daemon.ports().web;
+  const auto get = [web](const std::string& path) { return http(web, "GET", path).body; };
+  ASSERT_EQ(http(web, "POST", "/api/settings",
+                 R"({"station.lat_deg":40.015,"station.lon_deg":-105.27,"station.alt_m":1655})")
+                .status,
+            200);
+  EXPECT_NE(get("/api/status").find("\"recognised\":null"), std::string::npos);
 
   RotctlSession tracker("127.0.0.1:" + std::to_string(daemon.ports().rotctld), 200);
   ASSERT_TRUE(tracker.ok());
@@ -88,11 +87,11 @@ void recognise_and_depart(const BodyCase& bc) {
     ++sent;
     // The first go-to is a slew from park (literal): let it arrive.
     ASSERT_GE(daemon.advance_ms(sent == 1 ? 60000 : 10000), 0);
-    if (recognised_after == 0 && curl(base + "/api/status").find(active) != std::string::npos)
+    if (recognised_after == 0 && get("/api/status").find(active) != std::string::npos)
       recognised_after = sent;
   }
-  const std::string state = curl(base + "/api/status");
-  const std::string metrics = curl(base + "/metrics");
+  const std::string state = get("/api/status");
+  const std::string metrics = get("/metrics");
   std::printf(
       "[ recognition ] rotctl following the %s: recognised after %d go-tos, %d sent, the client "
       "read at most %.2f deg from the %s once followed\n",
@@ -116,11 +115,11 @@ void recognise_and_depart(const BodyCase& bc) {
   ASSERT_TRUE(tracker.read(az, el)) << tracker.text();
   EXPECT_NEAR(az, bc.away_az, 2.0);
   EXPECT_NEAR(el, bc.away_el, 2.0);
-  const std::string after = curl(base + "/api/status");
+  const std::string after = get("/api/status");
   EXPECT_NE(after.find("\"active\":false"), std::string::npos) << after;
   EXPECT_NE(after.find("\"ended\":\"departed\""), std::string::npos) << after;
   EXPECT_NE(after.find("\"mode\":\"idle\""), std::string::npos) << after;
-  EXPECT_NE(curl(base + "/metrics").find("rotord_goto_recognised 0"), std::string::npos);
+  EXPECT_NE(get("/metrics").find("rotord_goto_recognised 0"), std::string::npos);
   const std::string log = daemon.output();
   EXPECT_NE(log.find(std::string("recognised the ") + bc.name + " in a client's go-to stream"),
             std::string::npos)
