@@ -237,8 +237,9 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
            {"unwinds", unwound},
            {"motor_starts", starts},
            {"refused", static_cast<double>(client.refused())},
-           // How long the pass was followed as recognised, and how often a
-           // recognition ended before LOS (a mirrored or departing go-to).
+           // How long after AOS the pass was recognised (-1: never), how long
+           // it was followed so, the error meanwhile, and how often a
+           // recognition ended (LOS, or a mirrored or departing go-to).
            {"s_recognised", s_recognised},
            {"s_to_recognise", s_to_recognise},
            {"rms_recognised_deg",
