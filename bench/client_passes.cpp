@@ -5,10 +5,15 @@
 // 80 deg elevation, as issue 13 decides) every 0.1 s from AOS to LOS, the
 // seconds off by more than 5 deg, the unwinds (one azimuth run of more than
 // 200 deg; the tracking mode counts its own), the motor starts of both axes
-// in the pass and the commands the client had refused.
+// in the pass and the commands the client had refused. Each client runs
+// three times: the lead rule off (`_before`), on (the default), and on with
+// the ISS in the TLE store (`_recognised`: rotord may recognise the pass and
+// follow it between the client's go-tos; how long it took from AOS, how
+// long it lasted and the error once recognised are reported too).
 #include "client_passes.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -16,20 +21,17 @@
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
+#include "sky_pass.hpp"
 #include "tracker_clients.hpp"
 #include "tracking/julian.hpp"
 #include "tracking/pass_finder.hpp"
+#include "tracking/tle_catalog.hpp"
 
 namespace rotord::bench {
 namespace {
 
 using settings::Id;
 
-constexpr const char* kIss1 =
-    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
-constexpr const char* kIss2 =
-    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
-constexpr double kPi = 3.14159265358979323846;
 constexpr Millis kTickMs = 10;
 constexpr Millis kSampleMs = 100;
 
@@ -39,16 +41,6 @@ struct PassCase {
   std::int64_t from_ms = 0;  ///< the run starts here (before AOS)
   tracking::Pass pass;
   bool crosses_north = false;
-};
-
-class Utc final : public hal::WallClock {
- public:
-  Utc(std::int64_t start, const Millis* now) : start_(start), now_(now) {}
-  std::optional<std::int64_t> unix_ms() const override { return start_ + *now_; }
-
- private:
-  std::int64_t start_;
-  const Millis* now_;
 };
 
 tracking::SkyTarget iss() {
@@ -107,21 +99,6 @@ PassCase find_case(const char* name, double max_el_deg, bool north) {
   return best;
 }
 
-double rad(double d) {
-  return d * kPi / 180.0;
-}
-
-double pointing_error(double ant_az, double ant_el, double az, double el) {
-  if (ant_el > 90.0) {
-    ant_az += 180.0;
-    ant_el = 180.0 - ant_el;
-  }
-  if (el > 80.0) return std::fabs(ant_el - el);
-  const double c = std::sin(rad(ant_el)) * std::sin(rad(el)) +
-                   std::cos(rad(ant_el)) * std::cos(rad(el)) * std::cos(rad(ant_az - az));
-  return std::acos(std::fmin(1.0, std::fmax(-1.0, c))) * 180.0 / kPi;
-}
-
 /// Unwinds as the antenna makes them: an azimuth run of more than 200 deg.
 class UnwindCounter {
  public:
@@ -157,6 +134,7 @@ struct Who {
   bool onboard;
   ClientKind kind;
   bool lead;
+  bool recognise;  ///< the ISS in the TLE store: rotord may recognise the pass
 };
 
 Result run_one(const char* profile_name, const PassCase& pc, const Who& who, bool flip_pass) {
@@ -182,9 +160,17 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
   sim.set_theta_deg(AxisId::kAz, start.az_deg);
   sim.set_theta_deg(AxisId::kEl, start.el_deg);
   Millis now = 0;
-  Utc utc(pc.from_ms, &now);
+  VirtualUtc utc(pc.from_ms, &now);
   Controller c(settings, sim.io(AxisId::kAz), sim.io(AxisId::kEl));
   c.attach_utc_clock(&utc);
+  tracking::TleCatalog catalog;
+  if (who.recognise) {
+    const std::string text = std::string("ISS (ZARYA)\n") + kIss1 + "\n" + kIss2 + "\n";
+    if (!catalog.put(text, pc.from_ms).ok())
+      std::fprintf(stderr, "bench: the ISS TLE not stored\n");
+    c.attach_catalog(&catalog);
+  }
+  settings.set(Id::kTrackRecognise, who.recognise ? 1.0 : 0.0);
   c.begin(now);
   protocol::RotctldSession session(c, "bench");
   tracking::SkyTarget sat = iss();
@@ -195,7 +181,9 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
     tracking::parse_tle(kIss1, kIss2, r.tle);
     c.track(r);
   }
-  double sum = 0, max_err = 0, s_over_5 = 0;
+  double sum = 0, max_err = 0, s_over_5 = 0, s_recognised = 0, s_to_recognise = -1;
+  double sum_recognised = 0, max_recognised = 0;
+  long n_recognised = 0;
   long n = 0;
   std::uint32_t starts_at_aos = 0;
   bool in_pass = false;
@@ -225,6 +213,14 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
     ++n;
     max_err = std::fmax(max_err, e);
     if (e > 5.0) s_over_5 += kSampleMs / 1000.0;
+    if (c.recognition().active) {
+      if (s_to_recognise < 0)
+        s_to_recognise = static_cast<double>(pc.from_ms + now - pc.pass.aos_ms) / 1000.0;
+      s_recognised += kSampleMs / 1000.0;
+      sum_recognised += e * e;
+      max_recognised = std::fmax(max_recognised, e);
+      ++n_recognised;
+    }
   }
   const RotatorStatus s = c.status();
   const double starts = s.az.moves + s.el.moves - starts_at_aos;
@@ -240,7 +236,16 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
            {"s_error_over_5deg", s_over_5},
            {"unwinds", unwound},
            {"motor_starts", starts},
-           {"refused", static_cast<double>(client.refused())}}};
+           {"refused", static_cast<double>(client.refused())},
+           // How long after AOS the pass was recognised (-1: never), how long
+           // it was followed so, the error meanwhile, and how often a
+           // recognition ended (LOS, or a mirrored or departing go-to).
+           {"s_recognised", s_recognised},
+           {"s_to_recognise", s_to_recognise},
+           {"rms_recognised_deg",
+            n_recognised > 0 ? std::sqrt(sum_recognised / static_cast<double>(n_recognised)) : 0.0},
+           {"max_recognised_deg", max_recognised},
+           {"recognition_endings", static_cast<double>(c.recognition().endings)}}};
 }
 
 }  // namespace
@@ -253,13 +258,16 @@ std::vector<Result> run_client_passes() {
   cases.push_back(find_case("north", 45.0, true));
   cases.push_back(find_case("flip", 82.0, true));
   const Who whos[] = {
-      {"onboard", true, ClientKind::kSatdump, true},
-      {"gpredict_before", false, ClientKind::kGpredict, false},
-      {"gpredict", false, ClientKind::kGpredict, true},
-      {"satnogs_before", false, ClientKind::kSatnogs, false},
-      {"satnogs", false, ClientKind::kSatnogs, true},
-      {"satdump_before", false, ClientKind::kSatdump, false},
-      {"satdump", false, ClientKind::kSatdump, true},
+      {"onboard", true, ClientKind::kSatdump, true, false},
+      {"gpredict_before", false, ClientKind::kGpredict, false, false},
+      {"gpredict", false, ClientKind::kGpredict, true, false},
+      {"gpredict_recognised", false, ClientKind::kGpredict, true, true},
+      {"satnogs_before", false, ClientKind::kSatnogs, false, false},
+      {"satnogs", false, ClientKind::kSatnogs, true, false},
+      {"satnogs_recognised", false, ClientKind::kSatnogs, true, true},
+      {"satdump_before", false, ClientKind::kSatdump, false, false},
+      {"satdump", false, ClientKind::kSatdump, true, false},
+      {"satdump_recognised", false, ClientKind::kSatdump, true, true},
   };
   std::vector<Result> rows;
   for (const char* profile : {"g5500", "spid"}) {

@@ -64,7 +64,7 @@ void follow_axis(Axis& axis, AxisFollow& f, float want_now, float want_lead, flo
   // Aim ahead of where the target will be once the axis moves, so that the
   // antenna leads by about the band and then waits for the target to pass:
   // one start per 2 x band of the target's travel, not one per tolerance.
-  float aim = want_lead + sign * 0.8f * band;
+  float aim = want_lead + sign * f.lead_bands * band;
   if (!c.continuous) aim = clampf(aim, c.min_deg + 0.2f, c.max_deg - 0.2f);
   if (c.drive == DriveType::kHBridge) {
     // Follow at the target's pace: the duty for 1.3 x its rate plus the

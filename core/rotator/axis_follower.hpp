@@ -13,6 +13,12 @@ struct AxisFollow {
   float peak_speed_deg_s = 0;  ///< ... the fastest seen during this move
   bool was_moving = false;
   bool full_speed_move = false;
+  /// How far ahead of the target the axis is sent, in bands (0.8: it leads
+  /// by about a band, waits for the target to pass and starts once it is a
+  /// band behind, one start per ~2 bands; 0: it stops on the target and
+  /// starts once it is a band away, one start per band). Benchmarks set 0
+  /// to measure what the lead saves (bench/tracking_mode.cpp).
+  float lead_bands = 0.8f;
 };
 
 /// Updates the lag and speed from what the axis did this tick.

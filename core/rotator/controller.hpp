@@ -74,6 +74,9 @@ class Controller {
   /// Target evaluations (SGP4 + look angles) one tick may do for the
   /// tracker's pass search and planning (Pico W: 1, about 3 ms).
   void set_track_budget(int evaluations_per_tick) { tracker_.set_budget(evaluations_per_tick); }
+  /// How far the tracking mode's followers lead the target, in bands
+  /// (default 0.8; 0 for the plain follower the benchmarks compare with).
+  void set_follow_lead(float bands) { tracker_.set_follow_lead(bands); }
   /// The stored TLEs, for recognising what a client's go-to stream follows
   /// (track.recognise), or nullptr (the Sun and the Moon only).
   void attach_catalog(const tracking::TleCatalog* catalog) { catalog_ = catalog; }

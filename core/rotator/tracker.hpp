@@ -103,6 +103,10 @@ class Tracker {
   void set_budget(int evaluations_per_tick) {
     budget_ = evaluations_per_tick < 1 ? 1 : evaluations_per_tick;
   }
+  /// The followers' lead in bands (axis_follower.hpp, AxisFollow::lead_bands).
+  void set_follow_lead(float bands) {
+    for (AxisFollow& f : follow_) f.lead_bands = bands < 0.0f ? 0.0f : bands;
+  }
   const TrackStatus& status() const { return status_; }
   bool armed() const { return status_.armed(); }
   /// Where the antenna was when the track began (track.after_los = return).

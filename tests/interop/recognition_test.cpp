@@ -6,19 +6,16 @@
 // when off by more than 5 deg). GET /api/status and /metrics show the
 // recognition; a go-to away from the ISS ends it and is obeyed literally.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "rotctl_session.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
@@ -28,63 +25,6 @@ constexpr const char* kIss =
     "ISS (ZARYA)\n"
     "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991\n"
     "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482\n";
-
-/// rotctl in its interactive mode on one connection (as Gpredict keeps one).
-class Rotctl {
- public:
-  Rotctl(const std::string& where, const std::string& dir) : out_path_(dir + "/rotctl.txt") {
-    pipe_ =
-        ::popen(("timeout 120 rotctl -m 2 -r " + where + " > " + out_path_ + " 2>&1").c_str(), "w");
-  }
-  ~Rotctl() {
-    if (pipe_ != nullptr) {
-      std::fputs("q\n", pipe_);
-      ::pclose(pipe_);
-    }
-  }
-  bool ok() const { return pipe_ != nullptr; }
-  void send(const std::string& line) {
-    std::fputs(line.c_str(), pipe_);
-    std::fflush(pipe_);
-  }
-  /// Sends `p`; false when no answer came.
-  bool read(double& az, double& el) {
-    const std::size_t before = positions().size();
-    send("p\n");
-    // Wall-clock poll for the bytes to cross the socket and rotctl's stdout:
-    // the daemon's clock stands still meanwhile.
-    for (int i = 0; i < 300; ++i) {
-      const std::vector<std::pair<double, double>> v = positions();
-      if (v.size() > before) {
-        az = v.back().first;
-        el = v.back().second;
-        return true;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return false;
-  }
-  std::string text() const {
-    std::ifstream in(out_path_);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
- private:
-  std::vector<std::pair<double, double>> positions() const {
-    static const std::regex kPos("Azimuth: (-?[0-9.]+)\\s+Elevation: (-?[0-9.]+)");
-    std::vector<std::pair<double, double>> v;
-    const std::string t = text();
-    for (auto it = std::sregex_iterator(t.begin(), t.end(), kPos); it != std::sregex_iterator();
-         ++it)
-      v.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
-    return v;
-  }
-
-  std::string out_path_;
-  FILE* pipe_ = nullptr;
-};
 
 TEST(Recognition, RotctlStreamingTheIssPassIsRecognisedAndShownInApiStatus) {
   const std::string dir = make_temp_dir("rotord-recognition");
@@ -123,7 +63,7 @@ TEST(Recognition, RotctlStreamingTheIssPassIsRecognisedAndShownInApiStatus) {
             "200");
   EXPECT_NE(curl(base + "/api/status").find("\"recognised\":null"), std::string::npos);
 
-  Rotctl gpredict("127.0.0.1:" + std::to_string(daemon.ports().rotctld), dir);
+  RotctlSession gpredict("127.0.0.1:" + std::to_string(daemon.ports().rotctld), 120);
   ASSERT_TRUE(gpredict.ok());
   int sent = 0, recognised_at = 0, sent_then = 0, cycle = 0;
   double worst_gap = 0;  // what the client reads against its target, once recognised

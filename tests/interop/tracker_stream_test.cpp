@@ -5,82 +5,18 @@
 // overlap with no unwind, this client reads the position back in its own
 // frame, and another client reads the unwrapped position.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <memory>
-#include <regex>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "rotctl_session.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
 namespace {
-
-/// rotctl in its interactive mode on one connection: commands go to its
-/// standard input, its answers land in a file.
-class RotctlSession {
- public:
-  explicit RotctlSession(const std::string& where) : dir_(make_temp_dir("rotctl-stream")) {
-    out_path_ = dir_ + "/out.txt";
-    pipe_ =
-        ::popen(("timeout 300 rotctl -m 2 -r " + where + " > " + out_path_ + " 2>&1").c_str(), "w");
-  }
-  ~RotctlSession() {
-    if (pipe_ != nullptr) {
-      std::fputs("q\n", pipe_);
-      ::pclose(pipe_);
-    }
-    std::remove(out_path_.c_str());
-    ::rmdir(dir_.c_str());
-  }
-  bool ok() const { return pipe_ != nullptr; }
-  void send(const std::string& line) {
-    std::fputs(line.c_str(), pipe_);
-    std::fflush(pipe_);
-  }
-  /// Sends `p` and returns the azimuth rotctl prints (NAN when none came).
-  double read_az() {
-    const std::size_t before = azimuths().size();
-    send("p\n");
-    // Wall-clock poll for the bytes to cross the socket and rotctl's stdout:
-    // the daemon's clock stands still meanwhile.
-    for (int i = 0; i < 200; ++i) {
-      const std::vector<double> v = azimuths();
-      if (v.size() > before) return v.back();
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return NAN;
-  }
-  std::string text() const {
-    std::ifstream in(out_path_);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
- private:
-  std::vector<double> azimuths() const {
-    static const std::regex kAz("Azimuth: (-?[0-9.]+)");
-    std::vector<double> v;
-    const std::string t = text();
-    for (auto it = std::sregex_iterator(t.begin(), t.end(), kAz); it != std::sregex_iterator();
-         ++it)
-      v.push_back(std::stod((*it)[1]));
-    return v;
-  }
-
-  std::string dir_;
-  std::string out_path_;
-  FILE* pipe_ = nullptr;
-};
 
 /// What one streamed pass did.
 struct Streamed {
