@@ -15,6 +15,7 @@
 //   registers kept).
 import { readFileSync } from 'node:fs';
 import { RP2040, ConsoleLogger, LogLevel } from 'rp2040js';
+import { elfSymbols } from './elf.mjs';
 import { installFlashModel, writeSettingsSlot } from './flash.mjs';
 import { adcChannel, driveDirection, elPlantInputs, ma3Frame, plantInputs, pwmDuty, switchLevels } from './pins.mjs';
 import { UsbHost } from './usb_host.mjs';
@@ -360,11 +361,47 @@ export class Board {
         const uEl = this.elPlantInputs();
         this.trackMotion(this.motion.az, driveDirection(u));
         if (uEl) this.trackMotion(this.motion.el, driveDirection(uEl));
+        this.sampleHeap();
         this.sensors = await this.plant.step(plantMs, u, uEl ?? undefined);
         this.plantMs = plantMs;
         this.applySensors(this.sensors);
       }
     }
+  }
+
+  /**
+   * newlib's malloc in the emulated RAM, read through the image's symbols:
+   * `room` the bytes between the static RAM's end and the stack limit (all
+   * the heap there is), `sbrked` what malloc has taken of it, `highWater`
+   * the highest it has used (its top chunk's start, sampled every emulated
+   * millisecond). Null for an image without them (a .bin).
+   */
+  heap() {
+    const sym = this.symbols();
+    const need = ['end', '__StackLimit', '__malloc_max_sbrked_mem', '__malloc_av_', '__malloc_sbrk_base'];
+    if (!sym || need.some((n) => !sym.has(n))) return null;
+    const end = sym.get('end').value;
+    return {
+      room: sym.get('__StackLimit').value - end,
+      sbrked: this.rp.readUint32(sym.get('__malloc_max_sbrked_mem').value),
+      highWater: this.heapTopMax === undefined ? 0 : this.heapTopMax - end,
+    };
+  }
+
+  sampleHeap() {
+    const sym = this.symbols();
+    if (!sym?.has('__malloc_av_') || !sym.has('__malloc_sbrk_base')) return;
+    // av_[2] is the top chunk: malloc has never used the memory above it.
+    const top = this.rp.readUint32(sym.get('__malloc_av_').value + 8);
+    const base = this.rp.readUint32(sym.get('__malloc_sbrk_base').value);
+    if (base === 0xffffffff || top < base) return; // no sbrk yet: av_[2] is the initial top
+    if (this.heapTopMax === undefined || top > this.heapTopMax) this.heapTopMax = top;
+  }
+
+  symbols() {
+    if (this.symbolCache === undefined)
+      this.symbolCache = this.opts.image?.endsWith('.elf') ? elfSymbols(this.opts.image) : null;
+    return this.symbolCache;
   }
 
   /** Runs until pred() holds, checking every step ms; false after timeoutMs of emulated time. */
