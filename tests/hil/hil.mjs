@@ -953,19 +953,30 @@ if (!existsSync(imagePath)) {
   process.exit(2);
 }
 console.log(`hil: ${boardName}: ${imagePath} on rp2040js, plant ${plantBinary}`);
+// What malloc must still have after the most a scenario used: the network
+// side, which the emulated chip never runs (no Wi-Fi chip), allocates too:
+// mbedtls' HMAC context for a login (about 250 bytes) and the bigints of
+// number parsing in JSON bodies (newlib's strtod, a few hundred).
+const HEAP_SPARE_BYTES = 1024;
+
 /**
- * Prints what each chip of the scenario took of the heap: newlib's malloc
- * gets only the RAM between the static data and the stack (ports/pico_w/README.md,
- * RAM), and an image whose static RAM grows into what the firmware mallocs
- * stops where a malloc first fails.
+ * What each chip of the scenario took of the heap, printed once: newlib's
+ * malloc gets only the RAM between the static data and the stack
+ * (ports/pico_w/README.md, RAM), so static RAM that grows into what the
+ * firmware mallocs would stop it where a malloc first fails. Returns why
+ * the heap is too tight, or null.
  */
 function reportHeap(name) {
-  for (const board of scenarioBoards) {
+  let tight = null;
+  for (const board of scenarioBoards.splice(0)) {
     const h = board.heap();
     if (!h) continue;
     console.log(`    heap: ${h.highWater} bytes used at most, ${h.sbrked} taken from sbrk, of ${h.room} between the static RAM and the stack`);
     heapRows.push({ scenario: name, ...h });
+    if (h.room - h.highWater < HEAP_SPARE_BYTES)
+      tight = `the heap: ${h.highWater} of ${h.room} bytes used, fewer than ${HEAP_SPARE_BYTES} to spare for the network's allocations`;
   }
+  return tight;
 }
 
 let failed = 0;
@@ -976,7 +987,8 @@ for (const [name, fn] of Object.entries(scenarios)) {
   scenarioBoards.length = 0;
   try {
     await fn();
-    reportHeap(name);
+    const tight = reportHeap(name);
+    if (tight) throw new Error(tight);
     results.push({ name, ok: true });
     console.log(`PASS ${name} (${((Date.now() - wall0) / 1000).toFixed(1)} s wall)`);
   } catch (e) {
@@ -986,6 +998,10 @@ for (const [name, fn] of Object.entries(scenarios)) {
     console.log(`FAIL ${name}: ${e.message}`);
     if (verbose) console.log(e.stack);
   }
+}
+if (heapRows.length) {
+  const used = Math.max(...heapRows.map((h) => h.highWater));
+  benchRows.push({ name: `hil/${boardName}_heap`, inputs: { scenarios: results.length }, metrics: { heap_used_max_bytes: used, heap_room_bytes: Math.min(...heapRows.map((h) => h.room)) } });
 }
 if (benchRows.length) {
   mkdirSync(dirname(outPath), { recursive: true });

@@ -32,6 +32,7 @@ extern "C" {
 }
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
+#include "protocol/protocol_registry.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "protocol/seed_session.hpp"
 #include "protocol/window_sink.hpp"
@@ -337,7 +338,7 @@ class LwipTransportTest : public ::testing::Test {
   netif netif_{};
   ip_addr_t addr_{};
   TcpServer* server_ = nullptr;
-  std::array<Client, 8> clients_{};
+  std::array<Client, 64> clients_{};
   std::size_t client_count_ = 0;
   Millis now_ = 0;
 };
@@ -869,6 +870,140 @@ TEST_F(LwipAdmissionTest, BytesThatAreNoCommandDoNotKeepASlot) {
   EXPECT_TRUE(pong(newcomer));
   EXPECT_TRUE(wait([&] { return a.peer_closed; }));
   EXPECT_TRUE(pong(b));
+}
+
+// Issue 29 as the Pico W image is built (ports/pico_w/network_services.cpp):
+// WRC (4 slots) and rotctld (3) with their real sessions on a controller,
+// sharing one STOP-only slot sized for the largest of the five line
+// sessions. Each port is full of clients that keep their connections warm
+// (bare line ends) or ask for the position (a command, so never idle): for
+// 40 s of the network's clock, less than net.idle_evict_s, so nobody may be
+// dropped for a newcomer. A newcomer from another host still stops a moving
+// rotator, on either port, every time, through the shared slot.
+TEST_F(LwipAdmissionTest, ThePicoWsLinePortsObeyANewcomersStopWhileClientsHoldThem) {
+  using protocol::Personality;
+  using protocol::SessionOf;
+  using WrcS = SessionOf<Personality::kWrc>::type;
+  using RotctldS = SessionOf<Personality::kRotctld>::type;
+  testing::FakeRotator rotator(false);
+  const protocol::SessionDeps deps{*rotator.controller, "test"};
+  constexpr std::size_t kLargest =
+      std::max({sizeof(WrcS), sizeof(RotctldS), sizeof(SessionOf<Personality::kGs232>::type),
+                sizeof(SessionOf<Personality::kEasycomm>::type),
+                sizeof(SessionOf<Personality::kSeed>::type)});
+  constexpr std::size_t kAlign =
+      std::max({alignof(WrcS), alignof(RotctldS), alignof(SessionOf<Personality::kGs232>::type),
+                alignof(SessionOf<Personality::kEasycomm>::type),
+                alignof(SessionOf<Personality::kSeed>::type)});
+  lwip_port::StaticSharedStopOnly<kLargest, kAlign> shared;
+  auto line_config = [&](Personality personality, std::size_t slots) {
+    ServerConfig config;
+    config.name = protocol::protocol_info(personality).name.data();
+    config.max_clients = slots;
+    config.reject_message = protocol::protocol_info(personality).refusal;
+    config.settings = &settings_;
+    config.shared_stop_only = &shared;
+    return config;
+  };
+  auto make_wrc = [&deps] { return SessionOf<Personality::kWrc>::make(deps); };
+  auto make_rotctld = [&deps] { return SessionOf<Personality::kRotctld>::make(deps); };
+  StaticService<WrcS, 4, decltype(make_wrc)> wrc(line_config(Personality::kWrc, 4), make_wrc);
+  StaticService<RotctldS, 3, decltype(make_rotctld)> rotctld(line_config(Personality::kRotctld, 3),
+                                                             make_rotctld);
+  {
+    CoreLock lock;
+    ASSERT_TRUE(rotctld.server().start());
+  }
+  auto served = serve(wrc.server());
+
+  // The holders: hosts 1-4 on WRC, 1-3 on rotctld; the newcomers come from
+  // the server's own address, a fifth host.
+  struct Holder {
+    Client* client;
+    TcpServer* server;
+    const char* keep;  ///< sent every 2 s: a bare line end, or a position query
+  };
+  std::vector<Holder> holders;
+  auto hold = [&](TcpServer& server, std::size_t host, const char* keep) {
+    server_ = &server;
+    Client& c = connect_from(host);
+    send(c, keep);
+    holders.push_back({&c, &server, keep});
+  };
+  hold(wrc.server(), 1, "\r\n");
+  hold(wrc.server(), 2, "\r\n");
+  hold(wrc.server(), 3, "AZ?\r\n");
+  hold(wrc.server(), 4, "\r\n");
+  hold(rotctld.server(), 1, "\n");
+  hold(rotctld.server(), 2, "p\n");
+  hold(rotctld.server(), 3, "\n");
+  // The network's clock and the controller's tick, as the firmware's loop
+  // runs them; pred() is checked under the core lock.
+  auto pump = [&](auto pred, Millis step_ms = 0) {
+    for (int i = 0; i < kMaxSteps; ++i) {
+      {
+        CoreLock lock;
+        now_ += step_ms;
+        wrc.server().poll(now_);
+        rotctld.server().poll(now_);
+        if (pred()) return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return false;
+  };
+  ASSERT_TRUE(pump([&] { return wrc.server().client_count() == 4; }));
+  ASSERT_TRUE(pump([&] { return rotctld.server().client_count() == 3; }));
+  auto driving = [&] { return rotator.az.drive.cw() || rotator.az.drive.ccw(); };
+
+  constexpr int kTries = 20;
+  int stopped[2] = {0, 0};
+  const char* const stop_line[2] = {"STOP\r\n", "S\n"};
+  const char* const stop_reply[2] = {"OK STOP\r\n", "RPRT 0\n"};
+  for (int t = 0; t < 2 * kTries; ++t) {
+    const int port = t % 2;  // WRC, rotctld in turn: one shared slot
+    // The holders keep at it, 1 s apart.
+    for (Holder& h : holders) send(*h.client, h.keep);
+    ASSERT_TRUE(pump([] { return true; }, 1000));
+    bool turning = false;
+    {
+      CoreLock lock;  // someone's go-to: the rotator turns
+      rotator.az.set_deg(100);
+      turning = rotator.controller->go_to(300.0f, std::nullopt) == Error::kOk;
+      rotator.run_ms(100);
+      turning = turning && driving();
+    }
+    ASSERT_TRUE(turning) << "try " << t;
+    server_ = port == 0 ? &wrc.server() : &rotctld.server();
+    Client& newcomer = connect_from(0);
+    send(newcomer, stop_line[port]);
+    EXPECT_TRUE(pump([&] { return newcomer.peer_closed || newcomer.reset; }));
+    CoreLock lock;
+    rotator.run_ms(10);  // the next tick: the drive is off
+    if (newcomer.received == stop_reply[port] && !driving())
+      ++stopped[port];
+    else
+      ADD_FAILURE() << "try " << t << ": " << ::testing::PrintToString(newcomer.received)
+                    << (driving() ? ", still driving" : "");
+    rotator.run_ms(1500);  // the stop's coast and dead time
+    EXPECT_FALSE(rotator.controller->status().moving());
+  }
+  std::printf(
+      "[ measured ] Pico W line ports held by 4 + 3 clients (bare line ends, position "
+      "queries): a newcomer's STOP stopped the moving rotator %d of %d times on WRC, "
+      "%d of %d on rotctld\n",
+      stopped[0], kTries, stopped[1], kTries);
+  EXPECT_EQ(stopped[0], kTries);
+  EXPECT_EQ(stopped[1], kTries);
+  CoreLock lock;
+  for (const Holder& h : holders)
+    EXPECT_TRUE(h.client->pcb != nullptr && !h.client->peer_closed) << "a holder was dropped";
+  EXPECT_EQ(wrc.server().counters().stop_only, static_cast<std::uint32_t>(kTries));
+  EXPECT_EQ(rotctld.server().counters().stop_only, static_cast<std::uint32_t>(kTries));
+  EXPECT_EQ(wrc.server().counters().evicted_idle + rotctld.server().counters().evicted_idle, 0u);
+  EXPECT_EQ(shared.holder(), nullptr);
+  rotctld.server().stop();
+  server_ = &wrc.server();  // the one `served` stops
 }
 
 TEST(LwipStopOnlyRam, TheSlotOfAStopOnlyExchangeCostsAConnectionAndASession) {

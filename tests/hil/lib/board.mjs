@@ -361,7 +361,6 @@ export class Board {
         const uEl = this.elPlantInputs();
         this.trackMotion(this.motion.az, driveDirection(u));
         if (uEl) this.trackMotion(this.motion.el, driveDirection(uEl));
-        this.sampleHeap();
         this.sensors = await this.plant.step(plantMs, u, uEl ?? undefined);
         this.plantMs = plantMs;
         this.applySensors(this.sensors);
@@ -373,29 +372,30 @@ export class Board {
    * newlib's malloc in the emulated RAM, read through the image's symbols:
    * `room` the bytes between the static RAM's end and the stack limit (all
    * the heap there is), `sbrked` what malloc has taken of it, `highWater`
-   * the highest it has used (its top chunk's start, sampled every emulated
-   * millisecond). Null for an image without them (a .bin).
+   * the most it has used: the heap's RAM starts out zero and every chunk
+   * malloc ever split off leaves a header behind, so the last non-zero byte
+   * marks the highest its top chunk has been, however briefly. Null for an
+   * image without these symbols (a .bin).
    */
   heap() {
     const sym = this.symbols();
-    const need = ['end', '__StackLimit', '__malloc_max_sbrked_mem', '__malloc_av_', '__malloc_sbrk_base'];
+    const need = ['end', '__StackLimit', '__malloc_max_sbrked_mem'];
     if (!sym || need.some((n) => !sym.has(n))) return null;
+    const ram = 0x20000000;
     const end = sym.get('end').value;
+    const limit = sym.get('__StackLimit').value;
+    let last = end - ram;
+    for (let i = limit - ram - 1; i >= end - ram; i--) {
+      if (this.rp.sram[i] !== 0) {
+        last = i + 1;
+        break;
+      }
+    }
     return {
-      room: sym.get('__StackLimit').value - end,
+      room: limit - end,
       sbrked: this.rp.readUint32(sym.get('__malloc_max_sbrked_mem').value),
-      highWater: this.heapTopMax === undefined ? 0 : this.heapTopMax - end,
+      highWater: last - (end - ram),
     };
-  }
-
-  sampleHeap() {
-    const sym = this.symbols();
-    if (!sym?.has('__malloc_av_') || !sym.has('__malloc_sbrk_base')) return;
-    // av_[2] is the top chunk: malloc has never used the memory above it.
-    const top = this.rp.readUint32(sym.get('__malloc_av_').value + 8);
-    const base = this.rp.readUint32(sym.get('__malloc_sbrk_base').value);
-    if (base === 0xffffffff || top < base) return; // no sbrk yet: av_[2] is the initial top
-    if (this.heapTopMax === undefined || top > this.heapTopMax) this.heapTopMax = top;
   }
 
   symbols() {
