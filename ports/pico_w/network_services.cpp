@@ -62,14 +62,27 @@ struct MakeSession {
 // A stop-only slot per line port (a newcomer to a full port may say STOP,
 // net/admission.hpp) would cost a Connection (1.1 KB, its output buffer) and a
 // session each, about 9 KB for the five, which the image does not have (RAM
-// overflowed by 3,152 bytes). One slot shared by the line ports
-// (lwip_port::SharedStopOnly, tested in lwip_transport_tests) links, but the
-// images with it stopped at boot in make hil's goto-mag (nothing logged after
-// the settings load): room for four ports' sessions (1,328 bytes), and for
-// five with a 1 KB output buffer (3,952), while one of 3,064 bytes ran before
-// pass recognition was merged. Until that is understood the Pico W has no
-// STOP-only slot (ports/pico_w/README.md, docs/security.md).
+// overflowed by 3,152 bytes). The five share one instead
+// (lwip_port::SharedStopOnly): a Connection with a 128-byte output buffer and
+// room for the largest line session (rotctld's), taken by one exchange (one
+// short line, 2 s at most) at a time. It comes out of the heap's room, the RAM
+// between the static data and the stack, where malloc takes under 1 KB (make
+// hil prints it per scenario). Images with the slot once looked as if they
+// stopped at boot in make hil's goto-mag: that scenario read the log the
+// moment USB enumerated, a race its image layout decided, not a stop.
+// ports/pico_w/README.md, docs/security.md.
 constexpr std::size_t kStopOnlySlots = 0;
+template <Personality... Ps>
+constexpr std::size_t kLargestSession =
+    std::max({sizeof(typename protocol::SessionOf<Ps>::type)...});
+template <Personality... Ps>
+constexpr std::size_t kLargestAlign =
+    std::max({alignof(typename protocol::SessionOf<Ps>::type)...});
+using SharedStopOnlySlot = lwip_port::StaticSharedStopOnly<
+    kLargestSession<Personality::kWrc, Personality::kRotctld, Personality::kGs232,
+                    Personality::kEasycomm, Personality::kSeed>,
+    kLargestAlign<Personality::kWrc, Personality::kRotctld, Personality::kGs232,
+                  Personality::kEasycomm, Personality::kSeed>>;
 template <Personality P>
 using LineService = lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>,
                                              MakeSession<P>, kStopOnlySlots>;
@@ -196,8 +209,9 @@ void network_start(const NetworkDeps& d, Millis now) {
   static protocol::MonitorTap monitor_tap(d.log);
   static const protocol::SessionDeps deps{controller, ROTORD_VERSION, &monitor_tap};
   // Every server admits by net/admission.hpp with the live settings (idle
-  // eviction, per-address cap, allow-list), as on Linux.
-
+  // eviction, per-address cap, allow-list), as on Linux; a newcomer to a
+  // full line port gets the shared STOP-only exchange when it is free.
+  static SharedStopOnlySlot shared_stop_only;
   auto line_config = [&settings, &registry](Personality personality) {
     const protocol::ProtocolInfo& info = protocol::protocol_info(personality);
     lwip_port::ServerConfig config;
@@ -206,6 +220,7 @@ void network_start(const NetworkDeps& d, Millis now) {
     config.max_clients = static_cast<std::size_t>(settings.i(settings::Id::kNetMaxClients));
     config.reject_message = info.refusal;
     config.settings = &settings;
+    config.shared_stop_only = &shared_stop_only;
     config.metrics = &registry;
     config.protocol = info.metric;
     return config;

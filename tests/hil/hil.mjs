@@ -43,6 +43,7 @@ async function rig({ profile = 'g5500', drive, mag, sensor, thetaDeg, speedScale
   const plant = new Plant({ binary: plantBinary, profile, drive, mag, sensor, thetaDeg, speedScale, noise, elSensor, elThetaDeg, potSamples });
   const settingsDocument = await plant.settingsDocument(settings);
   const board = new Board({ bootrom, image: imagePath, pins: pinMap, plant, settingsDocument, echoLog: verbose });
+  scenarioBoards.push(board);
   const bridge = new PtyBridge({ endpoint: board.ports[1] });
   const pty = await bridge.start();
   if (!(await board.runUntil(() => board.usbConnectedMs !== undefined, 3000)))
@@ -231,6 +232,8 @@ function tickStats(board, fromMs, toMs, busyCycles) {
 
 const results = [];
 const benchRows = [];
+const scenarioBoards = []; // the chips the running scenario booted (their heap is reported)
+const heapRows = [];
 
 function check(ok, what) {
   if (!ok) throw new Error(what);
@@ -313,7 +316,11 @@ const scenarios = {
     const cal = { 'az.sensor': 'mag', 'mag.x_min': -900, 'mag.x_max': 1500, 'mag.y_min': -1050, 'mag.y_max': 750 };
     const r = await rig({ thetaDeg: 100, mag: true, noise: true, settings: cal });
     try {
-      const found = r.board.logLines.find((l) => /magnetometer/.test(l.text));
+      // Waited for, not looked up: USB enumerates about when the boot's
+      // first log lines go out, and which comes first moves by microseconds
+      // with the image's layout (a 1.3 KB larger .bss once lost this race,
+      // read then as a firmware that stopped at boot).
+      const found = await r.board.waitForLog(/magnetometer/, 1000);
       check(/QMC5883L at 0x0D/.test(found?.text ?? ''), `log: "${found?.text}"`);
       const wrote = (reg, value) => r.board.i2cLog.some((w) => w.register === reg && w.value === value);
       check(wrote(0x0b, 0x01) && wrote(0x09, 0x15), `the chip started: ${r.board.i2cLog.map((w) => `0x${w.register.toString(16)}=0x${w.value.toString(16)}`).join(', ')} (SET/RESET period, then continuous 50 Hz, 8 G, 512x)`);
@@ -946,21 +953,55 @@ if (!existsSync(imagePath)) {
   process.exit(2);
 }
 console.log(`hil: ${boardName}: ${imagePath} on rp2040js, plant ${plantBinary}`);
+// What malloc must still have after the most a scenario used: the network
+// side, which the emulated chip never runs (no Wi-Fi chip), allocates too:
+// mbedtls' HMAC context for a login (about 250 bytes) and the bigints of
+// number parsing in JSON bodies (newlib's strtod, a few hundred).
+const HEAP_SPARE_BYTES = 1024;
+
+/**
+ * What each chip of the scenario took of the heap, printed once: newlib's
+ * malloc gets only the RAM between the static data and the stack
+ * (ports/pico_w/README.md, RAM), so static RAM that grows into what the
+ * firmware mallocs would stop it where a malloc first fails. Returns why
+ * the heap is too tight, or null.
+ */
+function reportHeap(name) {
+  let tight = null;
+  for (const board of scenarioBoards.splice(0)) {
+    const h = board.heap();
+    if (!h) continue;
+    console.log(`    heap: ${h.highWater} bytes used at most, ${h.sbrked} taken from sbrk, of ${h.room} between the static RAM and the stack`);
+    heapRows.push({ scenario: name, ...h });
+    if (h.room - h.highWater < HEAP_SPARE_BYTES)
+      tight = `the heap: ${h.highWater} of ${h.room} bytes used, fewer than ${HEAP_SPARE_BYTES} to spare for the network's allocations`;
+  }
+  return tight;
+}
+
 let failed = 0;
 for (const [name, fn] of Object.entries(scenarios)) {
   if (only.length && !only.includes(name)) continue;
   const wall0 = Date.now();
   console.log(`hil: ${name}`);
+  scenarioBoards.length = 0;
   try {
     await fn();
+    const tight = reportHeap(name);
+    if (tight) throw new Error(tight);
     results.push({ name, ok: true });
     console.log(`PASS ${name} (${((Date.now() - wall0) / 1000).toFixed(1)} s wall)`);
   } catch (e) {
     failed++;
+    reportHeap(name);
     results.push({ name, ok: false, error: e.message });
     console.log(`FAIL ${name}: ${e.message}`);
     if (verbose) console.log(e.stack);
   }
+}
+if (heapRows.length) {
+  const used = Math.max(...heapRows.map((h) => h.highWater));
+  benchRows.push({ name: `hil/${boardName}_heap`, inputs: { scenarios: results.length }, metrics: { heap_used_max_bytes: used, heap_room_bytes: Math.min(...heapRows.map((h) => h.room)) } });
 }
 if (benchRows.length) {
   mkdirSync(dirname(outPath), { recursive: true });

@@ -32,6 +32,7 @@ extern "C" {
 }
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
+#include "protocol/protocol_registry.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "protocol/seed_session.hpp"
 #include "protocol/window_sink.hpp"
@@ -337,7 +338,7 @@ class LwipTransportTest : public ::testing::Test {
   netif netif_{};
   ip_addr_t addr_{};
   TcpServer* server_ = nullptr;
-  std::array<Client, 8> clients_{};
+  std::array<Client, 128> clients_{};
   std::size_t client_count_ = 0;
   Millis now_ = 0;
 };
@@ -869,6 +870,172 @@ TEST_F(LwipAdmissionTest, BytesThatAreNoCommandDoNotKeepASlot) {
   EXPECT_TRUE(pong(newcomer));
   EXPECT_TRUE(wait([&] { return a.peer_closed; }));
   EXPECT_TRUE(pong(b));
+}
+
+/// A session of personality P for a static pool, as the firmware's
+/// network_services.cpp builds one.
+template <protocol::Personality P>
+struct MakeLineSession {
+  const protocol::SessionDeps* deps;
+  typename protocol::SessionOf<P>::type operator()() const {
+    return protocol::SessionOf<P>::make(*deps);
+  }
+};
+template <protocol::Personality P, std::size_t Slots>
+using LineService = StaticService<typename protocol::SessionOf<P>::type, Slots, MakeLineSession<P>>;
+template <protocol::Personality... Ps>
+constexpr std::size_t kLargestSession =
+    std::max({sizeof(typename protocol::SessionOf<Ps>::type)...});
+template <protocol::Personality... Ps>
+constexpr std::size_t kLargestAlign =
+    std::max({alignof(typename protocol::SessionOf<Ps>::type)...});
+
+// Issue 29 as the Pico W image is built (ports/pico_w/network_services.cpp):
+// the five line ports with their slots (WRC 4, rotctld 3, GS-232, Easycomm
+// and seed 2) and real sessions on one controller, sharing one STOP-only
+// slot sized for the largest session. Each port is full of clients from
+// other hosts that keep their connections warm (bare line ends) or ask for
+// the position (a command, so never idle), for 50 s of the network's clock,
+// less than net.idle_evict_s, so nobody may be dropped for a newcomer. A
+// newcomer from yet another host still stops the moving rotator, on every
+// port, every time, through the shared slot.
+TEST_F(LwipAdmissionTest, ThePicoWsLinePortsObeyANewcomersStopWhileClientsHoldThem) {
+  using protocol::Personality;
+  testing::FakeRotator rotator(false);
+  const protocol::SessionDeps deps{*rotator.controller, "test"};
+  constexpr Personality kWrc = Personality::kWrc, kRotctld = Personality::kRotctld,
+                        kGs232 = Personality::kGs232, kEasycomm = Personality::kEasycomm,
+                        kSeed = Personality::kSeed;
+  lwip_port::StaticSharedStopOnly<kLargestSession<kWrc, kRotctld, kGs232, kEasycomm, kSeed>,
+                                  kLargestAlign<kWrc, kRotctld, kGs232, kEasycomm, kSeed>>
+      shared;
+  auto line_config = [&](Personality personality, std::size_t slots) {
+    ServerConfig config;
+    config.name = protocol::protocol_info(personality).name.data();
+    config.max_clients = slots;
+    config.reject_message = protocol::protocol_info(personality).refusal;
+    config.settings = &settings_;
+    config.shared_stop_only = &shared;
+    return config;
+  };
+  LineService<kWrc, 4> wrc(line_config(kWrc, 4), {&deps});
+  LineService<kRotctld, 3> rotctld(line_config(kRotctld, 3), {&deps});
+  LineService<kGs232, 2> gs232(line_config(kGs232, 2), {&deps});
+  LineService<kEasycomm, 2> easycomm(line_config(kEasycomm, 2), {&deps});
+  LineService<kSeed, 2> seed(line_config(kSeed, 2), {&deps});
+  struct Port {
+    TcpServer* server;
+    Personality personality;
+    std::size_t slots;
+    const char* warm;   ///< a bare line end: keeps a connection warm, not used
+    const char* query;  ///< a position query: a command, so used
+    const char* stop;   ///< the protocol's STOP
+    int stopped = 0;
+  };
+  std::array<Port, 5> ports{{
+      {&wrc.server(), kWrc, 4, "\r\n", "AZ?\r\n", "STOP\r\n"},
+      {&rotctld.server(), kRotctld, 3, "\n", "p\n", "S\n"},
+      {&gs232.server(), kGs232, 2, "\r", "C\r", "S\r"},
+      {&easycomm.server(), kEasycomm, 2, "\r", "AZ\r", "SA SE\r"},
+      {&seed.server(), kSeed, 2, "\r", "$Q\r", "$D\r"},
+  }};
+  {
+    CoreLock lock;
+    for (std::size_t i = 1; i < ports.size(); ++i) ASSERT_TRUE(ports[i].server->start());
+  }
+  auto served = serve(wrc.server());
+  // Every port stops under the core lock when the test ends, however it
+  // ends (`served` stops one).
+  struct StopAll {
+    std::array<Port, 5>& ports;
+    ~StopAll() {
+      CoreLock lock;
+      for (Port& port : ports) port.server->stop();
+    }
+  } stop_all{ports};
+
+  // The holders: one client per slot, from hosts 1..slots, the first asking
+  // for the position, the others only sending line ends. The newcomers come
+  // from the server's own address, another host.
+  struct Holder {
+    Client* client;
+    const char* keep;
+  };
+  std::vector<Holder> holders;
+  for (Port& port : ports) {
+    server_ = port.server;
+    for (std::size_t host = 1; host <= port.slots; ++host) {
+      Client& c = connect_from(host);
+      const char* keep = host == 1 ? port.query : port.warm;
+      send(c, keep);
+      holders.push_back({&c, keep});
+    }
+  }
+  // The network's clock and the controller's tick, as the firmware's loop
+  // runs them; pred() is checked under the core lock.
+  auto pump = [&](auto pred, Millis step_ms = 0) {
+    for (int i = 0; i < kMaxSteps; ++i) {
+      {
+        CoreLock lock;
+        now_ += step_ms;
+        for (Port& port : ports) port.server->poll(now_);
+        if (pred()) return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return false;
+  };
+  for (Port& port : ports)
+    ASSERT_TRUE(pump([&] { return port.server->client_count() == port.slots; }));
+  auto driving = [&] { return rotator.az.drive.cw() || rotator.az.drive.ccw(); };
+
+  constexpr int kTries = 20;
+  for (int t = 0; t < kTries * static_cast<int>(ports.size()); ++t) {
+    Port& port = ports[static_cast<std::size_t>(t) % ports.size()];  // in turn: one shared slot
+    for (Holder& h : holders) send(*h.client, h.keep);               // the holders keep at it
+    ASSERT_TRUE(pump([] { return true; }, 500));
+    bool turning = false;
+    {
+      CoreLock lock;  // someone's go-to: the rotator turns
+      rotator.az.set_deg(100);
+      turning = rotator.controller->go_to(300.0f, std::nullopt) == Error::kOk;
+      rotator.run_ms(100);
+      turning = turning && driving();
+    }
+    ASSERT_TRUE(turning) << "try " << t;
+    server_ = port.server;
+    Client& newcomer = connect_from(0);
+    send(newcomer, port.stop);
+    EXPECT_TRUE(pump([&] { return newcomer.peer_closed || newcomer.reset; }));
+    CoreLock lock;
+    rotator.run_ms(10);  // the next tick: the drive is off
+    // Obeyed and answered as always (Easycomm's SA SE has no answer), never
+    // the port's busy refusal; and the drive is off.
+    const std::string_view refusal = protocol::protocol_info(port.personality).refusal;
+    if (newcomer.peer_closed && newcomer.received != refusal && !driving())
+      ++port.stopped;
+    else
+      ADD_FAILURE() << protocol::protocol_info(port.personality).name << " try " << t << ": "
+                    << ::testing::PrintToString(newcomer.received)
+                    << (driving() ? ", still driving" : "");
+    rotator.run_ms(1500);  // the stop's coast and dead time
+    EXPECT_FALSE(rotator.controller->status().moving());
+  }
+  std::printf(
+      "[ measured ] Pico W line ports, each held by clients from other hosts (line ends, "
+      "position queries): a newcomer's STOP stopped the moving rotator on WRC %d, rotctld %d, "
+      "GS-232 %d, Easycomm %d, seed %d of %d times each\n",
+      ports[0].stopped, ports[1].stopped, ports[2].stopped, ports[3].stopped, ports[4].stopped,
+      kTries);
+  CoreLock lock;
+  for (const Port& port : ports) {
+    EXPECT_EQ(port.stopped, kTries);
+    EXPECT_EQ(port.server->counters().stop_only, static_cast<std::uint32_t>(kTries));
+    EXPECT_EQ(port.server->counters().evicted_idle, 0u);
+  }
+  for (const Holder& h : holders)
+    EXPECT_TRUE(h.client->pcb != nullptr && !h.client->peer_closed) << "a holder was dropped";
+  EXPECT_EQ(shared.holder(), nullptr);
 }
 
 TEST(LwipStopOnlyRam, TheSlotOfAStopOnlyExchangeCostsAConnectionAndASession) {

@@ -22,9 +22,10 @@
 
 // Connections: the static slots of network_services.cpp (web 4, WRC 4,
 // rotctld 3, GS-232 2, Easycomm 2, seed 2: 17), the MQTT broker's (1), plus 5
-// for refused clients and pcbs in TIME_WAIT (no stop-only slots on the Pico W
-// yet: network_services.cpp). Listeners: one per protocol port (web, WRC,
-// rotctld, GS-232, Easycomm, seed: 6).
+// for refused clients, pcbs in TIME_WAIT and the line ports' one shared
+// STOP-only exchange (network_services.cpp; when they run out, lwIP reuses the
+// oldest TIME_WAIT pcb). Listeners: one per protocol port (web, WRC, rotctld,
+// GS-232, Easycomm, seed: 6).
 #define MEMP_NUM_TCP_PCB 23
 #define MEMP_NUM_TCP_PCB_LISTEN 6
 // UDP: DHCP client and server, DNS, SNTP, mDNS, and the two rotor

@@ -15,6 +15,7 @@
 //   registers kept).
 import { readFileSync } from 'node:fs';
 import { RP2040, ConsoleLogger, LogLevel } from 'rp2040js';
+import { elfSymbols } from './elf.mjs';
 import { installFlashModel, writeSettingsSlot } from './flash.mjs';
 import { adcChannel, driveDirection, elPlantInputs, ma3Frame, plantInputs, pwmDuty, switchLevels } from './pins.mjs';
 import { UsbHost } from './usb_host.mjs';
@@ -365,6 +366,42 @@ export class Board {
         this.applySensors(this.sensors);
       }
     }
+  }
+
+  /**
+   * newlib's malloc in the emulated RAM, read through the image's symbols:
+   * `room` the bytes between the static RAM's end and the stack limit (all
+   * the heap there is), `sbrked` what malloc has taken of it, `highWater`
+   * the most it has used: the heap's RAM starts out zero and every chunk
+   * malloc ever split off leaves a header behind, so the last non-zero byte
+   * marks the highest its top chunk has been, however briefly. Null for an
+   * image without these symbols (a .bin).
+   */
+  heap() {
+    const sym = this.symbols();
+    const need = ['end', '__StackLimit', '__malloc_max_sbrked_mem'];
+    if (!sym || need.some((n) => !sym.has(n))) return null;
+    const ram = 0x20000000;
+    const end = sym.get('end').value;
+    const limit = sym.get('__StackLimit').value;
+    let last = end - ram;
+    for (let i = limit - ram - 1; i >= end - ram; i--) {
+      if (this.rp.sram[i] !== 0) {
+        last = i + 1;
+        break;
+      }
+    }
+    return {
+      room: limit - end,
+      sbrked: this.rp.readUint32(sym.get('__malloc_max_sbrked_mem').value),
+      highWater: last - (end - ram),
+    };
+  }
+
+  symbols() {
+    if (this.symbolCache === undefined)
+      this.symbolCache = this.opts.image?.endsWith('.elf') ? elfSymbols(this.opts.image) : null;
+    return this.symbolCache;
   }
 
   /** Runs until pred() holds, checking every step ms; false after timeoutMs of emulated time. */
