@@ -39,20 +39,13 @@ void HttpRequestParser::reset() {
   head_length_ = 0;
   line_start_ = 0;
   body_length_ = 0;
-  content_length_ = 0;
-  has_content_length_ = false;
-  has_host_ = false;
-  has_cookie_ = false;
-  has_authorization_ = false;
-  request_ = HttpRequest{};
-  error_status_ = 0;
-  error_message_ = "";
+  fields_ = HeadFields{};
 }
 
 HttpRequestParser::Status HttpRequestParser::fail(int status, const char* message) {
   state_ = State::kError;
-  error_status_ = status;
-  error_message_ = message;
+  fields_.error_status = status;
+  fields_.error_message = message;
   return Status::kError;
 }
 
@@ -79,7 +72,7 @@ HttpRequestParser::Status HttpRequestParser::feed(std::string_view& in) {
         if (c == '\n') {
           if (head_length_ == line_start_) {  // empty line: end of the head
             if (!parse_head()) return Status::kError;
-            if (content_length_ > 0) {
+            if (fields_.content_length > 0) {
               state_ = State::kBody;
               continue;
             }
@@ -97,13 +90,13 @@ HttpRequestParser::Status HttpRequestParser::feed(std::string_view& in) {
         continue;
       }
       case State::kBody: {
-        std::size_t take = content_length_ - body_length_;
+        std::size_t take = fields_.content_length - body_length_;
         if (take > in.size()) take = in.size();
         std::memcpy(body_ + body_length_, in.data(), take);
         body_length_ += take;
         in.remove_prefix(take);
-        if (body_length_ == content_length_) {
-          request_.body = std::string_view(body_, body_length_);
+        if (body_length_ == fields_.content_length) {
+          fields_.request.body = std::string_view(body_, body_length_);
           state_ = State::kComplete;
           return Status::kComplete;
         }
@@ -119,18 +112,31 @@ HttpRequestParser::Status HttpRequestParser::feed(std::string_view& in) {
 bool HttpRequestParser::parse_head() {
   std::string_view head(head_, head_length_);
   const std::size_t eol = head.find('\n');
-  std::string_view line = text::slice(head, 0, eol);
+  bool ok = fields_.request_line(text::slice(head, 0, eol));
   std::string_view headers =
       eol == std::string_view::npos ? std::string_view{} : text::slice(head, eol + 1);
-  if (!parse_request_line(line) || !parse_header_lines(headers)) return false;
-  if (content_length_ > kMaxBodyBytes) {
-    fail(413, "request body too large");
-    return false;
+  while (ok && !headers.empty()) {
+    const std::size_t nl = headers.find('\n');
+    ok = fields_.header_line(text::slice(headers, 0, nl));
+    headers = nl == std::string_view::npos ? std::string_view{} : text::slice(headers, nl + 1);
   }
+  ok = ok && fields_.head_done(kMaxBodyBytes);
+  if (!ok) state_ = State::kError;
+  return ok;
+}
+
+bool HeadFields::fail(int status, const char* message) {
+  error_status = status;
+  error_message = message;
+  return false;
+}
+
+bool HeadFields::head_done(std::size_t max_body_bytes) {
+  if (content_length > max_body_bytes) return fail(413, "request body too large");
   return true;
 }
 
-bool HttpRequestParser::parse_request_line(std::string_view line) {
+bool HeadFields::request_line(std::string_view line) {
   // Request line: METHOD SP request-target SP HTTP-version
   const std::size_t sp1 = line.find(' ');
   const std::size_t sp2 = sp1 == std::string_view::npos ? sp1 : line.find(' ', sp1 + 1);
@@ -160,49 +166,36 @@ bool HttpRequestParser::parse_request_line(std::string_view line) {
     fail(400, "the request target must be a path");
     return false;
   }
-  request_.method_text = method;
-  request_.method = method == "GET"      ? Method::kGet
+  request.method_text = method;
+  request.method = method == "GET"      ? Method::kGet
                     : method == "HEAD"   ? Method::kHead
                     : method == "POST"   ? Method::kPost
                     : method == "PUT"    ? Method::kPut
                     : method == "DELETE" ? Method::kDelete
                                          : Method::kOther;
   const std::size_t question = target.find('?');
-  request_.path = text::slice(target, 0, question);
-  request_.query = question == std::string_view::npos
+  request.path = text::slice(target, 0, question);
+  request.query = question == std::string_view::npos
                        ? std::string_view{}
                        : text::slice(target, question + 1, std::string_view::npos);
-  request_.keep_alive = version == "HTTP/1.1";
+  request.keep_alive = version == "HTTP/1.1";
   return true;
 }
 
-bool HttpRequestParser::parse_header_lines(std::string_view headers) {
-  while (!headers.empty()) {
-    const std::size_t nl = headers.find('\n');
-    const std::string_view field = text::slice(headers, 0, nl);
-    headers = nl == std::string_view::npos ? std::string_view{} : text::slice(headers, nl + 1);
-    if (field.front() == ' ' || field.front() == '\t') {
-      fail(400, "folded header lines are not allowed");
-      return false;
-    }
-    const std::size_t colon = field.find(':');
-    if (colon == std::string_view::npos || colon == 0) {
-      fail(400, "malformed header line");
-      return false;
-    }
-    const std::string_view name = text::slice(field, 0, colon);
-    for (char c : name) {
-      if (!is_token_char(c)) {
-        fail(400, "malformed header name");
-        return false;
-      }
-    }
-    if (!parse_header(name, trim_ows(text::slice(field, colon + 1)))) return false;
+bool HeadFields::header_line(std::string_view field) {
+  if (field.empty()) return fail(400, "malformed header line");
+  if (field.front() == ' ' || field.front() == '\t')
+    return fail(400, "folded header lines are not allowed");
+  const std::size_t colon = field.find(':');
+  if (colon == std::string_view::npos || colon == 0) return fail(400, "malformed header line");
+  const std::string_view name = text::slice(field, 0, colon);
+  for (char c : name) {
+    if (!is_token_char(c)) return fail(400, "malformed header name");
   }
-  return true;
+  return header(name, trim_ows(text::slice(field, colon + 1)));
 }
 
-bool HttpRequestParser::parse_header(std::string_view name, std::string_view value) {
+bool HeadFields::header(std::string_view name, std::string_view value) {
   if (text::iequals(name, "Content-Length")) {
     // Digits only (no sign); a second, different Content-Length is smuggling.
     std::size_t n = 0;
@@ -212,51 +205,51 @@ bool HttpRequestParser::parse_header(std::string_view name, std::string_view val
         return false;
       }
       // Saturate: anything past the body limit is refused with 413 anyway.
-      if (n <= kMaxBodyBytes) n = n * 10 + static_cast<std::size_t>(c - '0');
+      if (n <= HttpRequestParser::kMaxBodyBytes) n = n * 10 + static_cast<std::size_t>(c - '0');
     }
     if (value.empty()) {
       fail(400, "invalid Content-Length");
       return false;
     }
-    if (has_content_length_ && n != content_length_) {
+    if (has_content_length && n != content_length) {
       fail(400, "conflicting Content-Length headers");
       return false;
     }
-    has_content_length_ = true;
-    content_length_ = n;
+    has_content_length = true;
+    content_length = n;
   } else if (text::iequals(name, "Transfer-Encoding")) {
     fail(501, "chunked request bodies are not supported; send a Content-Length");
     return false;
   } else if (text::iequals(name, "Connection")) {
-    if (contains_token(value, "close")) request_.keep_alive = false;
-    if (contains_token(value, "keep-alive")) request_.keep_alive = true;
+    if (contains_token(value, "close")) request.keep_alive = false;
+    if (contains_token(value, "keep-alive")) request.keep_alive = true;
   } else if (text::iequals(name, "Content-Type")) {
     const std::string_view media = trim_ows(text::slice(value, 0, value.find(';')));
-    request_.json_body = text::iequals(media, "application/json");
+    request.json_body = text::iequals(media, "application/json");
   } else if (text::iequals(name, "If-None-Match")) {
-    request_.if_none_match = value;
+    request.if_none_match = value;
   } else if (text::iequals(name, "Host")) {
     // Two Host headers are a request smuggling attempt (RFC 9112 3.2).
-    if (has_host_) {
+    if (has_host) {
       fail(400, "more than one Host header");
       return false;
     }
-    has_host_ = true;
-    request_.host = value;
+    has_host = true;
+    request.host = value;
   } else if (text::iequals(name, "Origin")) {
-    request_.origin = value;
+    request.origin = value;
   } else if (text::iequals(name, "Cookie")) {
     // HTTP/1.1 browsers send one Cookie header; a second is ignored.
-    if (!has_cookie_) request_.cookie = value;
-    has_cookie_ = true;
+    if (!has_cookie) request.cookie = value;
+    has_cookie = true;
   } else if (text::iequals(name, "Authorization")) {
     // Two credentials would leave it open which one counts.
-    if (has_authorization_) {
+    if (has_authorization) {
       fail(400, "more than one Authorization header");
       return false;
     }
-    has_authorization_ = true;
-    request_.authorization = value;
+    has_authorization = true;
+    request.authorization = value;
   }
   return true;
 }

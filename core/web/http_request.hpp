@@ -23,6 +23,34 @@ struct HttpRequest {
   std::string_view body;
 };
 
+/// The rules for a request head, one line at a time: what the full parser
+/// below and the stop-only session (http_stop_only_session.hpp, which keeps
+/// no whole head) both apply, so both refuse the same heads the same way.
+/// Views in `request` point into the lines given; they stay valid only as
+/// long as those do.
+struct HeadFields {
+  HttpRequest request;
+  std::size_t content_length = 0;
+  bool has_content_length = false;
+  bool has_host = false;
+  bool has_cookie = false;
+  bool has_authorization = false;
+  int error_status = 0;  ///< when a line is refused: 400, 413, 501, 505
+  const char* error_message = "";
+
+  /// METHOD SP request-target SP HTTP-version. False: refused (error_status).
+  bool request_line(std::string_view line);
+  /// One header field line (no line end). False: refused (error_status).
+  bool header_line(std::string_view field);
+  /// After the last header line: the body's length within `max_body_bytes`.
+  bool head_done(std::size_t max_body_bytes);
+  /// Refuses the head with `status`; returns false.
+  bool fail(int status, const char* message);
+
+ private:
+  bool header(std::string_view name, std::string_view value);
+};
+
 /// Incremental HTTP/1.1 request parser over fixed buffers (the same code runs
 /// on the Pico's lwIP, where a request arrives in pieces of any size). Limits
 /// are named constants; exceeding one is an error with its HTTP status, and
@@ -44,10 +72,10 @@ class HttpRequestParser {
   /// rest stays in `in`, e.g. a pipelined request) or an error is found.
   Status feed(std::string_view& in);
 
-  const HttpRequest& request() const { return request_; }
+  const HttpRequest& request() const { return fields_.request; }
   /// kError: the status to answer with (400, 413, 414, 431, 501, 505) and why.
-  int error_status() const { return error_status_; }
-  const char* error_message() const { return error_message_; }
+  int error_status() const { return fields_.error_status; }
+  const char* error_message() const { return fields_.error_message; }
 
   /// Ready for the next request on the same connection.
   void reset();
@@ -63,9 +91,6 @@ class HttpRequestParser {
 
   Status fail(int status, const char* message);
   bool parse_head();
-  bool parse_request_line(std::string_view line);
-  bool parse_header_lines(std::string_view headers);
-  bool parse_header(std::string_view name, std::string_view value);
 
   State state_ = State::kStart;
   char head_[kMaxHeadBytes];
@@ -73,14 +98,7 @@ class HttpRequestParser {
   std::size_t line_start_ = 0;  ///< where the current head line begins
   char body_[kMaxBodyBytes];
   std::size_t body_length_ = 0;
-  std::size_t content_length_ = 0;
-  bool has_content_length_ = false;
-  bool has_host_ = false;
-  bool has_cookie_ = false;
-  bool has_authorization_ = false;
-  HttpRequest request_;
-  int error_status_ = 0;
-  const char* error_message_ = "";
+  HeadFields fields_;
 };
 
 }  // namespace rotord::web

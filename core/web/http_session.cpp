@@ -4,8 +4,8 @@
 
 #include "protocol/window_sink.hpp"
 #include "web/assets.hpp"
-#include "web/host_check.hpp"
 #include "web/http_response.hpp"
+#include "web/http_stop_only_session.hpp"
 
 namespace rotord::web {
 
@@ -104,16 +104,8 @@ void HttpSession::write_more(std::size_t room_bytes, protocol::ByteSink& out) {
 
 void HttpSession::handle(const HttpRequest& request, protocol::ByteSink& out) {
   const ResponseOptions options{request.keep_alive, request.method == Method::kHead, {}};
-  // DNS rebinding: a foreign page whose name now points here still sends
-  // its own name as Host. 421: this server is not the one that name means.
-  if (!host_allowed(request.host, api_.settings(), api_.host_name())) {
-    send_error(out, 421,
-               "this controller is not known by that host name; add it to web.allowed_hosts",
-               options);
-  } else if (request.method != Method::kGet && request.method != Method::kHead &&
-             !origin_allowed(request.origin, request.host, api_.settings())) {
-    // A cross-site request: another site's page in the operator's browser.
-    send_error(out, 403, "cross-site request refused (Origin is not this controller)", options);
+  if (refuse_foreign(request, api_, options, out)) {
+    // 421 or 403, as for the stop-only exchange (http_stop_only_session.hpp).
   } else if (request.path == "/metrics" && !api_.page_allowed(request)) {
     // Positions, targets and who connects: a read token or a login when
     // access control is on. /healthz says only ok or why not, and stays open

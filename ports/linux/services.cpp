@@ -2,6 +2,7 @@
 
 #include "protocol/protocol_registry.hpp"
 #include "web/http_session.hpp"
+#include "web/http_stop_only_session.hpp"
 
 namespace rotord::linux_port {
 
@@ -15,6 +16,11 @@ std::vector<ServiceConfig> make_services(const Options& options, Controller& con
                       max_clients, std::string(web::HttpSession::kTooManyConnections),
                       [&api] { return std::make_unique<web::HttpSession>(api); }});
   services.back().protocol = metrics::Protocol::kHttp;
+  // Over capacity, the same small session as the Pico W's (a few hundred
+  // bytes, not 10 KB of request buffers): only POST /api/stop is obeyed.
+  services.back().make_stop_only_session = [&api] {
+    return std::make_unique<web::HttpStopOnlySession>(api);
+  };
   // Open pages' live streams never take the slots STOP needs.
   services.back().max_event_streams =
       static_cast<std::size_t>(settings.i(settings::Id::kWebMaxEventStreams));

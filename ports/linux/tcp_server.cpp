@@ -304,7 +304,9 @@ void TcpServer::admit(asio::ip::tcp::socket socket) {
     snapshot.connection(d.evict)->close();
   }
   connections_.push_back(std::make_shared<Connection>(*this, std::move(socket), info));
-  connections_.back()->start(config_.make_session());
+  connections_.back()->start(info.stop_only && config_.make_stop_only_session
+                                 ? config_.make_stop_only_session()
+                                 : config_.make_session());
 }
 
 void TcpServer::stream_started(Connection* connection) {

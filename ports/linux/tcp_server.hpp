@@ -34,6 +34,10 @@ struct ServiceConfig {
   /// /metrics), under `protocol`; nullptr counts nothing.
   metrics::Registry* metrics = nullptr;
   metrics::Protocol protocol = metrics::Protocol::kWrc;
+  /// The session of a stop-only exchange (net::Admission's kStopOnly) when
+  /// the protocol has a smaller one (HTTP: web::HttpStopOnlySession, as on
+  /// the Pico W); empty: make_session's, told set_stop_only().
+  SessionFactory make_stop_only_session{};
 };
 
 /// Serves one protocol on one TCP port: a byte session per connection, all in

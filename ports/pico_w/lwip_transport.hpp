@@ -16,6 +16,7 @@
 #include <new>
 #include <span>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 #include "metrics/registry.hpp"
@@ -41,11 +42,17 @@ class SessionPool {
 };
 
 /// N sessions of type S built in place by `make()` (which returns an S by
-/// value; guaranteed copy elision means S need not be movable).
-template <typename S, std::size_t N, typename Make>
+/// value; guaranteed copy elision means S need not be movable). The session
+/// of a stop-only exchange in the shared slot is `make_stop_only()`'s, by
+/// default the same; HTTP's is a much smaller one (web::HttpStopOnlySession).
+template <typename S, std::size_t N, typename Make, typename MakeStopOnly = Make>
 class StaticSessionPool final : public SessionPool {
  public:
-  explicit StaticSessionPool(Make make) : make_(std::move(make)) {}
+  explicit StaticSessionPool(Make make)
+    requires std::is_same_v<Make, MakeStopOnly>
+      : make_(make), make_stop_only_(std::move(make)) {}
+  StaticSessionPool(Make make, MakeStopOnly make_stop_only)
+      : make_(std::move(make)), make_stop_only_(std::move(make_stop_only)) {}
   ~StaticSessionPool() override {
     for (std::size_t i = 0; i < N; ++i) release(i);
   }
@@ -64,9 +71,10 @@ class StaticSessionPool final : public SessionPool {
     live_[slot] = nullptr;
   }
   protocol::Session* open_at(void* storage, std::size_t bytes) override {
-    if (bytes < sizeof(S) || reinterpret_cast<std::uintptr_t>(storage) % alignof(S) != 0)
+    using T = decltype(std::declval<MakeStopOnly&>()());
+    if (bytes < sizeof(T) || reinterpret_cast<std::uintptr_t>(storage) % alignof(T) != 0)
       return nullptr;
-    return ::new (storage) S(make_());
+    return ::new (storage) T(make_stop_only_());
   }
 
  private:
@@ -74,6 +82,7 @@ class StaticSessionPool final : public SessionPool {
     unsigned char bytes[sizeof(S)];
   };
   Make make_;
+  MakeStopOnly make_stop_only_;
   std::array<Slot, N> storage_{};
   std::array<S*, N> live_{};
 };
@@ -157,6 +166,11 @@ class TcpServer {
     };
     /// write() without counting it as the protocol's reply (/metrics).
     void write_uncounted(std::string_view bytes);
+    /// With nothing queued: as much of `bytes` as lwIP's send buffer takes,
+    /// copied straight there (a reply larger than out_, such as an HTTP
+    /// head in the shared stop-only slot, needs no room of ours). Returns
+    /// how many bytes went.
+    std::size_t write_direct(std::string_view bytes);
     bool push_chunk(const char* data, std::size_t size);
     void flush();
     /// A session with a reply longer than lwIP's send buffer (the HTTP
@@ -255,7 +269,9 @@ class TcpServer {
 /// server's exchange at a time. A STOP-only exchange is one short line and
 /// lasts net::kStopOnlyExchangeMs at most, so one slot serves newcomers to
 /// every full line port in turn; while it is taken, the next is refused as
-/// before.
+/// before. The web port shares it too, with its small stop-only session
+/// (web::HttpStopOnlySession), whose reply goes straight into lwIP's send
+/// buffer (Connection::write_direct), past this small output buffer.
 class SharedStopOnly {
  public:
   /// Its output buffer: a STOP-only exchange writes one short reply, or the
@@ -281,21 +297,30 @@ class SharedStopOnly {
 template <std::size_t Bytes, std::size_t Align = alignof(std::max_align_t)>
 class StaticSharedStopOnly : public SharedStopOnly {
  public:
+  /// What a session must fit (static_assert it where the slot is made).
+  using Storage = unsigned char[Bytes];
+  static constexpr std::size_t kAlign = Align;
   StaticSharedStopOnly() : SharedStopOnly(session_bytes_, Bytes) {}
 
  private:
-  alignas(Align) unsigned char session_bytes_[Bytes];
+  alignas(Align) Storage session_bytes_;
 };
 
 /// A server with its own session pool and connection slots, meant for static
 /// storage (the firmware's composition root): N for clients and StopOnly more
 /// for stop-only exchanges (each a Connection and an S: their RAM is counted
 /// in ports/pico_w/README.md).
-template <typename S, std::size_t N, typename Make, std::size_t StopOnly = 0>
+template <typename S, std::size_t N, typename Make, std::size_t StopOnly = 0,
+          typename MakeStopOnly = Make>
 class StaticService {
  public:
   StaticService(ServerConfig config, Make make)
+    requires std::is_same_v<Make, MakeStopOnly>
       : pool_(std::move(make)), server_(with_stop_only(config), pool_, slots_, output_) {}
+  /// `make_stop_only`: the session of an exchange in the shared stop-only slot.
+  StaticService(ServerConfig config, Make make, MakeStopOnly make_stop_only)
+      : pool_(std::move(make), std::move(make_stop_only)),
+        server_(with_stop_only(config), pool_, slots_, output_) {}
   TcpServer& server() { return server_; }
 
  private:
@@ -305,7 +330,7 @@ class StaticService {
   }
   std::array<TcpServer::Connection, N + StopOnly> slots_{};
   std::array<char, (N + StopOnly) * TcpServer::kOutputBytes> output_{};
-  StaticSessionPool<S, N + StopOnly, Make> pool_;
+  StaticSessionPool<S, N + StopOnly, Make, MakeStopOnly> pool_;
   TcpServer server_;  // last: constructed after, destroyed before its storage
 };
 

@@ -16,6 +16,7 @@
 #include "storage/flash_slots.hpp"
 #include "tracking/tle_catalog.hpp"
 #include "web/http_session.hpp"
+#include "web/http_stop_only_session.hpp"
 #include "web/web_api.hpp"
 #include "wifi.hpp"
 #include "wifi_secrets.h"
@@ -275,6 +276,13 @@ void network_start(const NetworkDeps& d, Millis now) {
   api_context.tles = &g_tles;
   static web::Api api(api_context);
   auto make_http = [] { return web::HttpSession(api); };
+  // A newcomer to a full web port may still POST /api/stop, in the line
+  // ports' shared stop-only slot: a full HttpSession (~10 KB) would not fit
+  // there, this small one does (no RAM of its own).
+  auto make_http_stop_only = [] { return web::HttpStopOnlySession(api); };
+  static_assert(sizeof(web::HttpStopOnlySession) <= sizeof(SharedStopOnlySlot::Storage) &&
+                    alignof(web::HttpStopOnlySession) <= SharedStopOnlySlot::kAlign,
+                "the web's stop-only session must fit the line ports' shared slot");
   lwip_port::ServerConfig http_config;
   http_config.name = "web UI and REST API";
   http_config.port = kHttpPort;
@@ -284,10 +292,12 @@ void network_start(const NetworkDeps& d, Millis now) {
   http_config.settings = &settings;
   http_config.max_event_streams = std::min(
       kHttpEventStreams, static_cast<std::size_t>(settings.i(settings::Id::kWebMaxEventStreams)));
+  http_config.shared_stop_only = &shared_stop_only;
   http_config.metrics = &registry;
   http_config.protocol = metrics::Protocol::kHttp;
-  static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http)> http(
-      http_config, make_http);
+  static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http), 0,
+                                  decltype(make_http_stop_only)>
+      http(http_config, make_http, make_http_stop_only);
   static lwip_port::TcpServer* const servers[] = {&wrc.server(),   &rotctld.server(),
                                                   &gs232.server(), &easycomm.server(),
                                                   &seed.server(),  &http.server()};

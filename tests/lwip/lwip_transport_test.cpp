@@ -38,6 +38,9 @@ extern "C" {
 #include "protocol/window_sink.hpp"
 #include "protocol/wrc_session.hpp"
 #include "settings/settings.hpp"
+#include "web/http_session.hpp"
+#include "web/http_stop_only_session.hpp"
+#include "web/web_api.hpp"
 
 // The options must be Debian's, the ones liblwip.so was built with (struct
 // layouts depend on them), not the Pico's ports/pico_w/config/lwipopts.h.
@@ -1035,6 +1038,107 @@ TEST_F(LwipAdmissionTest, ThePicoWsLinePortsObeyANewcomersStopWhileClientsHoldTh
   }
   for (const Holder& h : holders)
     EXPECT_TRUE(h.client->pcb != nullptr && !h.client->peer_closed) << "a holder was dropped";
+  EXPECT_EQ(shared.holder(), nullptr);
+}
+
+// The web port as the Pico W image builds it: four HttpSession slots, and
+// over capacity the small web::HttpStopOnlySession in the line ports' shared
+// slot (sized for the largest line session, as network_services.cpp makes
+// it). Four hosts hold every slot by trickling a request head a byte at a
+// time (issue 29's item 3), reconnecting when the 10 s deadline cuts them; a
+// newcomer from another host still stops the turning rotator, every time,
+// through the shared slot, and anything else it asks gets the busy 503.
+TEST_F(LwipAdmissionTest, ThePicoWsWebPortObeysANewcomersStopWhileTricklersHoldIt) {
+  using protocol::Personality;
+  testing::FakeRotator rotator(false);
+  constexpr Personality kWrc = Personality::kWrc, kRotctld = Personality::kRotctld,
+                        kGs232 = Personality::kGs232, kEasycomm = Personality::kEasycomm,
+                        kSeed = Personality::kSeed;
+  using Shared =
+      lwip_port::StaticSharedStopOnly<kLargestSession<kWrc, kRotctld, kGs232, kEasycomm, kSeed>,
+                                      kLargestAlign<kWrc, kRotctld, kGs232, kEasycomm, kSeed>>;
+  static_assert(sizeof(web::HttpStopOnlySession) <= sizeof(Shared::Storage));
+  Shared shared;
+  web::Api api{web::ApiContext{*rotator.controller, nullptr, nullptr, nullptr, "test"}};
+  auto make_http = [&api] { return web::HttpSession(api); };
+  auto make_stop_only = [&api] { return web::HttpStopOnlySession(api); };
+  ServerConfig config;
+  config.name = "web UI and REST API";
+  config.max_clients = 4;
+  config.reject_message = web::HttpSession::kTooManyConnections;
+  config.settings = &settings_;
+  config.max_event_streams = 2;
+  config.shared_stop_only = &shared;
+  StaticService<web::HttpSession, 4, decltype(make_http), 0, decltype(make_stop_only)> http(
+      config, make_http, make_stop_only);
+  auto served = serve(http.server());
+  const std::string trickle_head = "GET /api/status HTTP/1.1\r\nHost: localhost\r\nX-Slow: ";
+  std::array<Client*, 4> holders{};
+  int reconnects = 0;
+  // Every holder connected and part-way into a request; the port full.
+  auto hold = [&] {
+    for (std::size_t h = 0; h < holders.size(); ++h) {
+      Client*& c = holders[h];
+      if (c != nullptr && c->pcb != nullptr && !c->peer_closed) {
+        send(*c, "x");  // one more byte: never a whole request
+        continue;
+      }
+      if (c != nullptr) ++reconnects;
+      c = &connect_from(h + 1);
+      send(*c, trickle_head);
+    }
+    return wait([&] { return http.server().client_count() == holders.size(); });
+  };
+  auto driving = [&] { return rotator.az.drive.cw() || rotator.az.drive.ccw(); };
+  auto exchange = [&](std::string_view request) -> Client& {
+    Client& newcomer = connect_from(0);
+    send(newcomer, request);
+    EXPECT_TRUE(wait([&] { return newcomer.peer_closed || newcomer.reset; }));
+    return newcomer;
+  };
+
+  constexpr int kTries = 20;
+  int stopped = 0, refused = 0;
+  for (int t = 0; t < kTries; ++t) {
+    ASSERT_TRUE(hold()) << "try " << t;
+    {
+      CoreLock lock;  // someone's go-to: the rotator turns
+      now_ += 100;
+      api.poll(now_);
+      rotator.az.set_deg(100);
+      ASSERT_EQ(rotator.controller->go_to(300.0f, std::nullopt), Error::kOk);
+      rotator.run_ms(100);
+      ASSERT_TRUE(driving()) << "try " << t;
+    }
+    // Another request first: the busy answer, and the rotator turns on.
+    Client& asks = exchange(
+        "POST /api/goto HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\n"
+        "Content-Length: 10\r\n\r\n{\"az\":200}");
+    {
+      CoreLock lock;
+      rotator.run_ms(10);
+      if (asks.received == web::HttpSession::kTooManyConnections && driving()) ++refused;
+    }
+    ASSERT_TRUE(hold()) << "try " << t;
+    Client& stops = exchange("POST /api/stop HTTP/1.1\r\nHost: localhost\r\n\r\n");
+    CoreLock lock;
+    rotator.run_ms(10);  // the next tick: the drive is off
+    if (stops.peer_closed && stops.received.starts_with("HTTP/1.1 200 OK\r\n") && !driving())
+      ++stopped;
+    else
+      ADD_FAILURE() << "try " << t << ": " << ::testing::PrintToString(stops.received)
+                    << (driving() ? ", still driving" : "");
+    rotator.run_ms(1500);  // the stop's coast and dead time
+  }
+  std::printf(
+      "[ measured ] Pico W web port held by 4 hosts trickling request heads (%d reconnects after "
+      "the deadline): a newcomer's POST /api/stop stopped the turning rotator %d of %d times, "
+      "its POST /api/goto got the busy 503 and no move %d of %d times\n",
+      reconnects, stopped, kTries, refused, kTries);
+  CoreLock lock;
+  EXPECT_EQ(stopped, kTries);
+  EXPECT_EQ(refused, kTries);
+  EXPECT_EQ(http.server().counters().stop_only, static_cast<std::uint32_t>(2 * kTries));
   EXPECT_EQ(shared.holder(), nullptr);
 }
 
