@@ -168,16 +168,16 @@ bool HeadFields::request_line(std::string_view line) {
   }
   request.method_text = method;
   request.method = method == "GET"      ? Method::kGet
-                    : method == "HEAD"   ? Method::kHead
-                    : method == "POST"   ? Method::kPost
-                    : method == "PUT"    ? Method::kPut
-                    : method == "DELETE" ? Method::kDelete
-                                         : Method::kOther;
+                   : method == "HEAD"   ? Method::kHead
+                   : method == "POST"   ? Method::kPost
+                   : method == "PUT"    ? Method::kPut
+                   : method == "DELETE" ? Method::kDelete
+                                        : Method::kOther;
   const std::size_t question = target.find('?');
   request.path = text::slice(target, 0, question);
   request.query = question == std::string_view::npos
-                       ? std::string_view{}
-                       : text::slice(target, question + 1, std::string_view::npos);
+                      ? std::string_view{}
+                      : text::slice(target, question + 1, std::string_view::npos);
   request.keep_alive = version == "HTTP/1.1";
   return true;
 }

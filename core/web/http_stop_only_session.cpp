@@ -97,7 +97,8 @@ void HttpStopOnlySession::receive(std::string_view bytes, protocol::ByteSink& ou
 
 void HttpStopOnlySession::line_done() {
   const std::size_t length = line_length_;
-  const bool cut = line_cut_;
+  const bool cut = line_cut_, cut_colon = cut_colon_;
+  bool bad_name = cut_bad_name_;
   line_length_ = 0;
   line_cut_ = cut_colon_ = cut_bad_name_ = false;
   // The first refusal stands; later lines are only counted, as the parser
@@ -111,14 +112,14 @@ void HttpStopOnlySession::line_done() {
   const std::string_view field(line_, length);
   if (cut) {
     const std::size_t colon = field.find(':');
-    if (colon == std::string_view::npos && cut_colon_) {
+    if (colon == std::string_view::npos && cut_colon) {
       // A name longer than what is kept: no header this reads, so ignored
       // (as the parser ignores unknown names) once it is checked.
       if (field.front() == ' ' || field.front() == '\t') {
         fields_.fail(400, "folded header lines are not allowed");
       } else {
-        for (char ch : field) cut_bad_name_ = cut_bad_name_ || !is_token_char(ch);
-        if (cut_bad_name_) fields_.fail(400, "malformed header name");
+        for (char ch : field) bad_name = bad_name || !is_token_char(ch);
+        if (bad_name) fields_.fail(400, "malformed header name");
       }
       return;
     }

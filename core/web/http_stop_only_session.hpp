@@ -30,8 +30,8 @@ class HttpStopOnlySession final : public protocol::Session {
   /// their name still checked, the value cut (only Host, Origin and
   /// Content-Length matter here; one of them longer refuses the request).
   static constexpr std::size_t kHeaderLineBytes = 160;
-  static constexpr std::size_t kHostBytes = 128;
-  static constexpr std::size_t kOriginBytes = 128;
+  static constexpr std::size_t kHostBytes = kHeaderLineBytes;
+  static constexpr std::size_t kOriginBytes = kHeaderLineBytes;
 
   explicit HttpStopOnlySession(Api& api) : api_(api) { set_stop_only(); }
 

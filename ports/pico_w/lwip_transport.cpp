@@ -223,7 +223,11 @@ void TcpServer::Connection::write_uncounted(std::string_view bytes) {
       immutable(bytes.data(), bytes.size())) {
     if (!push_chunk(bytes.data(), bytes.size())) return;
   } else {
-    if (chunk_count_ == 0) bytes.remove_prefix(write_direct(bytes));
+    // Nothing queued: straight into lwIP's send buffer, so the shared
+    // stop-only slot's small buffer takes an HTTP head too. Never more than
+    // a full buffer's worth at once, on any connection: a larger copied
+    // write drops the client, as it always has.
+    if (chunk_count_ == 0 && bytes.size() <= kOutputBytes) bytes.remove_prefix(write_direct(bytes));
     if (bytes.empty() || overflow_) return;
     if (bytes.size() > out_.size() - out_len_ || !push_chunk(nullptr, bytes.size())) {
       // The client stopped reading: drop it rather than block or buffer more.
@@ -239,7 +243,8 @@ void TcpServer::Connection::write_uncounted(std::string_view bytes) {
 }
 
 std::size_t TcpServer::Connection::write_direct(std::string_view bytes) {
-  const std::size_t n = std::min({bytes.size(), std::size_t{tcp_sndbuf(pcb_)}, std::size_t{0xFFFF}});
+  const std::size_t n =
+      std::min({bytes.size(), std::size_t{tcp_sndbuf(pcb_)}, std::size_t{0xFFFF}});
   if (n == 0) return 0;
   const err_t err = tcp_write(pcb_, bytes.data(), static_cast<u16_t>(n), TCP_WRITE_FLAG_COPY);
   if (err == ERR_MEM) return 0;  // lwIP's pbufs exhausted: buffered, flushed on sent/poll

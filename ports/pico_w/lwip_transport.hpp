@@ -48,8 +48,7 @@ class SessionPool {
 template <typename S, std::size_t N, typename Make, typename MakeStopOnly = Make>
 class StaticSessionPool final : public SessionPool {
  public:
-  explicit StaticSessionPool(Make make)
-    requires std::is_same_v<Make, MakeStopOnly>
+  explicit StaticSessionPool(Make make) requires std::is_same_v<Make, MakeStopOnly>
       : make_(make), make_stop_only_(std::move(make)) {}
   StaticSessionPool(Make make, MakeStopOnly make_stop_only)
       : make_(std::move(make)), make_stop_only_(std::move(make_stop_only)) {}
@@ -166,10 +165,10 @@ class TcpServer {
     };
     /// write() without counting it as the protocol's reply (/metrics).
     void write_uncounted(std::string_view bytes);
-    /// With nothing queued: as much of `bytes` as lwIP's send buffer takes,
-    /// copied straight there (a reply larger than out_, such as an HTTP
-    /// head in the shared stop-only slot, needs no room of ours). Returns
-    /// how many bytes went.
+    /// With nothing queued: as much of `bytes` (at most kOutputBytes) as
+    /// lwIP's send buffer takes, copied straight there, so a reply larger
+    /// than out_ (an HTTP head in the shared stop-only slot) needs no room
+    /// of ours. Returns how many bytes went.
     std::size_t write_direct(std::string_view bytes);
     bool push_chunk(const char* data, std::size_t size);
     void flush();
@@ -314,8 +313,7 @@ template <typename S, std::size_t N, typename Make, std::size_t StopOnly = 0,
           typename MakeStopOnly = Make>
 class StaticService {
  public:
-  StaticService(ServerConfig config, Make make)
-    requires std::is_same_v<Make, MakeStopOnly>
+  StaticService(ServerConfig config, Make make) requires std::is_same_v<Make, MakeStopOnly>
       : pool_(std::move(make)), server_(with_stop_only(config), pool_, slots_, output_) {}
   /// `make_stop_only`: the session of an exchange in the shared stop-only slot.
   StaticService(ServerConfig config, Make make, MakeStopOnly make_stop_only)
