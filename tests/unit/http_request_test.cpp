@@ -26,6 +26,16 @@ TEST_F(HttpParse, SimpleGet) {
   EXPECT_TRUE(p.request().body.empty());
 }
 
+TEST_F(HttpParse, ANulInAHeaderNameOrMethodIsMalformed) {
+  // RFC 9110 5.6.2: a token has no NUL (strchr found the string's end).
+  ASSERT_EQ(feed_all(std::string("GET / HTTP/1.1\r\nHost: a\r\nX\0Y: 1\r\n\r\n", 35)),
+            Status::kError);
+  EXPECT_EQ(p.error_status(), 400);
+  p.reset();
+  ASSERT_EQ(feed_all(std::string("G\0T / HTTP/1.1\r\nHost: a\r\n\r\n", 27)), Status::kError);
+  EXPECT_EQ(p.error_status(), 400);
+}
+
 TEST_F(HttpParse, PostWithBodyArrivingOneByteAtATime) {
   const std::string req =
       "POST /api/goto HTTP/1.1\r\ncontent-type: Application/JSON; charset=utf-8\r\n"

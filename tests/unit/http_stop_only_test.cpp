@@ -153,6 +153,9 @@ std::vector<std::string> cases() {
       "POST /api/stop HTTP/1.1\r\nHost: localhost\r\n" + std::string(200, 'N') + " x\r\n\r\n",
       "POST /api/stop HTTP/1.1\r\nHost: localhost\r\n" + std::string(200, 'N') + "\r\n\r\n",
       "POST /api/stop HTTP/1.1\r\nHost: localhost\r\nAuthorization: a\r\nAuthorization: b\r\n\r\n",
+      std::string("POST /api/stop HTTP/1.1\r\nHost: localhost\r\nX\0Y: 1\r\n\r\n", 52),
+      "POST /api/stop HTTP/1.1\r\nHost: localhost\r\n" + std::string(200, 'N') +
+          std::string(1, '\0') + ": 1\r\n\r\n",
       // Incomplete: nothing yet (the transport's 2 s deadline ends it).
       "",
       "POST /api/st",
