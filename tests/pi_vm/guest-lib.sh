@@ -11,7 +11,17 @@ log() { echo "pi_vm: $*" | tee -a "$share/guest.log"; }
 now_ms() { echo $(($(date +%s%N) / 1000000)); }
 fail() {
   log "FAIL: $*"
-  journalctl -u rotord --no-pager -n 30 -o short-monotonic >>"$share/guest.log" 2>&1
+  {
+    journalctl -u rotord --no-pager -n 30 -o short-precise
+    # What the plant did meanwhile (plant.sh; times in ms of the epoch).
+    echo "--- the plant's trace (last 40 lines)"
+    tail -40 "$plant/trace"
+    # rotord's own figures: how its ticks ran, the readings its gate refused.
+    echo "--- rotord's /metrics (ticks, gate)"
+    (exec 4<>/dev/tcp/127.0.0.1/8080 && printf 'GET /metrics HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n' >&4 &&
+      timeout 10 cat <&4) |
+      grep -E '^rotord_(tick_(interval|lateness)_seconds|tick_overruns|tick_rebases|axis_sensor_readings_rejected)'
+  } >>"$share/guest.log" 2>&1
   echo 1 >"$share/result"
   systemctl poweroff
   exit 1

@@ -20,4 +20,4 @@ systemctl restart rotord || fail "restart after the upgrade: $(journalctl -u rot
 r=$(wrc "AZOFFSET?")
 [ "$r" = "OK AZOFFSET 7.00" ] || [ "$r" = "OK AZOFFSET 7" ] || fail "after the upgrade AZOFFSET? says $r"
 log "apt install ./$(basename "$newer") ($t_apt ms), restart: AZOFFSET? '$r', version $(dpkg-query -W -f='${Version}' rotord)"
-systemctl enable rotord >/dev/null 2>&1 || fail "systemctl enable rotord"
+out=$(systemctl enable rotord 2>&1) || fail "systemctl enable rotord: $out"

@@ -6,6 +6,10 @@
 # Two boots: the second checks what must survive a reboot. Writes its
 # verdict to /mnt/share/result (0 = pass) and powers off.
 set -u
+# systemctl waits 25 s for systemd's answer by default; the emulated
+# machine on a busy host took longer (`systemctl enable` failed with a
+# time-out once), so it may wait 5 minutes.
+export SYSTEMD_BUS_TIMEOUT=300
 share=/mnt/share
 state=/var/lib/pi-vm
 mkdir -p "$state"
@@ -65,6 +69,10 @@ Before=rotord.service
 [Service]
 ExecStartPre=/usr/local/sbin/pi-vm-plant init
 ExecStart=/usr/local/sbin/pi-vm-plant
+# Ahead of everything else in the machine, as a motor does not wait for
+# the CPU (plant.sh); it sleeps 20 ms a pass.
+CPUSchedulingPolicy=fifo
+CPUSchedulingPriority=50
 [Install]
 WantedBy=multi-user.target
 UNIT

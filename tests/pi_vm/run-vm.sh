@@ -47,8 +47,10 @@ port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); p
 serial="$work/serial.log"
 t=$(date +%s)
 # -snapshot: the cached image stays as built; the guest's reboot keeps the
-# changes (one qemu process). Two CPUs, as a Pi has at least.
-timeout 1200 qemu-system-aarch64 -M virt -cpu cortex-a57 -smp 2 -m 1024 \
+# changes (one qemu process). Two CPUs, as a Pi has at least. On a
+# 2-core host busy with other builds the machine ran 20 minutes and was
+# cut off in its second boot: 40 minutes at most.
+timeout 2400 qemu-system-aarch64 -M virt -cpu cortex-a57 -smp 2 -m 1024 \
   -display none -monitor none -serial "file:$serial" \
   -kernel "$work/image/vmlinuz" -initrd "$work/image/initrd.img" \
   -append "root=/dev/vda rw console=ttyAMA0 quiet" \
