@@ -125,6 +125,7 @@ float PositionTracker::initial_unwrap(float sensor_deg) const {
 PositionTracker::Update PositionTracker::update(Millis now) {
   Update u;
   if (sensor_ == nullptr) return u;
+  note_loop_gap(now);
   const PositionReading r = sensor_->read(now);
   const float speed_deg_s = estimate_speed();  // of the readings taken so far
   note_raw(r.raw, now, speed_deg_s);
@@ -201,6 +202,18 @@ AxisFault PositionTracker::reject(Millis now, float speed_deg_s) {
   return ++jump_rejects_ >= kJumpRejectLimit ? AxisFault::kSensorJump : AxisFault::kNone;
 }
 
+void PositionTracker::note_loop_gap(Millis now) {
+  const Millis gap_ms = read_before_ ? now - read_t_ : 0;
+  read_before_ = true;
+  read_t_ = now;
+  if (gap_ms > kGateMaxGapMs) {
+    stall_ms_ = gap_ms;
+    stall_readings_left_ = kStallReadings;
+  } else if (stall_readings_left_ > 0) {
+    --stall_readings_left_;
+  }
+}
+
 // Runs on the Pico every tick: a dozen float operations (soft float on the
 // M0+), no division, no heap.
 bool PositionTracker::plausible(float pos, Millis now, float speed_deg_s) {
@@ -211,6 +224,14 @@ bool PositionTracker::plausible(float pos, Millis now, float speed_deg_s) {
   // start from rest is followed).
   Millis gap_ms = now - pos_t_;
   if (gap_ms > kGateMaxGapMs) gap_ms = kGateMaxGapMs;
+  // The cap keeps a run of rejected readings (a burst) from opening the
+  // gate for itself. A stall of the loop while driven is no such run: the
+  // motor may have turned the antenna at up to the rated speed all through
+  // it. Capped, a stall just after a start from rest (no speed measured
+  // yet) read as a jump that no later reading could take back, as the
+  // prediction stayed at rest: SENSOR_JUMP on a good sensor (the loop of
+  // an emulated Pi stalls for half a second and more).
+  if (moving_ && stall_readings_left_ > 0 && gap_ms < stall_ms_) gap_ms = stall_ms_;
   const float dt_s = static_cast<float>(now - pos_t_) * 0.001f;
   const float predicted_deg = moving_ ? pos_deg_ + speed_deg_s * dt_s : pos_deg_;
   const float innovation = pos - predicted_deg;

@@ -40,6 +40,11 @@ class PositionTracker {
   /// The gate's allowance for a change of speed covers at most this long
   /// without a reading taken; beyond it only agreeing readings re-acquire.
   static constexpr Millis kGateMaxGapMs = 250;
+  /// After the control loop itself was held up for longer (a busy machine)
+  /// while the axis was driven, this many readings are allowed the whole
+  /// wait: the one after it and, as a pot's median of three passes a step
+  /// on one reading late, the two that follow.
+  static constexpr int kStallReadings = 3;
 
   /// What a reading told the axis beyond the position itself.
   struct Update {
@@ -104,6 +109,8 @@ class PositionTracker {
   /// The finest step the configured sensor resolves, degrees.
   float resolution_deg(const AxisConfig& c) const;
   void note_raw(float raw, Millis now, float speed_deg_s);
+  /// Counts the time since the last update(): a stall of the loop.
+  void note_loop_gap(Millis now);
   float reported_position_deg() const;
 
   const AxisIo& io_;
@@ -122,6 +129,10 @@ class PositionTracker {
   bool recalibrated_ = false;        // the calibration changed: accept the next reading
   bool mag_answered_ = false;        // the last read got a sample from the chip
   Millis pos_t_ = 0;                 // when pos_deg_ was read
+  bool read_before_ = false;         // update() ran before ...
+  Millis read_t_ = 0;                // ... last at this time
+  Millis stall_ms_ = 0;              // the last stall of the loop (kGateMaxGapMs or more)
+  int stall_readings_left_ = 0;      // readings still allowed stall_ms_
   float noise_abs_deg_ = 0.0f;       // mean |innovation| of the readings taken
   std::uint16_t rejected_bits_ = 0;  // the last 16 readings, 1 = not taken
   float resolution_deg_ = 0.1f;

@@ -39,6 +39,19 @@ class ControllerTest : public ::testing::Test {
     hw.set_deg(deg);
   }
   RotatorStatus status() { return r.controller->status(); }
+  /// A go-to from rest (the gate narrowed to its floor by a second of
+  /// readings), run until the CW relay is on; then a control loop held up
+  /// for `stall_ms` while the pot moved by `moved_deg`, and one tick.
+  void stall_just_after_a_cw_start(Millis stall_ms, float moved_deg) {
+    run_ms(1000);
+    ASSERT_EQ(r.controller->go_to(130.0f, std::nullopt), Error::kOk);
+    for (int n = 0; n < 200 && !r.az.drive.cw(); ++n) run_ms(10);
+    ASSERT_TRUE(r.az.drive.cw());
+    az_deg += moved_deg;
+    r.az.set_deg(az_deg);
+    r.now += stall_ms;
+    r.controller->tick(r.now);
+  }
   /// Power-cycles the controller with the antenna at `deg` (a jump of the
   /// pot while running would rightly be taken for a sensor fault).
   void restart_at(float deg) {
@@ -212,6 +225,32 @@ TEST_F(ControllerTest, ImplausibleJumpsAreRejectedThenLatched) {
     r.controller->tick(r.now);
   }
   EXPECT_EQ(status().az.fault, AxisFault::kSensorJump);
+}
+
+TEST_F(ControllerTest, ALoopStallJustAfterAStartIsMotionNotASensorJump) {
+  // As on the emulated Pi of tests/pi_vm, whose loop stalls for half a
+  // second and more. Before, the gate allowed a reading after a stall at
+  // most 250 ms of the rated speed (2 deg in all): the pot's reading, 3.6
+  // deg on, was rejected, the prediction stayed at rest (no speed measured
+  // yet) and SENSOR_JUMP latched on a good sensor.
+  stall_just_after_a_cw_start(600, rate_deg_per_tick * 60.0f);  // 6 deg/s
+  run_ms(300);
+  EXPECT_EQ(status().az.fault, AxisFault::kNone);
+  EXPECT_EQ(status().az.readings_rejected, 0u);
+  run_ms(10000);
+  EXPECT_EQ(status().az.fault, AxisFault::kNone);
+  EXPECT_NEAR(status().az.position_deg, 130.0f, 1.0f);
+  EXPECT_TRUE(status().az.arrived);
+}
+
+TEST_F(ControllerTest, AReadingFartherThanTheMotorCouldTurnInAStallIsStillAJump) {
+  // What the rated speed covers in the stall, 3.6 deg in 600 ms (plus the
+  // gate's 0.5 deg floor), and no more: 8 deg is a jump.
+  stall_just_after_a_cw_start(600, 8.0f);
+  rate_deg_per_tick = 0.0f;  // the pot stays where the jump put it
+  run_ms(300);
+  EXPECT_EQ(status().az.fault, AxisFault::kSensorJump);
+  EXPECT_FALSE(r.az.drive.last.any_on());
 }
 
 TEST_F(ControllerTest, RecalibratingThePotMovesThePositionWithoutAJumpFault) {
