@@ -13,54 +13,21 @@
 
 #include "rotator/controller.hpp"
 #include "sim/adc_scale.hpp"
+#include "sim/perturbed_profile.hpp"
 #include "sim/profiles.hpp"
-#include "sim/rng.hpp"
 #include "sim/sim_rotator.hpp"
+#include "sim/swapped_wiring.hpp"
 
 namespace rotord {
 namespace {
 
-/// The relay (or H-bridge) wires swapped at the hardware boundary: what
-/// the controller calls CW turns the rotator CCW.
-class SwappedWiring : public DriveSink {
- public:
-  explicit SwappedWiring(DriveSink* to) : to_(to) {}
-  bool swapped = false;
-  void apply(const DriveOutputs& in) override {
-    DriveOutputs out = in;
-    if (swapped) {
-      out.set(OutputChannel::kRelayCw, in.get(OutputChannel::kRelayCcw));
-      out.set(OutputChannel::kRelayCcw, in.get(OutputChannel::kRelayCw));
-      out.set(OutputChannel::kPwmCw, in.get(OutputChannel::kPwmCcw));
-      out.set(OutputChannel::kPwmCcw, in.get(OutputChannel::kPwmCw));
-    }
-    to_->apply(out);
-  }
-
- private:
-  DriveSink* to_;
-};
-
-double perturb(sim::Rng& rng, double value, double fraction) {
-  return value * (1.0 + fraction * (2.0 * rng.uniform() - 1.0));
-}
+using sim::SwappedWiring;
 
 struct Bench {
   Bench(const char* name, std::uint64_t seed, bool perturb_pot = true)
-      : profile(*sim::find_profile(name)) {
-    sim::Rng rng(seed * 7919 + 13);
-    auto& plant = profile.az.plant;
-    plant.v_max_deg_s = perturb(rng, plant.v_max_deg_s, 0.3);
-    plant.tau_c_s = perturb(rng, plant.tau_c_s, 0.3);
-    plant.backlash_deg = perturb(rng, plant.backlash_deg, 0.5);
-    auto& pot = profile.az.pot;
-    const double v_min = perturb(rng, pot.v_at_min_v + 0.1, 0.5);  // offset
-    const double v_max = perturb(rng, pot.v_at_max_v, 0.08);       // span
-    if (perturb_pot) {
-      pot.v_at_min_v = v_min;
-      pot.v_at_max_v = v_max;
-    }
-    swap_wires = rng.uniform() < 0.4;
+      : Bench(sim::perturbed_profile(*sim::find_profile(name), seed, perturb_pot), seed) {}
+  Bench(const sim::PerturbedProfile& p, std::uint64_t seed)
+      : profile(p.profile), swap_wires(p.swap_wires) {
     for (const auto& o : profile.overrides) settings.set(*settings::find(o.key), o.value);
     rotator = std::make_unique<sim::SimRotator>(profile, seed);
     rotator->set_theta_deg(AxisId::kAz, 0.5 * (profile.az.min_deg + profile.az.max_deg) + 17.0);
