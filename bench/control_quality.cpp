@@ -103,9 +103,11 @@ struct Run {
   double reversal_command_theta_deg = 0;
 };
 
-Run run_one(const sim::Profile& profile, Controller_ who, const Scenario& sc) {
+// `use`: rotord's settings (default: the profile's own, as `--sim` runs it).
+Run run_one(const sim::Profile& profile, Controller_ who, const Scenario& sc,
+            const settings::Settings* use = nullptr) {
   const sim::AxisProfile& ax = profile.az;
-  settings::Settings settings = settings_for(profile);
+  settings::Settings settings = use != nullptr ? *use : settings_for(profile);
   sim::SimRotator sim(profile, kSeed);
   sim.set_theta_deg(AxisId::kAz, sc.start_deg);
   std::unique_ptr<Controller> controller;
@@ -192,7 +194,48 @@ std::vector<Scenario> scenarios_for(const sim::Profile& p) {
   return list;
 }
 
+struct Scored {
+  double bound_s = 0;
+  double efficiency = 0;
+  int corrections = 0;
+};
+
+Scored score(const sim::Profile& p, const Scenario& sc, const Run& r) {
+  double distance = std::fabs(sc.target_deg - sc.start_deg);
+  Scored q;
+  q.bound_s = bound_s(p.az, distance);
+  if (sc.kind == Kind::kReversal) {
+    // Stop from full speed, then the shortest move back (approximate:
+    // the two phases are not merged into one optimal profile).
+    distance =
+        std::fabs(r.reversal_command_theta_deg + stop_distance_deg(p.az) - sc.second_target_deg);
+    q.bound_s = stop_time_s(p.az) + bound_s(p.az, distance);
+  }
+  q.efficiency = std::isfinite(r.settle_s) ? q.bound_s / r.settle_s : 0.0;
+  // A reversal needs a second start by design.
+  const int expected_starts = sc.kind == Kind::kReversal ? 2 : 1;
+  q.corrections = std::max(0, r.starts - expected_starts);
+  return q;
+}
+
+std::string label(const Scenario& sc) {
+  return std::string(kKindNames[static_cast<int>(sc.kind)]) + "_" +
+         std::to_string(static_cast<int>(std::fabs(sc.target_deg - sc.start_deg)));
+}
+
 }  // namespace
+
+std::vector<MoveQuality> rotord_move_quality(const sim::Profile& p,
+                                             const settings::Settings& settings) {
+  std::vector<MoveQuality> out;
+  for (const Scenario& sc : scenarios_for(p)) {
+    const Run r = run_one(p, Controller_::kRotord, sc, &settings);
+    const Scored q = score(p, sc, r);
+    out.push_back(
+        {label(sc), q.bound_s, r.settle_s, q.efficiency, r.final_error_deg, q.corrections});
+  }
+  return out;
+}
 
 std::vector<Result> run_control_quality() {
   std::vector<Result> results;
@@ -200,36 +243,23 @@ std::vector<Result> run_control_quality() {
     for (const Scenario& sc : scenarios_for(*p)) {
       for (int c = 0; c < 3; ++c) {
         const Run r = run_one(*p, static_cast<Controller_>(c), sc);
-        double distance = std::fabs(sc.target_deg - sc.start_deg);
-        double bound = bound_s(p->az, distance);
-        if (sc.kind == Kind::kReversal) {
-          // Stop from full speed, then the shortest move back (approximate:
-          // the two phases are not merged into one optimal profile).
-          distance = std::fabs(r.reversal_command_theta_deg + stop_distance_deg(p->az) -
-                               sc.second_target_deg);
-          bound = stop_time_s(p->az) + bound_s(p->az, distance);
-        }
-        // A reversal needs a second start by design.
-        const int expected_starts = sc.kind == Kind::kReversal ? 2 : 1;
+        const Scored q = score(*p, sc, r);
         Result res;
-        res.name = std::string("control/") + kControllerNames[c] + "/" + p->name + "/" +
-                   kKindNames[static_cast<int>(sc.kind)] + "_" +
-                   std::to_string(static_cast<int>(std::fabs(sc.target_deg - sc.start_deg)));
+        res.name = std::string("control/") + kControllerNames[c] + "/" + p->name + "/" + label(sc);
         res.inputs = {
             {"start_deg", sc.start_deg},
             {"target_deg", sc.kind == Kind::kReversal ? sc.second_target_deg : sc.target_deg},
             {"distance_deg", std::fabs(sc.target_deg - sc.start_deg)},
             {"tolerance_deg", kToleranceDeg},
             {"seed", static_cast<double>(kSeed)}};
-        res.metrics = {
-            {"settle_s", r.settle_s},
-            {"bound_s", bound},
-            {"efficiency", std::isfinite(r.settle_s) ? bound / r.settle_s : 0.0},
-            {"final_error_deg", r.final_error_deg},
-            {"overshoot_deg", r.overshoot_deg},
-            {"corrections", static_cast<double>(std::max(0, r.starts - expected_starts))},
-            {"reversals", static_cast<double>(r.reversals)},
-            {"relay_switchings", static_cast<double>(r.relay_switchings)}};
+        res.metrics = {{"settle_s", r.settle_s},
+                       {"bound_s", q.bound_s},
+                       {"efficiency", q.efficiency},
+                       {"final_error_deg", r.final_error_deg},
+                       {"overshoot_deg", r.overshoot_deg},
+                       {"corrections", static_cast<double>(q.corrections)},
+                       {"reversals", static_cast<double>(r.reversals)},
+                       {"relay_switchings", static_cast<double>(r.relay_switchings)}};
         results.push_back(std::move(res));
       }
     }

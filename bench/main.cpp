@@ -10,6 +10,7 @@
 #include "bounds.hpp"
 #include "care.hpp"
 #include "client_passes.hpp"
+#include "commissioning.hpp"
 #include "control_quality.hpp"
 #include "results.hpp"
 #include "tick_cost.hpp"
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
   using namespace rotord::bench;
   const char* out_path = nullptr;
   // --only GROUP[,GROUP]: run only these groups (bounds, control, tracking,
-  // tracking_mode, clients, care, tick), e.g. to measure one change quickly.
+  // tracking_mode, clients, care, commissioning, tick), e.g. to measure one change quickly.
   const char* only = nullptr;
   for (int i = 1; i < argc; ++i) {
     const bool ticks = std::strcmp(argv[i], "--ticks") == 0;
@@ -65,6 +66,7 @@ int main(int argc, char** argv) {
   if (wanted("tracking_mode")) add(run_tracking_mode());
   if (wanted("clients")) add(run_client_passes());
   if (wanted("care")) add(run_care_day());
+  if (wanted("commissioning")) add(run_commissioning());
   if (wanted("tick")) results.push_back(run_tick_cost());
   std::FILE* out = out_path ? std::fopen(out_path, "w") : stdout;
   if (out == nullptr) {

@@ -38,6 +38,34 @@ def print_control(rows):
         print(line)
 
 
+def print_commissioning(rows):
+    # commissioning/<profile>/seed<N> (the run) and .../seed<N>/<scenario>
+    # (a move row with the hand-tuned and the proposed settings).
+    print("\nSelf-commissioning (simulator, virtual time): seed 0 = the nominal plant,"
+          " 1..6 perturbed; eff = bound / settle time, hand = the profile's settings"
+          " (pot calibrated right), prop = the proposed settings; * = proposed worse")
+    for r in rows:
+        parts = r["name"].split("/")
+        m = r["metrics"]
+        if len(parts) == 3:
+            if m.get("failed"):
+                print(f"{parts[1]:6} {parts[2]:6} FAILED")
+                continue
+            print(f"{parts[1]:6} {parts[2]:6} swapped {fmt(r['inputs']['swapped'])}"
+                  f" rotator {m['rotator_s']:.0f} s, speed err {m['speed_error_pct']:.2f} %,"
+                  f" coast err {m['coast_error_pct']:.1f} %, proposes tolerance"
+                  f" {m['proposed_tolerance_deg']:.2f} deg, slow zone {m['proposed_slow_zone_deg']:.1f}"
+                  f" deg, coast {m['proposed_coast_s']:.3f} s; rows worse {fmt(m['rows_worse'])}"
+                  f" of {fmt(m['rows'])}, worst eff change {m['worst_efficiency_change']:+.2f},"
+                  f" max err hand {m['hand_max_error_deg']:.2f} prop {m['proposed_max_error_deg']:.2f}")
+        else:
+            mark = "*" if m["proposed_worse"] else " "
+            print(f"  {parts[1]:6} {parts[2]:6} {parts[3]:13} eff hand {m['hand_efficiency']:.2f}"
+                  f" prop {m['proposed_efficiency']:.2f} | err hand {m['hand_final_error_deg']:.2f}"
+                  f" prop {m['proposed_final_error_deg']:.2f} | corr hand {fmt(m['hand_corrections'])}"
+                  f" prop {fmt(m['proposed_corrections'])} {mark}")
+
+
 def print_generic(title, rows):
     print(f"\n{title}")
     for r in rows:
@@ -50,9 +78,12 @@ def print_all(results):
     control = [r for r in results if r["name"].startswith("control/")]
     if control:
         print_control(control)
+    commissioning = [r for r in results if r["name"].startswith("commissioning/")]
+    if commissioning:
+        print_commissioning(commissioning)
     sections = {}
     for r in results:
-        if not r["name"].startswith("control/"):
+        if not r["name"].startswith(("control/", "commissioning/")):
             sections.setdefault(r["name"].split("/")[0], []).append(r)
     for title, rows in sections.items():
         print_generic(title, rows)

@@ -95,6 +95,7 @@ class Commissioning {
     kNudge1,
     kNudge2,
     kSeekCcw,
+    kApproachCw,  ///< an absolute sensor: fast to a margin short of the CW end
     kSeekCw,
     kPrime,
     kRunReverse,
@@ -149,7 +150,8 @@ class Commissioning {
   float nudge_dx_[2] = {0.0f, 0.0f};
   Direction nudge_dir_[2] = {Direction::kCw, Direction::kCcw};
   double noise_n_ = 0, noise_mean_ = 0, noise_m2_ = 0;
-  float noise_frame_ = 0.0f;  // noise at rest in the commissioning frame
+  float noise_frame_ = 0.0f;     // noise at rest in the commissioning frame
+  float approach_until_ = 0.0f;  // kApproachCw ends at this reading
   float tau_reverse_s_ = 0.0f;
   float coast_sum_ = 0.0f;
   int coast_count_ = 0;

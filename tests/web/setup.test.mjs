@@ -2,7 +2,8 @@
 // settings file to a commissioned controller with a station and a
 // password: offered by the control page on the first visit, then model,
 // wiring, self-commissioning (in controller time: --clock manual), station
-// by locator, password. On a phone (390x844) and a desktop (1280x900);
+// by locator, password. On a phone (390x844, a Ham IV) and a desktop
+// (1280x900, a G-5500 walked to a Sun track on the commissioned settings);
 // screenshots in test-artifacts/.
 import assert from 'node:assert/strict';
 import path from 'node:path';
@@ -15,17 +16,23 @@ import {
 let browser;
 let dir;
 let rotord;
+let desk;  // the desktop walk's own daemon, from its own empty settings file
 
 before(async () => {
   dir = tempDir();
   rotord = await new Rotord({ configPath: path.join(dir, 'settings.json'), profile: 'ham4',
     clock: 'manual' }).start();
+  // Mid-morning in Munich on midsummer's day: the Sun is up, at about
+  // az 125, el 55, when the walk ends.
+  desk = await new Rotord({ configPath: path.join(dir, 'desk.json'), profile: 'g5500',
+    clock: 'manual', extraArgs: ['--utc-start', '2019-06-21T08:30:00Z'] }).start();
   browser = await launchBrowser();
 });
 
 after(async () => {
   if (browser) await browser.close();
   if (rotord) await rotord.stop();
+  if (desk) await desk.stop();
   cleanup(dir);
 });
 
@@ -136,3 +143,62 @@ test('from an empty settings file to a commissioned, located, protected controll
   assert.deepEqual(phone.errors.filter((e) => !/status of 422/.test(e)), []);
   await phone.context().close();
 });
+
+test('on a desktop, from an empty settings file to tracking the Sun on the commissioned settings',
+  async () => {
+    const get = async (p) => (await request(desk.url + p)).body;
+    const page = await openPage(browser, desk.url + '/', { width: 1280, height: 900 });
+    await page.waitForSelector('#setup-offer:not([hidden])');
+    await page.click('#setup-offer a');
+    await page.waitForURL(/setup\.html$/);
+    await page.waitForSelector('#model option[value="yaesu-g5500"]', { state: 'attached' });
+    await page.selectOption('#model', 'yaesu-g5500');
+    await page.click('#use-model');
+    await until(async () => /Saved/.test(await page.textContent('#model-msg')), { what: 'model saved' });
+
+    // A Raspberry Pi with the relay board energised by a high input.
+    await page.waitForSelector('#wiring-for-row:not([hidden])');
+    await page.selectOption('#wiring-for', 'gpiod');
+    await page.click('#board-pi-relay-high');
+    await page.click('#save-pins');
+    await until(async () => /Saved/.test(await page.textContent('#pins-msg')), { what: 'wiring saved' });
+    assert.equal((await get('/api/settings'))['gpiod.az_cw'], 17);
+
+    // The simulated G-5500's azimuth switches sit 1 deg outside 0..450.
+    await page.fill('#ccw', '-1');
+    await page.fill('#cw', '451');
+    await page.click('#start');
+    await until(async () => /running/.test(await page.textContent('#run-state')), { what: 'running' });
+    await desk.untilAdvancing(async () => (await get('/api/commission')).state === 'done',
+      { stepMs: 5000, timeout: 60000, what: 'commissioning done' });
+    await until(async () => !(await page.isDisabled('#accept')), { what: 'accept enabled' });
+    await page.click('#accept');
+    await until(async () => /Saved/.test(await page.textContent('#accept-msg')), { what: 'accepted' });
+    const accepted = await get('/api/settings');
+    assert.equal(accepted['az.pot_cal_lo_deg'], -1);
+    assert.equal(accepted['az.pot_cal_hi_deg'], 451);
+
+    await page.fill('#locator', 'JN58td');
+    await page.click('#save-station');
+    await until(async () => /Saved/.test(await page.textContent('#station-msg')), { what: 'station saved' });
+    const width = await page.evaluate(() => document.documentElement.scrollWidth);
+    assert.ok(width <= 1280, `no sideways scrolling: ${width}`);
+    await screenshot(page, 'setup-walk-1280x900.png');
+
+    // Tracking-ready: the Sun, tracked on the settings commissioning
+    // proposed, is reached within the accepted tolerance.
+    const r = await desk.post('/api/track', { body: 'sun', when: 'now' });
+    assert.equal(r.status, 200, JSON.stringify(r.body));
+    const track = await desk.untilAdvancing(async () => {
+      const t = await get('/api/track');
+      const s = await get('/api/status');
+      return t.phase === 'tracking' && Math.abs(s.az.position_deg - t.antenna_target.az) <= accepted['az.tolerance_deg'] &&
+        Math.abs(s.el.position_deg - t.antenna_target.el) <= 1.5 ? { t, s } : null;
+    }, { stepMs: 2000, timeout: 60000, what: 'on the Sun' });
+    console.log(`desktop walk: Sun at az ${track.t.sky.az.toFixed(1)} el ${track.t.sky.el.toFixed(1)}; ` +
+      `antenna az ${track.s.az.position_deg.toFixed(2)} el ${track.s.el.position_deg.toFixed(2)}, ` +
+      `tolerance ${accepted['az.tolerance_deg']} deg (commissioned)`);
+    assert.ok(track.t.sky.el > 40 && track.t.sky.az > 90 && track.t.sky.az < 160, JSON.stringify(track.t.sky));
+    assert.deepEqual(page.errors, []);
+    await page.context().close();
+  });
