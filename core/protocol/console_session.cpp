@@ -22,6 +22,10 @@ using console::send;
 using console::Value;
 using settings::Id;
 
+int length(std::string_view s) {
+  return static_cast<int>(s.size());
+}
+
 const char* flag(bool on) {
   return on ? "1" : "0";
 }
