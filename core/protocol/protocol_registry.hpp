@@ -36,7 +36,12 @@ struct ProtocolInfo {
   int serial_baud;  ///< default baud rate of a serial device (Linux --serial)
   /// Sent to a client refused a connection slot, before the close.
   std::string_view refusal;
-  metrics::Protocol metric;  ///< counted under this label in GET /metrics
+  /// Counted under this protocol in GET /metrics, whose `protocol` label
+  /// is the key.
+  metrics::Protocol metric;
+  /// Whether one reply unit a session wrote is this protocol's error, for
+  /// the /metrics error count (metrics::is_error_reply).
+  bool (*is_error_reply)(std::string_view reply);
 };
 
 /// Every personality, in the order of Personality.
@@ -44,6 +49,8 @@ std::span<const ProtocolInfo> protocols();
 const ProtocolInfo& protocol_info(Personality personality);
 /// The row of `key` (exact, lower case), or nullptr.
 const ProtocolInfo* find_protocol(std::string_view key);
+/// The row counted under `metric`, or nullptr (HTTP, which is no row).
+const ProtocolInfo* find_protocol(metrics::Protocol metric);
 
 /// What a port gives every session it builds.
 struct SessionDeps {

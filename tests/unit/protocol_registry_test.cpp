@@ -73,6 +73,13 @@ TEST(ProtocolRegistry, EachRowBuildsItsOwnSession) {
     testing::StringSink sink;
     s->receive(c.garbage, sink);
     EXPECT_EQ(sink.data, c.error) << protocol_info(c.personality).key;
+    // The row's own error recognition (the /metrics error count) knows it,
+    // and the busy refusal too; not a reply that is no error.
+    const ProtocolInfo& row = protocol_info(c.personality);
+    EXPECT_TRUE(row.is_error_reply(c.error)) << row.key;
+    EXPECT_TRUE(row.is_error_reply(c.refusal)) << row.key;
+    EXPECT_FALSE(row.is_error_reply("\r\n")) << row.key;
+    EXPECT_EQ(find_protocol(row.metric), &row);
     s->~Session();
   }
 }
