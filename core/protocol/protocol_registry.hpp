@@ -10,6 +10,7 @@
 #include <span>
 #include <string_view>
 
+#include "net/dns_sd.hpp"
 #include "protocol/console_session.hpp"
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
@@ -22,6 +23,13 @@ namespace rotord::protocol {
 
 enum class Personality : std::uint8_t { kWrc, kRotctld, kGs232, kEasycomm, kSeed, kConsole };
 inline constexpr std::size_t kPersonalityCount = 6;
+
+/// How DNS-SD (net/dns_sd.hpp) announces a protocol's TCP port.
+enum class DnsSd : std::uint8_t {
+  kNone,     ///< not at all
+  kService,  ///< as the _rotctld._tcp service itself
+  kTxt,      ///< as "key=port" in that service's TXT record
+};
 
 struct ProtocolInfo {
   Personality personality;
@@ -42,6 +50,7 @@ struct ProtocolInfo {
   /// Whether one reply unit a session wrote is this protocol's error, for
   /// the /metrics error count (metrics::is_error_reply).
   bool (*is_error_reply)(std::string_view reply);
+  DnsSd dns_sd;
 };
 
 /// Every personality, in the order of Personality.
@@ -51,6 +60,19 @@ const ProtocolInfo& protocol_info(Personality personality);
 const ProtocolInfo* find_protocol(std::string_view key);
 /// The row counted under `metric`, or nullptr (HTTP, which is no row).
 const ProtocolInfo* find_protocol(metrics::Protocol metric);
+
+/// What a port announces by DNS-SD: the web's port, and each row's TCP port
+/// as `port_of(personality)` gives it (0: off) where its dns_sd column says.
+template <typename PortOf>
+net::ServicePorts announced_ports(std::uint16_t web_port, PortOf port_of) {
+  net::ServicePorts ports;
+  ports.web = web_port;
+  for (const ProtocolInfo& p : protocols()) {
+    if (p.dns_sd == DnsSd::kService) ports.rotctld = port_of(p.personality);
+    if (p.dns_sd == DnsSd::kTxt) ports.add_other(p.key.data(), port_of(p.personality));
+  }
+  return ports;
+}
 
 /// What a port gives every session it builds.
 struct SessionDeps {

@@ -198,12 +198,7 @@ void network_start(const NetworkDeps& d, Millis now) {
   const auto tcp_port = [](Personality personality) {
     return protocol::protocol_info(personality).tcp_port;
   };
-  wifi_config.ports = net::ServicePorts{kHttpPort,
-                                        tcp_port(Personality::kRotctld),
-                                        tcp_port(Personality::kWrc),
-                                        tcp_port(Personality::kGs232),
-                                        tcp_port(Personality::kEasycomm),
-                                        tcp_port(Personality::kSeed)};
+  wifi_config.ports = protocol::announced_ports(kHttpPort, tcp_port);
   static Wifi wifi(wifi_config);
   // WRC MONITOR lines also go to the USB log port as they happen, where the
   // WRC firmware prints them, but only while a terminal listens (log_port.hpp).
