@@ -9,6 +9,9 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
 
 #include "net/dns_sd.hpp"
 #include "protocol/console_session.hpp"
@@ -86,76 +89,67 @@ struct SessionDeps {
   const ConsolePort* console = nullptr;
 };
 
-/// The session type of each personality, and how to build one: the
-/// registry's session factory. A port that sizes storage per protocol (the
-/// Pico's static pools) names the type; one that builds at run time uses
-/// with_session_type().
+// The registry's session factory: how each personality's session is built
+// from what the port gives (one overload a protocol), and the session types
+// in the order of Personality. A port that sizes storage per protocol (the
+// Pico's static pools) names the type with SessionOf<P>; one that builds at
+// run time uses with_session_type(). Each returns its session by value:
+// guaranteed copy elision builds it where the caller puts it (no temporary,
+// which for rotctld would be 2.6 KB of the Pico's stack).
+inline WrcSession make_session(std::type_identity<WrcSession>, const SessionDeps& d) {
+  return WrcSession(d.controller, d.version, d.monitor_tap);
+}
+inline RotctldSession make_session(std::type_identity<RotctldSession>, const SessionDeps& d) {
+  return RotctldSession(d.controller, d.version);
+}
+inline Gs232Session make_session(std::type_identity<Gs232Session>, const SessionDeps& d) {
+  return Gs232Session(d.controller);
+}
+inline EasycommSession make_session(std::type_identity<EasycommSession>, const SessionDeps& d) {
+  return EasycommSession(d.controller, d.version);
+}
+inline SeedSession make_session(std::type_identity<SeedSession>, const SessionDeps& d) {
+  return SeedSession(d.controller);
+}
+inline ConsoleSession make_session(std::type_identity<ConsoleSession>, const SessionDeps& d) {
+  return ConsoleSession(d.controller, d.version, d.console);
+}
+/// Never built (only its element types are named).
+using SessionTypes = std::tuple<WrcSession, RotctldSession, Gs232Session, EasycommSession,
+                                SeedSession, ConsoleSession>;
+static_assert(std::tuple_size_v<SessionTypes> == kPersonalityCount, "a session type a row");
+
 template <Personality P>
-struct SessionOf;
-template <>
-struct SessionOf<Personality::kWrc> {
-  using type = WrcSession;
-  static type make(const SessionDeps& d) { return type(d.controller, d.version, d.monitor_tap); }
+struct SessionOf {
+  using type = std::tuple_element_t<static_cast<std::size_t>(P), SessionTypes>;
+  static type make(const SessionDeps& d) { return make_session(std::type_identity<type>{}, d); }
 };
-template <>
-struct SessionOf<Personality::kRotctld> {
-  using type = RotctldSession;
-  static type make(const SessionDeps& d) { return type(d.controller, d.version); }
+
+namespace detail {
+template <typename Types>
+struct AnySession;
+template <typename... S>
+struct AnySession<std::tuple<S...>> {
+  static constexpr std::size_t kBytes = std::max({sizeof(S)...});
+  static constexpr std::size_t kAlign = std::max({alignof(S)...});
 };
-template <>
-struct SessionOf<Personality::kGs232> {
-  using type = Gs232Session;
-  static type make(const SessionDeps& d) { return type(d.controller); }
-};
-template <>
-struct SessionOf<Personality::kEasycomm> {
-  using type = EasycommSession;
-  static type make(const SessionDeps& d) { return type(d.controller, d.version); }
-};
-template <>
-struct SessionOf<Personality::kSeed> {
-  using type = SeedSession;
-  static type make(const SessionDeps& d) { return type(d.controller); }
-};
-template <>
-struct SessionOf<Personality::kConsole> {
-  using type = ConsoleSession;
-  static type make(const SessionDeps& d) { return type(d.controller, d.version, d.console); }
-};
+}  // namespace detail
 
 /// Room for any one line session, for a port with one transport that serves
 /// whichever personality a setting names (the Pico W's USB): built there with
-/// placement new from SessionOf<P>::make (guaranteed copy elision: no
-/// temporary, which for rotctld would be 2.6 KB of the Pico's stack).
-inline constexpr std::size_t kAnySessionBytes = std::max(
-    {sizeof(SessionOf<Personality::kWrc>::type), sizeof(SessionOf<Personality::kRotctld>::type),
-     sizeof(SessionOf<Personality::kGs232>::type), sizeof(SessionOf<Personality::kEasycomm>::type),
-     sizeof(SessionOf<Personality::kSeed>::type), sizeof(SessionOf<Personality::kConsole>::type)});
-inline constexpr std::size_t kAnySessionAlign = std::max(
-    {alignof(SessionOf<Personality::kWrc>::type), alignof(SessionOf<Personality::kRotctld>::type),
-     alignof(SessionOf<Personality::kGs232>::type),
-     alignof(SessionOf<Personality::kEasycomm>::type), alignof(SessionOf<Personality::kSeed>::type),
-     alignof(SessionOf<Personality::kConsole>::type)});
+/// placement new from SessionOf<P>::make.
+inline constexpr std::size_t kAnySessionBytes = detail::AnySession<SessionTypes>::kBytes;
+inline constexpr std::size_t kAnySessionAlign = detail::AnySession<SessionTypes>::kAlign;
 
 /// Calls `visit(SessionOf<p>{})` with the personality known at compile time,
 /// e.g. to build its session in storage of the caller's choice.
-template <typename Visitor>
+template <std::size_t I = 0, typename Visitor>
 decltype(auto) with_session_type(Personality p, Visitor&& visit) {
-  switch (p) {
-    case Personality::kWrc:
-      return visit(SessionOf<Personality::kWrc>{});
-    case Personality::kRotctld:
-      return visit(SessionOf<Personality::kRotctld>{});
-    case Personality::kGs232:
-      return visit(SessionOf<Personality::kGs232>{});
-    case Personality::kEasycomm:
-      return visit(SessionOf<Personality::kEasycomm>{});
-    case Personality::kSeed:
-      return visit(SessionOf<Personality::kSeed>{});
-    case Personality::kConsole:
-      break;
+  if constexpr (I + 1 < kPersonalityCount) {
+    if (static_cast<std::size_t>(p) != I)
+      return with_session_type<I + 1>(p, std::forward<Visitor>(visit));
   }
-  return visit(SessionOf<Personality::kConsole>{});
+  return visit(SessionOf<static_cast<Personality>(I)>{});
 }
 
 }  // namespace rotord::protocol
