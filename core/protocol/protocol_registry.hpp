@@ -5,6 +5,7 @@
 // serves every row on every transport it has unless it says why not; the web
 // (HTTP) is apart, on its own port.
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -54,7 +55,68 @@ struct ProtocolInfo {
   /// the /metrics error count (metrics::is_error_reply).
   bool (*is_error_reply)(std::string_view reply);
   DnsSd dns_sd;
+  /// Connection slots on the Pico W's TCP port (its static pools: about
+  /// 1 KB of output buffer each, plus the session); 0: not served on the
+  /// Pico's network (the console: USB only there).
+  std::uint8_t pico_tcp_slots;
 };
+
+namespace rows {
+
+// Each protocol's error reply, as its session writes it (metrics counts them).
+inline bool wrc_error(std::string_view r) {
+  return r.starts_with("ERROR");  // MONITOR's STATE lines and every OK start otherwise
+}
+inline bool rotctld_error(std::string_view r) {
+  return r.find("RPRT -") != std::string_view::npos;  // plain and extended replies alike
+}
+inline bool gs232_error(std::string_view r) {
+  return r == Gs232Session::kError;
+}
+inline bool easycomm_error(std::string_view r) {
+  return r.starts_with("AL");  // the alarm line, Easycomm's only error
+}
+inline bool seed_error(std::string_view r) {
+  return r.starts_with("$ERR");
+}
+inline bool console_error(std::string_view r) {
+  return r.starts_with("error:");
+}
+
+using P = Personality;
+
+// One row per personality, in the order of Personality (in the header, so
+// that a port sizes static storage from a row at compile time: the Pico
+// W's TCP pools). Seed's TCP port is
+// new with the Pico W serving it (issue 11): next to GS-232's and
+// Easycomm's; the Linux daemon leaves it off unless --seed-port is given,
+// as before.
+inline constexpr std::array<ProtocolInfo, kPersonalityCount> kProtocols = {{
+    {P::kWrc, "wrc", "WRC text protocol", 1234, true, 9600, WrcSession::kTooManyConnections,
+     metrics::Protocol::kWrc, wrc_error, DnsSd::kTxt, 4},
+    // Hamlib rotctld (Gpredict, SatNOGS, rotctl -m 2): no greeting, one write per reply.
+    {P::kRotctld, "rotctld", "Hamlib rotctld", 4533, true, 9600,
+     RotctldSession::kTooManyConnections, metrics::Protocol::kRotctld, rotctld_error,
+     DnsSd::kService, 3},
+    // Yaesu GS-232A/B; which one follows gs232.variant, read per command.
+    // The real controllers and Hamlib's backends run at 9600 baud.
+    {P::kGs232, "gs232", "Yaesu GS-232", 4601, true, 9600, Gs232Session::kTooManyConnections,
+     metrics::Protocol::kGs232, gs232_error, DnsSd::kTxt, 2},
+    // Hamlib's Easycomm backends default to 19200 baud.
+    {P::kEasycomm, "easycomm", "Easycomm II/III", 4602, true, 19200,
+     EasycommSession::kTooManyConnections, metrics::Protocol::kEasycomm, easycomm_error,
+     DnsSd::kTxt, 2},
+    {P::kSeed, "seed", "seed $cmd protocol", 4603, false, 9600, SeedSession::kTooManyConnections,
+     metrics::Protocol::kSeed, seed_error, DnsSd::kTxt, 2},
+    // The console (configuration, calibration, fault reset, reboot) for a
+    // person at a terminal: a pty or serial line on Linux, the Pico's USB
+    // log port. Never on TCP unless --console-port is given (the web and
+    // REST do all of it on the network); the Pico serves it on USB only.
+    {P::kConsole, "console", "console", 4604, false, 115200, ConsoleSession::kTooManyConnections,
+     metrics::Protocol::kConsole, console_error, DnsSd::kNone, 0},
+}};
+
+}  // namespace rows
 
 /// Every personality, in the order of Personality.
 std::span<const ProtocolInfo> protocols();

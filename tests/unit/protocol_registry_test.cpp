@@ -42,6 +42,14 @@ TEST(ProtocolRegistry, OneRowPerPersonalityWithDistinctKeysAndPorts) {
   EXPECT_EQ(protocol_info(Personality::kEasycomm).tcp_port, 4602);
   EXPECT_EQ(protocol_info(Personality::kSeed).tcp_port, 4603);
   EXPECT_FALSE(protocol_info(Personality::kSeed).tcp_by_default);  // Linux: --seed-port
+  // The Pico W's TCP pools as network_services.cpp listed them before the
+  // rows sized them: the console on USB only there.
+  int pico_slots = 0;
+  for (const ProtocolInfo& p : protocols()) pico_slots += p.pico_tcp_slots;
+  EXPECT_EQ(pico_slots, 4 + 3 + 2 + 2 + 2);
+  EXPECT_EQ(protocol_info(Personality::kWrc).pico_tcp_slots, 4);
+  EXPECT_EQ(protocol_info(Personality::kRotctld).pico_tcp_slots, 3);
+  EXPECT_EQ(protocol_info(Personality::kConsole).pico_tcp_slots, 0);
 }
 
 /// Each row's session factory builds that protocol: garbage gets its error,
