@@ -34,7 +34,7 @@ const ProtocolInfo* find_protocol(std::string_view key) {
 
 const ProtocolInfo* find_protocol(metrics::Protocol metric) {
   for (const ProtocolInfo& p : kProtocols) {
-    if (p.metric == metric) return &p;
+    if (p.metric() == metric) return &p;
   }
   return nullptr;
 }

@@ -25,6 +25,7 @@
 
 namespace rotord::protocol {
 
+/// The line protocols, one value a row below (kProtocols), in its order.
 enum class Personality : std::uint8_t { kWrc, kRotctld, kGs232, kEasycomm, kSeed, kConsole };
 inline constexpr std::size_t kPersonalityCount = 6;
 
@@ -48,9 +49,8 @@ struct ProtocolInfo {
   int serial_baud;  ///< default baud rate of a serial device (Linux --serial)
   /// Sent to a client refused a connection slot, before the close.
   std::string_view refusal;
-  /// Counted under this protocol in GET /metrics, whose `protocol` label
-  /// is the key.
-  metrics::Protocol metric;
+  /// Counted under this in GET /metrics, whose `protocol` label is the key.
+  constexpr metrics::Protocol metric() const { return metrics::line_metric(personality); }
   /// Whether one reply unit a session wrote is this protocol's error, for
   /// the /metrics error count (metrics::is_error_reply).
   bool (*is_error_reply)(std::string_view reply);
@@ -93,27 +93,25 @@ using P = Personality;
 // as before.
 inline constexpr std::array<ProtocolInfo, kPersonalityCount> kProtocols = {{
     {P::kWrc, "wrc", "WRC text protocol", 1234, true, 9600, WrcSession::kTooManyConnections,
-     metrics::Protocol::kWrc, wrc_error, DnsSd::kTxt, 4},
+     wrc_error, DnsSd::kTxt, 4},
     // Hamlib rotctld (Gpredict, SatNOGS, rotctl -m 2): no greeting, one write per reply.
     {P::kRotctld, "rotctld", "Hamlib rotctld", 4533, true, 9600,
-     RotctldSession::kTooManyConnections, metrics::Protocol::kRotctld, rotctld_error,
-     DnsSd::kService, 3},
+     RotctldSession::kTooManyConnections, rotctld_error, DnsSd::kService, 3},
     // Yaesu GS-232A/B; which one follows gs232.variant, read per command.
     // The real controllers and Hamlib's backends run at 9600 baud.
     {P::kGs232, "gs232", "Yaesu GS-232", 4601, true, 9600, Gs232Session::kTooManyConnections,
-     metrics::Protocol::kGs232, gs232_error, DnsSd::kTxt, 2},
+     gs232_error, DnsSd::kTxt, 2},
     // Hamlib's Easycomm backends default to 19200 baud.
     {P::kEasycomm, "easycomm", "Easycomm II/III", 4602, true, 19200,
-     EasycommSession::kTooManyConnections, metrics::Protocol::kEasycomm, easycomm_error,
-     DnsSd::kTxt, 2},
+     EasycommSession::kTooManyConnections, easycomm_error, DnsSd::kTxt, 2},
     {P::kSeed, "seed", "seed $cmd protocol", 4603, false, 9600, SeedSession::kTooManyConnections,
-     metrics::Protocol::kSeed, seed_error, DnsSd::kTxt, 2},
+     seed_error, DnsSd::kTxt, 2},
     // The console (configuration, calibration, fault reset, reboot) for a
     // person at a terminal: a pty or serial line on Linux, the Pico's USB
     // log port. Never on TCP unless --console-port is given (the web and
     // REST do all of it on the network); the Pico serves it on USB only.
     {P::kConsole, "console", "console", 4604, false, 115200, ConsoleSession::kTooManyConnections,
-     metrics::Protocol::kConsole, console_error, DnsSd::kNone, 0},
+     console_error, DnsSd::kNone, 0},
 }};
 
 }  // namespace rows

@@ -224,7 +224,7 @@ void network_start(const NetworkDeps& d, Millis now) {
     config.settings = &settings;
     config.shared_stop_only = &shared_stop_only;
     config.metrics = &registry;
-    config.protocol = info.metric;
+    config.protocol = info.metric();
     return config;
   };
   // Each row's service (a static of its own), in the order of the rows.

@@ -29,7 +29,7 @@ TEST(ProtocolRegistry, OneRowPerPersonalityWithDistinctKeysAndPorts) {
     EXPECT_EQ(&protocol_info(p.personality), &p);
     EXPECT_EQ(find_protocol(p.key), &p);
     // The /metrics label is the key, so a port counts each under its name.
-    EXPECT_EQ(metrics::protocol_label(p.metric), p.key);
+    EXPECT_EQ(metrics::protocol_label(p.metric()), p.key);
     EXPECT_FALSE(p.name.empty());
     EXPECT_GE(p.serial_baud, 1200);
   }
@@ -87,7 +87,7 @@ TEST(ProtocolRegistry, EachRowBuildsItsOwnSession) {
     EXPECT_TRUE(row.is_error_reply(c.error)) << row.key;
     EXPECT_TRUE(row.is_error_reply(c.refusal)) << row.key;
     EXPECT_FALSE(row.is_error_reply("\r\n")) << row.key;
-    EXPECT_EQ(find_protocol(row.metric), &row);
+    EXPECT_EQ(find_protocol(row.metric()), &row);
     s->~Session();
   }
 }
