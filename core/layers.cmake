@@ -56,14 +56,16 @@ set(ROTORD_LAYER_net access settings)
 # The Controller: axes, buttons, park, the control lock.
 set(ROTORD_LAYER_rotator axis care input tracking settings access)
 # The command layer: each command a client may send (go-to, move, stop,
-# park, reset, speed, place, preset) once, with its argument checks (read
-# from JSON: the REST body and the MQTT payload are the same document), who
-# may call it, the control lock, and its errors as values; the front ends
-# above only translate bytes.
-set(ROTORD_LAYER_command rotator json)
-# Byte sessions of the line protocols; the allow-list from net; the settings
-# document's JSON codec for the console's export and import.
-set(ROTORD_LAYER_protocol rotator net json)
+# park, reset, speed, place, preset) once, with its argument checks (typed
+# for the line protocols, read from JSON for REST and MQTT: the body and the
+# payload are the same document), who may call it (the allow-list from net),
+# the control lock, and its errors as values; the front ends above only
+# translate bytes.
+set(ROTORD_LAYER_command rotator net json)
+# Byte sessions of the line protocols and the UDP messages, over the command
+# layer; the settings document's JSON codec for the console's export and
+# import.
+set(ROTORD_LAYER_protocol command json)
 # Counters per protocol and the Prometheus writer. Above protocol: each
 # protocol's error reply is recognised by that protocol's own constant.
 set(ROTORD_LAYER_metrics protocol hal)

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "command/json_args.hpp"
+#include "command/typed.hpp"
 
 namespace rotord::command {
 namespace {
@@ -87,7 +88,7 @@ void Commands::arm_dead_man(AxisId axis, Millis hold_ms) {
 
 void Commands::stop_all() {
   dead_man_ = {};
-  controller_.stop();
+  command::stop(controller_);
 }
 
 Result Commands::stop(const Request&) {
@@ -121,7 +122,7 @@ Result Commands::go_to(const Request& r) {
   const CommandSource source = (CommandSource{1} << 62) |
                                (static_cast<CommandSource>(r.peer.kind) << 32) |
                                r.peer.address_hash();
-  if (const Error e = controller_.go_to(az, el, mode, source); e != Error::kOk)
+  if (const Error e = command::go_to(controller_, az, el, mode, source); e != Error::kOk)
     return refused_by(e);
   const RotatorStatus s = controller_.status();
   done.has_az_target = az.has_value();
@@ -184,18 +185,19 @@ Result Commands::move(const Request& r) {
   }
   if (dir == Direction::kNone && !axis) return stop(r);
   const AxisId moved = axis.value_or(AxisId::kAz);
-  if (const Error e = controller_.move(moved, dir, speed); e != Error::kOk) return refused_by(e);
+  if (const Error e = command::move(controller_, moved, dir, speed); e != Error::kOk)
+    return refused_by(e);
   arm_dead_man(moved, dir == Direction::kNone ? 0 : hold);
   return ok();
 }
 
 Result Commands::park(const Request&) {
-  if (const Error e = controller_.park(); e != Error::kOk) return refused_by(e);
+  if (const Error e = command::park(controller_); e != Error::kOk) return refused_by(e);
   return ok();
 }
 
 Result Commands::reset(const Request&) {
-  if (controller_.reset() != Error::kOk)
+  if (command::reset(controller_) != Error::kOk)
     return refused(Status::kConflict, "the emergency stop is active: release it, then reset");
   return ok();
 }
@@ -205,7 +207,7 @@ Result Commands::speed(const Request& r) {
   if (Result bad; !read_members(r.body, m, bad)) return bad;
   if (!m[0].present) return refused(Status::kBadRequest, "give speed_pct");
   if (!is_whole(m[0].value.number) ||
-      controller_.set_speed_pct(static_cast<int>(m[0].value.number)) != Error::kOk)
+      command::set_speed(controller_, static_cast<int>(m[0].value.number)) != Error::kOk)
     return refused(Status::kUnprocessable, "speed_pct must be a whole number 1..100");
   return ok();
 }
@@ -213,9 +215,10 @@ Result Commands::speed(const Request& r) {
 Result Commands::place(const Request& r) {
   Result done = ok(Reply::kPlace);
   if (Result bad = read_place(r.body, done.place); !bad.ok()) return bad;
-  const PlaceAim aim = aim_at(controller_, done.place);
+  PlaceAim aim;
+  const Error e = turn_to_place(controller_, done.place, aim);
   if (!aim.reachable) return refused(Status::kUnprocessable, aim.why);
-  if (const Error e = turn_to(controller_, aim); e != Error::kOk) return refused_by(e);
+  if (e != Error::kOk) return refused_by(e);
   done.bearing = aim.bearing;
   return done;
 }
@@ -224,9 +227,9 @@ Result Commands::preset(const Request& r) {
   PresetBody b;
   if (const char* why = read_preset_body(r.body, b, true)) return refused(Status::kBadRequest, why);
   settings::Preset p;
-  if (!settings::find_preset(controller_.settings(), b.name, &p))
+  if (const Error e = turn_to_preset(controller_, b.name, p); e == Error::kNotFound) {
     return refused(Status::kNotFound, "no preset of that name");
-  if (const Error e = turn_beam_to(controller_, p.az_deg); e != Error::kOk) {
+  } else if (e != Error::kOk) {
     const Limits l = controller_.limits();
     return refusedf(e == Error::kFaulted ? Status::kConflict : Status::kUnprocessable,
                     "%s: heading %.1f, travel %g..%g", error_name(e), p.az_deg,

@@ -1,29 +1,14 @@
 #include "metrics/registry.hpp"
 
-#include "protocol/gs232_session.hpp"
+#include "protocol/protocol_registry.hpp"
 
 namespace rotord::metrics {
 
 const char* protocol_label(Protocol protocol) {
-  switch (protocol) {
-    case Protocol::kHttp:
-      return "http";
-    case Protocol::kWrc:
-      return "wrc";
-    case Protocol::kRotctld:
-      return "rotctld";
-    case Protocol::kGs232:
-      return "gs232";
-    case Protocol::kEasycomm:
-      return "easycomm";
-    case Protocol::kSeed:
-      return "seed";
-    case Protocol::kConsole:
-      return "console";
-    case Protocol::kCount:
-      break;
-  }
-  return "?";
+  if (protocol == Protocol::kHttp) return "http";
+  // A line protocol's label is its registry key (a literal, NUL-terminated).
+  const protocol::ProtocolInfo* row = protocol::find_protocol(protocol);
+  return row != nullptr ? row->key.data() : "?";
 }
 
 namespace {
@@ -43,27 +28,9 @@ bool is_http_error(std::string_view reply) {
 }  // namespace
 
 bool is_error_reply(Protocol protocol, std::string_view reply) {
-  switch (protocol) {
-    case Protocol::kHttp:
-      return is_http_error(reply);
-    case Protocol::kWrc:
-      // MONITOR's pushed STATE lines and every OK reply start otherwise.
-      return starts_with(reply, "ERROR");
-    case Protocol::kRotctld:
-      // Plain and extended replies alike end an error with a negative RPRT.
-      return reply.find("RPRT -") != std::string_view::npos;
-    case Protocol::kGs232:
-      return reply == protocol::Gs232Session::kError;
-    case Protocol::kEasycomm:
-      return starts_with(reply, "AL");  // the alarm line, Easycomm's only error
-    case Protocol::kSeed:
-      return starts_with(reply, "$ERR");
-    case Protocol::kConsole:
-      return starts_with(reply, "error:");
-    case Protocol::kCount:
-      break;
-  }
-  return false;
+  if (protocol == Protocol::kHttp) return is_http_error(reply);
+  const protocol::ProtocolInfo* row = protocol::find_protocol(protocol);
+  return row != nullptr && row->is_error_reply(reply);
 }
 
 }  // namespace rotord::metrics

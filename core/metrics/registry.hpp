@@ -8,8 +8,12 @@
 #include "metrics/tick_source.hpp"
 #include "protocol/datagram_registry.hpp"
 #include "protocol/metrics_protocol.hpp"
+#include "protocol/protocol_registry.hpp"
 
 namespace rotord::metrics {
+
+/// HTTP and each line protocol of the registry.
+inline constexpr std::size_t kProtocolCount = 1 + protocol::kPersonalityCount;
 
 /// "http", "wrc", "rotctld", "gs232", "easycomm", "seed", "console".
 const char* protocol_label(Protocol protocol);

@@ -7,20 +7,16 @@ namespace rotord::net {
 RotctldTxt::RotctldTxt(const ServicePorts& ports, const char* version) {
   add("txtvers", "1");
   add("version", version);
-  const struct {
-    const char* key;
-    std::uint16_t port;
-  } others[] = {{"web", ports.web},
-                {"wrc", ports.wrc},
-                {"gs232", ports.gs232},
-                {"easycomm", ports.easycomm},
-                {"seed", ports.seed}};
-  for (const auto& other : others) {
-    if (other.port == 0) continue;
-    char port[8];
-    std::snprintf(port, sizeof port, "%u", static_cast<unsigned>(other.port));
-    add(other.key, port);
-  }
+  add_port("web", ports.web);
+  for (std::size_t n = 0; n < ports.other_count; ++n)
+    add_port(ports.others[n].key, ports.others[n].port);
+}
+
+void RotctldTxt::add_port(const char* key, std::uint16_t port) {
+  if (port == 0) return;
+  char text[8];
+  std::snprintf(text, sizeof text, "%u", static_cast<unsigned>(port));
+  add(key, text);
 }
 
 void RotctldTxt::add(const char* key, const char* value) {

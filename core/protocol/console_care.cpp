@@ -4,20 +4,14 @@
 #include <cstdio>
 
 #include "care/odometer_record.hpp"
+#include "protocol/console_reply.hpp"
 #include "protocol/console_session.hpp"
 #include "rotator/controller.hpp"
 #include "util/text.hpp"
 #include "util/utc_time.hpp"
 
 namespace rotord::protocol {
-namespace {
-
-template <typename... Args>
-void send(ByteSink& out, const char* fmt, Args... args) {
-  ConsoleSession::Reply(ConsoleSession::kReplyRules).line(out, fmt, args...);
-}
-
-}  // namespace
+using console::send;
 
 void ConsoleSession::odometer(std::string_view args, ByteSink& out) {
   args = text::trim(args);

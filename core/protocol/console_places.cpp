@@ -3,6 +3,8 @@
 // the REST API's (rotator/place.hpp, settings/preset.hpp).
 #include <cstdio>
 
+#include "command/typed.hpp"
+#include "protocol/console_reply.hpp"
 #include "protocol/console_session.hpp"
 #include "rotator/place.hpp"
 #include "settings/preset.hpp"
@@ -10,10 +12,7 @@
 namespace rotord::protocol {
 namespace {
 
-template <typename... Args>
-void send(ByteSink& out, const char* fmt, Args... args) {
-  ConsoleSession::Reply(ConsoleSession::kReplyRules).line(out, fmt, args...);
-}
+using console::send;
 
 const char* path_name(const PlaceQuery& q) {
   return q.path == tracking::Path::kLong ? "long" : "short";
@@ -40,9 +39,9 @@ void ConsoleSession::bearing(std::string_view args, ByteSink& out) {
 void ConsoleSession::turn(std::string_view args, ByteSink& out) {
   PlaceQuery q;
   if (const char* why = parse_place(args, q)) return send(out, "error: %s", why);
-  const PlaceAim aim = aim_at(controller_, q);
+  PlaceAim aim;
+  const Error e = command::turn_to_place(controller_, q, aim);
   if (!aim.reachable) return send(out, "error: %s", aim.why);
-  const Error e = turn_to(controller_, aim);
   if (e != Error::kOk) return send(out, "error: %s", move_error(e));
   send(out, "ok turning to %.1f deg (%.0f km, %s path)", aim.bearing.azimuth_deg,
        aim.bearing.distance_km, path_name(q));
@@ -64,9 +63,8 @@ void ConsoleSession::presets(std::string_view, ByteSink& out) {
 void ConsoleSession::preset(std::string_view args, ByteSink& out) {
   settings::Preset p;
   if (args.empty()) return send(out, "error: give the preset's name (presets lists them)");
-  if (!settings::find_preset(controller_.settings(), args, &p))
-    return send(out, "error: no preset of that name (presets lists them)");
-  const Error e = turn_beam_to(controller_, p.az_deg);
+  const Error e = command::turn_to_preset(controller_, args, p);
+  if (e == Error::kNotFound) return send(out, "error: no preset of that name (presets lists them)");
   if (e != Error::kOk) return send(out, "error: %s: heading %.1f", move_error(e), p.az_deg);
   send(out, "ok turning to %s, %.1f deg", p.name, p.az_deg);
 }

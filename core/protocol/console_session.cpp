@@ -4,52 +4,27 @@
 #include <cstdio>
 #include <cstring>
 
-#include "json/json_writer.hpp"
+#include "command/typed.hpp"
+#include "json/json_reader.hpp"
 #include "json/settings_json.hpp"
+#include "protocol/console_reply.hpp"
 #include "protocol/gs232_calibration.hpp"
-#include "protocol/window_sink.hpp"
 #include "rotator/controller.hpp"
-#include "settings/settings_layers.hpp"
 #include "util/slice.hpp"
 #include "util/text.hpp"
 
 namespace rotord::protocol {
 namespace {
 
+using console::Echo;
+using console::error;
+using console::send;
+using console::Value;
 using settings::Id;
-
-template <typename... Args>
-void send(ByteSink& out, const char* fmt, Args... args) {
-  ConsoleSession::Reply(ConsoleSession::kReplyRules).line(out, fmt, args...);
-}
-
-void error(ByteSink& out, const char* reason) {
-  send(out, "error: %s", reason);
-}
 
 int length(std::string_view s) {
   return static_cast<int>(s.size());
 }
-
-/// Up to 32 characters of what the client typed, for an error reply: bytes
-/// outside printable ASCII become '?', so garbage cannot upset a terminal.
-struct Echo {
-  explicit Echo(std::string_view s) {
-    const std::size_t n = std::min(s.size(), sizeof text - 1);
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto c = static_cast<unsigned char>(s[i]);
-      text[i] = c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?';
-    }
-    text[n] = '\0';
-  }
-  char text[33];
-};
-
-/// Formats one setting for a reply: "key=value" (secrets masked).
-struct Value {
-  Value(const settings::Settings& s, Id id) { s.format_value(id, text, sizeof text); }
-  char text[settings::kValueTextCapacity];
-};
 
 const char* flag(bool on) {
   return on ? "1" : "0";
@@ -147,10 +122,7 @@ void ConsoleSession::handle_line(std::string_view line, ByteSink& out) {
   while (!rest.empty() && (rest.front() == ' ' || rest.front() == '\t')) rest.remove_prefix(1);
   for (const Command& c : kCommands) {
     if (!text::iequals(word, c.name)) continue;
-    if (c.changes_state && !may_control(controller_))
-      return error(out,
-                   "read-only: this client may not change anything (access.serial_control, "
-                   "access.control_networks, or the web's control lock)");
+    if (c.changes_state && !may_control(controller_)) return error(out, console::kNotInControl);
     return (this->*c.run)(rest, out);
   }
   const Echo echo(word);
@@ -304,12 +276,12 @@ void ConsoleSession::calibrate(std::string_view args, ByteSink& out) {
 }
 
 void ConsoleSession::stop(std::string_view, ByteSink& out) {
-  controller_.stop();
+  command::stop(controller_);
   send(out, "ok stopped");
 }
 
 void ConsoleSession::reset(std::string_view, ByteSink& out) {
-  if (controller_.reset() != Error::kOk)
+  if (command::reset(controller_) != Error::kOk)
     return error(out, "the emergency stop is active: release it, then reset");
   send(out, "ok stopped, faults cleared");
 }
@@ -326,96 +298,6 @@ void ConsoleSession::bootsel(std::string_view, ByteSink& out) {
     return error(out, "bootsel is not available on this port");
   if (const char* why = port_->system->reboot_to_bootloader()) return error(out, why);
   send(out, "ok rebooting into the USB bootloader: copy the .uf2 onto the RPI-RP2 drive");
-}
-
-const settings::Settings* ConsoleSession::export_base() const {
-  if (port_ == nullptr) return nullptr;
-  if (port_->defaults != nullptr) return port_->defaults;
-  if (port_->scratch == nullptr) return nullptr;
-  port_->scratch->reset_to_defaults();
-  return port_->scratch;
-}
-
-void ConsoleSession::start_listing(Listing listing, std::string_view prefix, ByteSink&) {
-  listing_ = listing;
-  listing_sent_ = 0;
-  listing_revision_ = controller_.settings().revision();
-  const std::size_t n = std::min(prefix.size(), sizeof list_prefix_ - 1);
-  if (n > 0) std::memcpy(list_prefix_, prefix.data(), n);  // an empty view's data() may be null
-  list_prefix_[n] = '\0';
-}
-
-void ConsoleSession::write_listing(ByteSink& out) const {
-  const settings::Settings& values = controller_.settings();
-  int count = 0;
-  if (listing_ == Listing::kExport) {
-    const settings::Settings* base = export_base();
-    const settings::KeySet keys = settings::user_layer(values, *base);
-    {
-      web::JsonWriter w(out);
-      w.begin_object().member(settings::kVersionKey, settings::kStoredVersion);
-      for (std::size_t n = 0; n < settings::kCount; ++n) {
-        const auto id = static_cast<Id>(n);
-        // Passwords are masked in any export, so they carry nothing.
-        if (!keys[n] || !writable(id, access::Peer::line()) ||
-            (settings::def(id).flags & settings::kSecret) != 0)
-          continue;
-        w.key(settings::def(id).key);
-        web::write_setting(values, id, w);
-        ++count;
-      }
-      w.end_object();
-    }
-    out.write("\r\n");
-    send(out, "ok %d settings differ from the defaults", count);
-    return;
-  }
-  const std::string_view prefix(list_prefix_);
-  for (std::size_t n = 0; n < settings::kCount; ++n) {
-    const auto id = static_cast<Id>(n);
-    const char* key = settings::def(id).key;
-    // Not the stored hashes and tokens, which the web's form hides too.
-    if ((settings::def(id).flags & settings::kHidden) != 0) continue;
-    if (!std::string_view(key).starts_with(prefix)) continue;
-    const Value value(values, id);
-    send(out, "%s=%s", key, value.text);
-    ++count;
-  }
-  if (count == 0) {
-    const Echo echo(prefix);
-    return send(out, "error: no setting starts with '%s'", echo.text);
-  }
-  send(out, "ok %d settings", count);
-}
-
-void ConsoleSession::write_more(std::size_t room_bytes, ByteSink& out) {
-  if (listing_ == Listing::kNone) return;
-  if (listing_ != Listing::kHeld && controller_.settings().revision() != listing_revision_) {
-    // Its windows would no longer join up.
-    if (listing_sent_ > 0) out.write("\r\n");
-    error(out, "the settings changed during the listing: ask again");
-  } else if (listing_ != Listing::kHeld) {
-    WindowSink window(out, listing_sent_, room_bytes, WindowSink::Cut::kWhole);
-    write_listing(window);
-    listing_sent_ += window.written();
-    if (listing_sent_ < window.total()) return;
-    if (window.written() > 0 && (held_ > 0 || hold_dropped_ > 0)) {
-      listing_ = Listing::kHeld;  // this window had its room
-      return;
-    }
-  }
-  listing_ = Listing::kNone;
-  // What was typed meanwhile, in order.
-  std::array<char, kHoldBytes> held{};
-  const std::size_t n = held_;
-  std::memcpy(held.data(), hold_.data(), n);
-  held_ = 0;
-  if (hold_dropped_ > 0) {
-    send(out, "error: %u bytes typed during the listing were dropped",
-         static_cast<unsigned>(hold_dropped_));
-    hold_dropped_ = 0;
-  }
-  feed(std::string_view(held.data(), n), out);
 }
 
 }  // namespace rotord::protocol

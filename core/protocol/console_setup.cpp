@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "protocol/console_reply.hpp"
 #include "protocol/console_session.hpp"
 #include "rotator/controller.hpp"
 #include "rotator/place.hpp"
@@ -14,20 +15,12 @@
 namespace rotord::protocol {
 namespace {
 
+using console::error;
+using console::send;
+
 using settings::Id;
 
-template <typename... Args>
-void send(ByteSink& out, const char* fmt, Args... args) {
-  ConsoleSession::Reply(ConsoleSession::kReplyRules).line(out, fmt, args...);
-}
-
-void error(ByteSink& out, const char* reason) {
-  send(out, "error: %s", reason);
-}
-
-constexpr const char* kNotInControl =
-    "read-only: this client may not change anything (access.serial_control, "
-    "access.control_networks, or the web's control lock)";
+using console::kNotInControl;
 
 void report(Controller& controller, ByteSink& out) {
   const Commissioning& c = controller.commissioning();

@@ -3,9 +3,6 @@
 #include <cstdarg>
 #include <cstdio>
 
-#include "net/line_access.hpp"
-#include "rotator/controller.hpp"
-
 namespace rotord::protocol {
 
 bool DatagramReplies::add(std::uint16_t port, const char* fmt, ...) {
@@ -46,10 +43,6 @@ const char* outcome_label(DatagramOutcome outcome) {
       "done", "not_for_us", "malformed", "oversize", "refused", "failed"};
   const auto i = static_cast<std::size_t>(outcome);
   return i < kDatagramOutcomeCount ? kLabels[i] : "?";
-}
-
-bool datagram_may_control(Controller& controller, const access::Peer& from) {
-  return access::may_control(controller.settings(), from) && !controller.control_lock().held();
 }
 
 }  // namespace rotord::protocol

@@ -72,9 +72,5 @@ class DatagramProtocol {
   virtual bool poll(DatagramReplies& /*out*/, access::Peer& /*to*/) { return false; }
 };
 
-/// Whether `from` may move the rotator: the rule of the line protocols
-/// (access.control_networks, the control lock). STOP never asks.
-bool datagram_may_control(Controller& controller, const access::Peer& from);
-
 }  // namespace protocol
 }  // namespace rotord

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "command/typed.hpp"
 #include "motion/angles.hpp"
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
@@ -250,12 +251,12 @@ void EasycommSession::run_token(std::string_view token, std::string_view& rest, 
 }
 
 void EasycommSession::park(std::string_view, ByteSink& out) {
-  const Error e = controller_.park();
+  const Error e = command::park(controller_);
   if (e != Error::kOk) alarm(out, alarm_reason(e));
 }
 
 void EasycommSession::reset(std::string_view, ByteSink& out) {
-  if (controller_.reset() != Error::kOk) alarm(out, "ESTOP");
+  if (command::reset(controller_) != Error::kOk) alarm(out, "ESTOP");
 }
 
 void EasycommSession::move_left(std::string_view velocity, ByteSink& out) {
@@ -297,7 +298,7 @@ void EasycommSession::move(AxisId axis, Direction dir, std::string_view velocity
     text::parse_int(velocity, mdeg_s);  // checked in parse_token
     speed_pct = speed_pct_from_velocity(mdeg_s);
   }
-  const Error e = controller_.move(axis, dir, speed_pct);
+  const Error e = command::move(controller_, axis, dir, speed_pct);
   if (e != Error::kOk) alarm(out, alarm_reason(e));
 }
 
@@ -323,11 +324,10 @@ void EasycommSession::write_config(std::string_view arg, ByteSink& out) {
 
 void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
   if (request.stop_az && request.stop_el) {
-    controller_.stop();
-  } else if (request.stop_az) {
-    controller_.move(AxisId::kAz, Direction::kNone);
-  } else if (request.stop_el && controller_.has_el()) {
-    controller_.move(AxisId::kEl, Direction::kNone);
+    command::stop(controller_);
+  } else if (request.stop_az || request.stop_el) {
+    // An elevation stop on an azimuth-only rotator does nothing.
+    command::stop_axis(controller_, request.stop_az ? AxisId::kAz : AxisId::kEl);
   }
   if ((request.set_az_deg || request.set_el_deg) && !may_control(controller_)) {
     alarm(out, "DENIED");
@@ -339,7 +339,8 @@ void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
       // 0..360 is a compass bearing; the controller picks the turn within
       // the overlap. Beyond 0..360 it is an unwrapped position, refused
       // unless inside the travel.
-      const Error e = controller_.go_to(request.set_az_deg, el, AzTarget::kCompass, source());
+      const Error e =
+          command::go_to(controller_, request.set_az_deg, el, AzTarget::kCompass, source());
       if (e != Error::kOk) alarm(out, alarm_reason(e));
       if (e == Error::kOk && request.set_az_deg)
         frame_.note_goto(*request.set_az_deg, controller_.az_continuity_shift_deg(),

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 
+#include "command/typed.hpp"
 #include "motion/angles.hpp"
 #include "protocol/flat_xml.hpp"
 #include "rotator/controller.hpp"
@@ -187,16 +188,16 @@ DatagramOutcome N1mmRotor::receive(std::string_view datagram, const access::Peer
 
   DatagramOutcome outcome = DatagramOutcome::kDone;
   if (r.stop) {
-    controller_.stop();  // whoever sends it
-  } else if (!datagram_may_control(controller_, from)) {
+    command::stop(controller_);  // whoever sends it
+  } else if (!command::may_control(controller_, from)) {
     outcome = DatagramOutcome::kRefused;
   } else {
     // The rotor turns so that the antenna, `offset` clockwise of it, points
     // at goazi.
     float bearing_deg = wrap_360(*r.goazi_deg - r.offset_deg);
     if (r.bidirectional) bearing_deg = nearer_end(controller_, bearing_deg);
-    if (controller_.go_to(bearing_deg, std::nullopt, AzTarget::kCompass, source_of(this)) !=
-        Error::kOk)
+    if (command::go_to(controller_, bearing_deg, std::nullopt, AzTarget::kCompass,
+                       source_of(this)) != Error::kOk)
       outcome = DatagramOutcome::kFailed;
   }
   const std::string_view label = wanted.empty() ? std::string_view(name, name_size) : wanted;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 
+#include "command/typed.hpp"
 #include "motion/angles.hpp"
 #include "protocol/flat_xml.hpp"
 #include "rotator/controller.hpp"
@@ -120,19 +121,19 @@ DatagramOutcome PstRotor::receive(std::string_view datagram, const access::Peer&
 
   DatagramOutcome outcome = DatagramOutcome::kDone;
   // In the manual's order: <STOP>1</STOP><AZIMUTH>85</AZIMUTH> stops, then turns.
-  if (r.stop) controller_.stop();
+  if (r.stop) command::stop(controller_);
   const bool moves = r.park || r.az_deg || r.el_deg || r.qra_az_deg;
-  if (moves && !datagram_may_control(controller_, from)) {
+  if (moves && !command::may_control(controller_, from)) {
     outcome = DatagramOutcome::kRefused;
   } else if (moves) {
     Error e = Error::kOk;
-    if (r.park) e = controller_.park();
+    if (r.park) e = command::park(controller_);
     std::optional<float> az = r.qra_az_deg ? r.qra_az_deg : r.az_deg;
     std::optional<float> el = r.el_deg;
     // An azimuth-only rotator ignores the elevation (Hamlib sends one).
     if (!controller_.has_el()) el.reset();
     if (e == Error::kOk && (az || el))
-      e = controller_.go_to(az, el, AzTarget::kCompass, source_of(this));
+      e = command::go_to(controller_, az, el, AzTarget::kCompass, source_of(this));
     if (e != Error::kOk) outcome = DatagramOutcome::kFailed;
   }
   // Answers go to port + 1 of the port this protocol listens on.

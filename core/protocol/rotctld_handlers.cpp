@@ -3,6 +3,7 @@
 // otherwise.
 #include <cmath>
 
+#include "command/typed.hpp"
 #include "protocol/reading_format.hpp"
 #include "protocol/rotctld_locator.hpp"
 #include "protocol/rotctld_number.hpp"
@@ -64,14 +65,14 @@ HamlibError RotctldSession::execute(const Command& command) {
     case Op::kGetPos:
       return get_pos();
     case Op::kPark:
-      return from(controller_.park());
+      return from(command::park(controller_));
     case Op::kStop:
-      controller_.stop();
+      command::stop(controller_);
       return HamlibError::kOk;
     case Op::kReset: {
       long what = 0;  // ROT_RESET_ALL is 1; every value resets everything here
       if (!rotctld::scan_whole_int(arg(0), what)) return HamlibError::kInvalid;
-      return from(controller_.reset());  // refused while the emergency stop is active
+      return from(command::reset(controller_));  // refused while the emergency stop is active
     }
     case Op::kMove:
       return move(arg(0), arg(1));
@@ -157,7 +158,7 @@ HamlibError RotctldSession::set_pos() {
   // its turn (Gpredict sends 0.5 after 359.5, meaning 360.5).
   std::optional<float> el_target;
   if (controller_.has_el()) el_target = el_deg;
-  const Error e = controller_.go_to(az_deg, el_target, AzTarget::kUnwrapped, source());
+  const Error e = command::go_to(controller_, az_deg, el_target, AzTarget::kUnwrapped, source());
   if (e == Error::kOk)
     frame_.note_goto(az_deg, controller_.az_continuity_shift_deg(),
                      controller_.last_goto_recognised(), el_deg);
@@ -173,7 +174,7 @@ HamlibError RotctldSession::set_level() {
   long pct = 0;
   if (!rotctld::scan_whole_int(arg(1), pct)) return HamlibError::kInvalid;
   if (pct < 1 || pct > 100) return HamlibError::kInvalid;
-  return from(controller_.set_speed_pct(static_cast<int>(pct)));
+  return from(command::set_speed(controller_, static_cast<int>(pct)));
 }
 
 HamlibError RotctldSession::get_level() {
@@ -223,7 +224,7 @@ HamlibError RotctldSession::move(std::string_view direction, std::string_view sp
     default:
       return HamlibError::kInvalid;
   }
-  return from(controller_.move(axis, drive, static_cast<int>(pct)));
+  return from(command::move(controller_, axis, drive, static_cast<int>(pct)));
 }
 
 void RotctldSession::status_flags() {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "command/typed.hpp"
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
 #include "util/slice.hpp"
@@ -101,7 +102,7 @@ void SeedSession::enable(std::string_view, ByteSink& out) {
 
 void SeedSession::disable(std::string_view, ByteSink& out) {
   // Disable is also the stop: every motion ends, whoever started it.
-  controller_.stop();
+  command::stop(controller_);
   enabled_ = false;
   send(out, "$OK,D");
 }
@@ -110,7 +111,7 @@ void SeedSession::speed(std::string_view arg, ByteSink& out) {
   long pct = 0;
   if (!text::parse_int(arg, pct)) return error(out, "SYNTAX");
   if (pct < 1 || pct > 100) return error(out, "RANGE");
-  controller_.set_speed_pct(static_cast<int>(pct));
+  command::set_speed(controller_, static_cast<int>(pct));
   send(out, "$OK,S,%ld", pct);
 }
 
@@ -124,7 +125,7 @@ void SeedSession::run(std::string_view arg, ByteSink& out) {
   if (text::iequals(arg, "down")) axis = AxisId::kEl, dir = Direction::kCcw, name = "DOWN";
   if (dir == Direction::kNone) return error(out, "SYNTAX");
   if (!enabled_) return error(out, "DISABLED");
-  const Error e = controller_.move(axis, dir);
+  const Error e = command::move(controller_, axis, dir);
   if (e != Error::kOk) return error(out, error_reason(e));
   send(out, "$OK,R,%s", name);
 }

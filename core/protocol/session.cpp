@@ -1,11 +1,11 @@
 #include "protocol/session.hpp"
 
-#include "rotator/controller.hpp"
+#include "command/typed.hpp"
 
 namespace rotord::protocol {
 
 bool Session::may_control(Controller& controller) const {
-  return access::may_control(controller.settings(), peer_) && !controller.control_lock().held();
+  return command::may_control(controller, peer_);
 }
 
 void drain_output(Session& session, ByteSink& out) {

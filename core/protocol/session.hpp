@@ -82,7 +82,8 @@ class Session {
   /// Whether this client may change anything: its network is allowed
   /// (access::may_control) and nobody holds the control lock (a line client
   /// never can: the lock is taken through the web or REST). Line protocols
-  /// refuse every other command but STOP in their own way when not.
+  /// refuse every other command but STOP in their own way when not. The
+  /// rule is the command layer's (command::may_control), for this peer.
   bool may_control(Controller& controller) const;
 
  private:

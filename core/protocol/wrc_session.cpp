@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "command/typed.hpp"
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
 #include "util/text.hpp"
@@ -166,7 +167,7 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
 void WrcSession::go_az(std::string_view arg, ByteSink& out) {
   float az = 0;
   if (!parse_float(arg, az)) return send(out, "ERROR INVALID AZIMUTH");
-  const Error e = controller_.go_to(az, std::nullopt, AzTarget::kCompass, source());
+  const Error e = command::go_to(controller_, az, std::nullopt, AzTarget::kCompass, source());
   if (e == Error::kOutOfRange || e == Error::kInvalidArgument)
     return send(out, "ERROR INVALID AZIMUTH");
   if (e == Error::kOk) frame_.note_goto(az, controller_.az_continuity_shift_deg());
@@ -184,7 +185,7 @@ void WrcSession::go_el(std::string_view arg, ByteSink& out) {
   float el = 0;
   if (!controller_.has_el()) return send(out, "ERROR NOT SUPPORTED");
   if (!parse_float(arg, el)) return send(out, "ERROR INVALID ELEVATION");
-  const Error e = controller_.go_to(std::nullopt, el);
+  const Error e = command::go_to(controller_, std::nullopt, el);
   if (e == Error::kOutOfRange || e == Error::kInvalidArgument)
     return send(out, "ERROR INVALID ELEVATION");
   if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
@@ -204,7 +205,7 @@ void WrcSession::move(std::string_view arg, ByteSink& out) {
   if (text::iequals(arg, "UP")) axis = AxisId::kEl, dir = Direction::kCw;
   if (text::iequals(arg, "DOWN")) axis = AxisId::kEl, dir = Direction::kCcw;
   if (dir == Direction::kNone) return send(out, "ERROR INVALID DIRECTION");
-  const Error e = controller_.move(axis, dir);
+  const Error e = command::move(controller_, axis, dir);
   if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
   char upper[8] = {};
   for (std::size_t i = 0; i < arg.size() && i < sizeof(upper) - 1; ++i)
@@ -228,7 +229,7 @@ void WrcSession::set_speed(std::string_view arg, ByteSink& out) {
   long speed = 0;
   if (!text::parse_int(arg, speed) || speed < 1 || speed > 100)
     return send(out, "ERROR INVALID SPEED");
-  controller_.set_speed_pct(static_cast<int>(speed));
+  command::set_speed(controller_, static_cast<int>(speed));
   // The WRC firmware prints the speed as an Arduino double: two decimals.
   send(out, "OK SPEED %.2f", static_cast<double>(speed));
 }
@@ -238,18 +239,18 @@ void WrcSession::get_speed(std::string_view, ByteSink& out) {
 }
 
 void WrcSession::stop(std::string_view, ByteSink& out) {
-  controller_.stop();
+  command::stop(controller_);
   send(out, "OK STOP");
 }
 
 void WrcSession::park(std::string_view, ByteSink& out) {
-  const Error e = controller_.park();
+  const Error e = command::park(controller_);
   if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
   send(out, "OK PARK");
 }
 
 void WrcSession::reset(std::string_view, ByteSink& out) {
-  if (controller_.reset() != Error::kOk) return send(out, "ERROR ESTOP");
+  if (command::reset(controller_) != Error::kOk) return send(out, "ERROR ESTOP");
   send(out, "OK RESET");
 }
 

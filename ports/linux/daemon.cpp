@@ -499,11 +499,8 @@ void Daemon::announce() {
   const auto port = [this](protocol::Personality p) {
     return static_cast<std::uint16_t>(options_.line_ports[static_cast<std::size_t>(p)]);
   };
-  using protocol::Personality;
   avahi_ = std::make_unique<AvahiPublisher>(
-      net::ServicePorts{static_cast<std::uint16_t>(options_.web_port), port(Personality::kRotctld),
-                        port(Personality::kWrc), port(Personality::kGs232),
-                        port(Personality::kEasycomm), port(Personality::kSeed)},
+      protocol::announced_ports(static_cast<std::uint16_t>(options_.web_port), port),
       ROTORD_VERSION);
 }
 

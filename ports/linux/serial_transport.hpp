@@ -89,7 +89,7 @@ class SerialTransport final : private protocol::ByteSink {
   std::array<char, kReadChunkBytes> buffer_{};
   std::size_t dropped_bytes_ = 0;
   metrics::Registry* metrics_ = nullptr;
-  metrics::Protocol protocol_ = metrics::Protocol::kWrc;
+  metrics::Protocol protocol_ = metrics::line_metric(protocol::Personality::kWrc);
   bool reported_failure_ = false;
   /// Guards handlers that run after destruction began (the loop outlives us).
   std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);

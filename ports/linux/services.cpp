@@ -42,7 +42,7 @@ std::vector<ServiceConfig> make_services(const Options& options, Controller& con
     };
     service.key = std::string(p.key);
     service.serial_baud = p.serial_baud;
-    service.protocol = p.metric;
+    service.protocol = p.metric();
     services.push_back(std::move(service));
   }
   for (ServiceConfig& service : services) {

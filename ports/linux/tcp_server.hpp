@@ -33,7 +33,7 @@ struct ServiceConfig {
   /// Where connections, refusals and error replies are counted (GET
   /// /metrics), under `protocol`; nullptr counts nothing.
   metrics::Registry* metrics = nullptr;
-  metrics::Protocol protocol = metrics::Protocol::kWrc;
+  metrics::Protocol protocol = metrics::line_metric(protocol::Personality::kWrc);
   /// The session of a stop-only exchange (net::Admission's kStopOnly) when
   /// the protocol has a smaller one (HTTP: web::HttpStopOnlySession, as on
   /// the Pico W); empty: make_session's, told set_stop_only().

@@ -115,7 +115,7 @@ struct ServerConfig {
   /// Where connections, refusals and error replies are counted (GET
   /// /metrics), under `protocol`; nullptr counts nothing.
   metrics::Registry* metrics = nullptr;
-  metrics::Protocol protocol = metrics::Protocol::kWrc;
+  metrics::Protocol protocol = metrics::line_metric(protocol::Personality::kWrc);
 };
 
 /// Serves one protocol on one TCP port: a byte session per connection from a

@@ -3,8 +3,10 @@
 #include "network_services.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 
+#include "lwip/opt.h"
 #include "lwip_mqtt.hpp"
 #include "lwip_transport.hpp"
 #include "lwip_udp.hpp"
@@ -25,31 +27,24 @@ namespace rotord::pico_w {
 namespace {
 
 // Every line protocol of the registry (core/protocol/protocol_registry.hpp)
-// on its TCP port, with a static pool of connection slots each;
-// net.max_clients is clamped to the pool. lwIP's pools (config/lwipopts.h)
-// are sized for these 17 slots plus the web's 4 and 6 listeners.
+// on its TCP port, with a static pool of connection slots each, sized by
+// the row's pico_tcp_slots; net.max_clients is clamped to the pool. lwIP's
+// pools (config/lwipopts.h) are sized for these slots plus the web's 4.
+// The console has none: it writes settings and reboots, which the network
+// does through the web and REST with access control; it is on USB only
+// (the log port, or usb.personality).
 using protocol::Personality;
 template <Personality P>
-constexpr std::size_t kTcpSlots = 0;
-template <>
-constexpr std::size_t kTcpSlots<Personality::kWrc> = 4;
-// ~2.6 KB each (a whole reply, the arguments, input held by \pause): Gpredict
-// or SatNOGS, a logger and a rotctl at once.
-template <>
-constexpr std::size_t kTcpSlots<Personality::kRotctld> = 3;
-template <>
-constexpr std::size_t kTcpSlots<Personality::kGs232> =
-    2;  // under 1 KB each; PstRotator or N1MM plus one
-template <>
-constexpr std::size_t kTcpSlots<Personality::kEasycomm> = 2;  // a tracker plus one
-// A jog panel or script plus one; about 100 B each.
-template <>
-constexpr std::size_t kTcpSlots<Personality::kSeed> = 2;
-// A new personality in the registry fails to build here until it is served
-// (or this says why not). The console is not: it writes settings and
-// reboots, which the network does through the web and REST with access
-// control; it is on USB only (the log port, or usb.personality).
-static_assert(protocol::kPersonalityCount == 6, "serve every personality on TCP");
+constexpr std::size_t kTcpSlots =
+    protocol::rows::kProtocols[static_cast<std::size_t>(P)].pico_tcp_slots;
+constexpr std::size_t line_servers() {
+  std::size_t n = 0;
+  for (const protocol::ProtocolInfo& p : protocol::rows::kProtocols) n += p.pico_tcp_slots > 0;
+  return n;
+}
+// One listener each, and the web's (config/lwipopts.h: MEMP_NUM_TCP_PCB_LISTEN).
+static_assert(line_servers() + 1 <= MEMP_NUM_TCP_PCB_LISTEN,
+              "a row served on the Pico's TCP needs a listener: raise MEMP_NUM_TCP_PCB_LISTEN");
 
 /// Builds a session of personality P for a static pool (returned by value:
 /// guaranteed copy elision builds it in its slot).
@@ -87,6 +82,17 @@ using SharedStopOnlySlot = lwip_port::StaticSharedStopOnly<
 template <Personality P>
 using LineService = lwip_port::StaticService<typename protocol::SessionOf<P>::type, kTcpSlots<P>,
                                              MakeSession<P>, kStopOnlySlots>;
+/// Row P's TCP service, built on first call (a static of its own, as each
+/// was when they were listed here); nullptr when the row has no Pico slots.
+template <Personality P, typename Config>
+lwip_port::TcpServer* serve_line(const protocol::SessionDeps& deps, const Config& line_config) {
+  if constexpr (kTcpSlots<P> == 0) {
+    return nullptr;
+  } else {
+    static LineService<P> service(line_config(P), MakeSession<P>{&deps});
+    return &service.server();
+  }
+}
 constexpr std::uint16_t kHttpPort = 80;
 // A browser holds a page connection and the event stream, plus short API
 // requests; each HTTP session is ~6 KB of RAM (request head and body buffers).
@@ -198,12 +204,7 @@ void network_start(const NetworkDeps& d, Millis now) {
   const auto tcp_port = [](Personality personality) {
     return protocol::protocol_info(personality).tcp_port;
   };
-  wifi_config.ports = net::ServicePorts{kHttpPort,
-                                        tcp_port(Personality::kRotctld),
-                                        tcp_port(Personality::kWrc),
-                                        tcp_port(Personality::kGs232),
-                                        tcp_port(Personality::kEasycomm),
-                                        tcp_port(Personality::kSeed)};
+  wifi_config.ports = protocol::announced_ports(kHttpPort, tcp_port);
   static Wifi wifi(wifi_config);
   // WRC MONITOR lines also go to the USB log port as they happen, where the
   // WRC firmware prints them, but only while a terminal listens (log_port.hpp).
@@ -223,20 +224,18 @@ void network_start(const NetworkDeps& d, Millis now) {
     config.settings = &settings;
     config.shared_stop_only = &shared_stop_only;
     config.metrics = &registry;
-    config.protocol = info.metric;
+    config.protocol = info.metric();
     return config;
   };
-  static LineService<Personality::kWrc> wrc(line_config(Personality::kWrc),
-                                            MakeSession<Personality::kWrc>{&deps});
-  static LineService<Personality::kRotctld> rotctld(line_config(Personality::kRotctld),
-                                                    MakeSession<Personality::kRotctld>{&deps});
-  static LineService<Personality::kGs232> gs232(line_config(Personality::kGs232),
-                                                MakeSession<Personality::kGs232>{&deps});
-  static LineService<Personality::kEasycomm> easycomm(line_config(Personality::kEasycomm),
-                                                      MakeSession<Personality::kEasycomm>{&deps});
-  // The seed protocol: on the Pico's TCP too since issue 11 (port 4603).
-  static LineService<Personality::kSeed> seed(line_config(Personality::kSeed),
-                                              MakeSession<Personality::kSeed>{&deps});
+  // Each row's service (a static of its own), in the order of the rows.
+  static std::array<lwip_port::TcpServer*, line_servers() + 1> servers{};
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    std::size_t n = 0;
+    ((servers[n] = serve_line<static_cast<Personality>(I)>(deps, line_config),
+      n += servers[n] != nullptr ? 1 : 0),
+     ...);
+  }
+  (std::make_index_sequence<protocol::kPersonalityCount>{});
   static SntpWallClock wall_clock(&now_ms);  // time_utc once SNTP has answered
   // Access control's crypto: seeded once here (its only heap allocation).
   static PicoCrypto crypto;
@@ -298,9 +297,7 @@ void network_start(const NetworkDeps& d, Millis now) {
   static lwip_port::StaticService<web::HttpSession, kHttpSlots, decltype(make_http), 0,
                                   decltype(make_http_stop_only)>
       http(http_config, make_http, make_http_stop_only);
-  static lwip_port::TcpServer* const servers[] = {&wrc.server(),   &rotctld.server(),
-                                                  &gs232.server(), &easycomm.server(),
-                                                  &seed.server(),  &http.server()};
+  servers.back() = &http.server();
   // The station's MQTT broker (docs/mqtt.md): state, commands and Home
   // Assistant discovery through the same mqtt::Bridge as Linux, on lwIP's
   // MQTT client; 9,752 bytes of static RAM (lwip_mqtt.hpp), whether or not

@@ -376,10 +376,11 @@ TEST_F(LwipTransportTest, ConnectionsRefusalsAndErrorRepliesAreCountedForMetrics
   auto make = [&rotator] { return protocol::WrcSession(*rotator.controller, "test"); };
   lwip_port::ServerConfig config{"WRC", 0, 1, protocol::WrcSession::kTooManyConnections};
   config.metrics = &registry;
-  config.protocol = metrics::Protocol::kWrc;
+  config.protocol = metrics::line_metric(protocol::Personality::kWrc);
   StaticService<protocol::WrcSession, 1, decltype(make)> wrc(config, make);
   auto served = serve(wrc.server());
-  const metrics::ProtocolCounters& counted = registry.protocol(metrics::Protocol::kWrc);
+  const metrics::ProtocolCounters& counted =
+      registry.protocol(metrics::line_metric(protocol::Personality::kWrc));
 
   Client& a = connect();
   send(a, "AZ?\r\nBOGUS\r\nAZ 9999\r\n");

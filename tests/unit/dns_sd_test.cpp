@@ -2,6 +2,8 @@
 // W's mDNS responder and Avahi on Linux publish these same TXT records.
 #include "net/dns_sd.hpp"
 
+#include "protocol/protocol_registry.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -17,14 +19,27 @@ std::vector<std::string> records(const RotctldTxt& txt) {
   return out;
 }
 
+using protocol::Personality;
+
+/// The ports as the registry's DNS-SD column announces them: `ports` in the
+/// order of Personality (wrc, rotctld, gs232, easycomm, seed, console).
+ServicePorts announced(std::uint16_t web, std::array<std::uint16_t, 6> ports) {
+  return protocol::announced_ports(
+      web, [&](Personality p) { return ports[static_cast<std::size_t>(p)]; });
+}
+
 TEST(DnsSd, TheRotctldRecordNamesTheVersionAndEveryOtherPortThatIsOn) {
-  const RotctldTxt txt(ServicePorts{8080, 4533, 1234, 4601, 4602, 0}, "0.1.0");
+  const ServicePorts ports = announced(8080, {1234, 4533, 4601, 4602, 0, 4604});
+  EXPECT_EQ(ports.rotctld, 4533);  // the service itself, not in its TXT
+  // The records as they were before the registry named them: the console
+  // is not announced.
+  const RotctldTxt txt(ports, "0.1.0");
   EXPECT_EQ(records(txt), (std::vector<std::string>{"txtvers=1", "version=0.1.0", "web=8080",
                                                     "wrc=1234", "gs232=4601", "easycomm=4602"}));
 }
 
 TEST(DnsSd, APortThatIsOffIsNotAnnounced) {
-  const RotctldTxt txt(ServicePorts{80, 4533, 0, 0, 4602, 4700}, "1.2.3");
+  const RotctldTxt txt(announced(80, {0, 4533, 0, 4602, 4700, 0}), "1.2.3");
   EXPECT_EQ(records(txt), (std::vector<std::string>{"txtvers=1", "version=1.2.3", "web=80",
                                                     "easycomm=4602", "seed=4700"}));
 }

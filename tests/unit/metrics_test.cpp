@@ -26,6 +26,16 @@ namespace {
 
 using rotord::testing::StringSink;
 
+/// The line protocols' counters (metrics::Protocol names HTTP only; the
+/// others follow the registry's rows).
+namespace line {
+constexpr Protocol kWrc = line_metric(protocol::Personality::kWrc);
+constexpr Protocol kRotctld = line_metric(protocol::Personality::kRotctld);
+constexpr Protocol kGs232 = line_metric(protocol::Personality::kGs232);
+constexpr Protocol kEasycomm = line_metric(protocol::Personality::kEasycomm);
+constexpr Protocol kSeed = line_metric(protocol::Personality::kSeed);
+}  // namespace line
+
 std::string written(const std::function<void(PrometheusWriter&)>& body) {
   StringSink sink;
   {
@@ -121,19 +131,19 @@ TEST(PrometheusWriter, SecondsFromMicrosecondsAreExact) {
 }
 
 TEST(ErrorReplies, EachProtocolsErrorIsRecognisedAndNothingElse) {
-  EXPECT_TRUE(is_error_reply(Protocol::kWrc, "ERROR INVALID AZIMUTH\r\n"));
-  EXPECT_FALSE(is_error_reply(Protocol::kWrc, "OK AZ 100.0\r\n"));
-  EXPECT_FALSE(is_error_reply(Protocol::kWrc, "STATE AZ=1.0 SPEED=50 FLAGS=\r\n"));
-  EXPECT_TRUE(is_error_reply(Protocol::kRotctld, "RPRT -1\n"));
-  EXPECT_TRUE(is_error_reply(Protocol::kRotctld, "set_pos: 1 2\nRPRT -9\n"));
-  EXPECT_FALSE(is_error_reply(Protocol::kRotctld, "RPRT 0\n"));
-  EXPECT_FALSE(is_error_reply(Protocol::kRotctld, "100.000000\n20.000000\n"));
-  EXPECT_TRUE(is_error_reply(Protocol::kGs232, protocol::Gs232Session::kError));
-  EXPECT_FALSE(is_error_reply(Protocol::kGs232, "AZ=100\r\n"));
-  EXPECT_TRUE(is_error_reply(Protocol::kEasycomm, "ALRANGE\n"));
-  EXPECT_FALSE(is_error_reply(Protocol::kEasycomm, "AZ100.0 EL20.0\n"));
-  EXPECT_TRUE(is_error_reply(Protocol::kSeed, "$ERR,RANGE\r\n"));
-  EXPECT_FALSE(is_error_reply(Protocol::kSeed, "$OK,S,50\r\n"));
+  EXPECT_TRUE(is_error_reply(line::kWrc, "ERROR INVALID AZIMUTH\r\n"));
+  EXPECT_FALSE(is_error_reply(line::kWrc, "OK AZ 100.0\r\n"));
+  EXPECT_FALSE(is_error_reply(line::kWrc, "STATE AZ=1.0 SPEED=50 FLAGS=\r\n"));
+  EXPECT_TRUE(is_error_reply(line::kRotctld, "RPRT -1\n"));
+  EXPECT_TRUE(is_error_reply(line::kRotctld, "set_pos: 1 2\nRPRT -9\n"));
+  EXPECT_FALSE(is_error_reply(line::kRotctld, "RPRT 0\n"));
+  EXPECT_FALSE(is_error_reply(line::kRotctld, "100.000000\n20.000000\n"));
+  EXPECT_TRUE(is_error_reply(line::kGs232, protocol::Gs232Session::kError));
+  EXPECT_FALSE(is_error_reply(line::kGs232, "AZ=100\r\n"));
+  EXPECT_TRUE(is_error_reply(line::kEasycomm, "ALRANGE\n"));
+  EXPECT_FALSE(is_error_reply(line::kEasycomm, "AZ100.0 EL20.0\n"));
+  EXPECT_TRUE(is_error_reply(line::kSeed, "$ERR,RANGE\r\n"));
+  EXPECT_FALSE(is_error_reply(line::kSeed, "$OK,S,50\r\n"));
   EXPECT_TRUE(is_error_reply(Protocol::kHttp, "HTTP/1.1 404 Not Found\r\n"));
   EXPECT_TRUE(is_error_reply(Protocol::kHttp, "HTTP/1.1 503 Service Unavailable\r\n"));
   EXPECT_FALSE(is_error_reply(Protocol::kHttp, "HTTP/1.1 200 OK\r\n"));
@@ -155,19 +165,19 @@ TEST(ErrorReplies, TheSessionsOwnErrorsAreCountedWhenSentThroughTheRegistry) {
   protocol::Gs232Session gs232(*r.controller);
   protocol::EasycommSession easycomm(*r.controller, "9");
   protocol::SeedSession seed(*r.controller);
-  Counting to_wrc(registry, Protocol::kWrc), to_rotctld(registry, Protocol::kRotctld),
-      to_gs232(registry, Protocol::kGs232), to_easycomm(registry, Protocol::kEasycomm),
-      to_seed(registry, Protocol::kSeed);
+  Counting to_wrc(registry, line::kWrc), to_rotctld(registry, line::kRotctld),
+      to_gs232(registry, line::kGs232), to_easycomm(registry, line::kEasycomm),
+      to_seed(registry, line::kSeed);
   wrc.receive("AZ 9999\nAZ?\nBOGUS\n", to_wrc);
   rotctld.receive("P 9999 0\np\n\\no_such_command\n", to_rotctld);
   gs232.receive("M999\rC\rM\r", to_gs232);
   easycomm.receive("AZ999.0\nAZ\n", to_easycomm);
   seed.receive("$bogus\r\n$Q\r\n", to_seed);
-  EXPECT_EQ(registry.protocol(Protocol::kWrc).errors, 2u);
-  EXPECT_EQ(registry.protocol(Protocol::kRotctld).errors, 2u);
-  EXPECT_EQ(registry.protocol(Protocol::kGs232).errors, 2u);
-  EXPECT_EQ(registry.protocol(Protocol::kEasycomm).errors, 1u);
-  EXPECT_EQ(registry.protocol(Protocol::kSeed).errors, 1u);
+  EXPECT_EQ(registry.protocol(line::kWrc).errors, 2u);
+  EXPECT_EQ(registry.protocol(line::kRotctld).errors, 2u);
+  EXPECT_EQ(registry.protocol(line::kGs232).errors, 2u);
+  EXPECT_EQ(registry.protocol(line::kEasycomm).errors, 1u);
+  EXPECT_EQ(registry.protocol(line::kSeed).errors, 1u);
 }
 
 TEST(FaultCounters, EachLatchedFaultCountsOnceAndAgainAfterAReset) {
@@ -253,8 +263,8 @@ class MetricsPages : public ::testing::Test {
 TEST_F(MetricsPages, MetricsAreServedAsPrometheusText) {
   ASSERT_EQ(r.controller->go_to(200.0f, 45.0f), Error::kOk);
   run_ms(500);
-  registry.protocol(Protocol::kWrc).on_accept();
-  registry.on_reply(Protocol::kWrc, "ERROR INVALID AZIMUTH\r\n");
+  registry.protocol(line::kWrc).on_accept();
+  registry.on_reply(line::kWrc, "ERROR INVALID AZIMUTH\r\n");
   const auto res = get("/metrics");
   ASSERT_EQ(res.status, 200);
   EXPECT_EQ(res.header("Content-Type"), "text/plain; version=0.0.4; charset=utf-8");

@@ -29,7 +29,7 @@ TEST(ProtocolRegistry, OneRowPerPersonalityWithDistinctKeysAndPorts) {
     EXPECT_EQ(&protocol_info(p.personality), &p);
     EXPECT_EQ(find_protocol(p.key), &p);
     // The /metrics label is the key, so a port counts each under its name.
-    EXPECT_EQ(metrics::protocol_label(p.metric), p.key);
+    EXPECT_EQ(metrics::protocol_label(p.metric()), p.key);
     EXPECT_FALSE(p.name.empty());
     EXPECT_GE(p.serial_baud, 1200);
   }
@@ -42,6 +42,14 @@ TEST(ProtocolRegistry, OneRowPerPersonalityWithDistinctKeysAndPorts) {
   EXPECT_EQ(protocol_info(Personality::kEasycomm).tcp_port, 4602);
   EXPECT_EQ(protocol_info(Personality::kSeed).tcp_port, 4603);
   EXPECT_FALSE(protocol_info(Personality::kSeed).tcp_by_default);  // Linux: --seed-port
+  // The Pico W's TCP pools as network_services.cpp listed them before the
+  // rows sized them: the console on USB only there.
+  int pico_slots = 0;
+  for (const ProtocolInfo& p : protocols()) pico_slots += p.pico_tcp_slots;
+  EXPECT_EQ(pico_slots, 4 + 3 + 2 + 2 + 2);
+  EXPECT_EQ(protocol_info(Personality::kWrc).pico_tcp_slots, 4);
+  EXPECT_EQ(protocol_info(Personality::kRotctld).pico_tcp_slots, 3);
+  EXPECT_EQ(protocol_info(Personality::kConsole).pico_tcp_slots, 0);
 }
 
 /// Each row's session factory builds that protocol: garbage gets its error,
@@ -73,6 +81,13 @@ TEST(ProtocolRegistry, EachRowBuildsItsOwnSession) {
     testing::StringSink sink;
     s->receive(c.garbage, sink);
     EXPECT_EQ(sink.data, c.error) << protocol_info(c.personality).key;
+    // The row's own error recognition (the /metrics error count) knows it,
+    // and the busy refusal too; not a reply that is no error.
+    const ProtocolInfo& row = protocol_info(c.personality);
+    EXPECT_TRUE(row.is_error_reply(c.error)) << row.key;
+    EXPECT_TRUE(row.is_error_reply(c.refusal)) << row.key;
+    EXPECT_FALSE(row.is_error_reply("\r\n")) << row.key;
+    EXPECT_EQ(find_protocol(row.metric()), &row);
     s->~Session();
   }
 }
