@@ -56,6 +56,10 @@ Result refused_by(Error e) {
                      "an axis has a latched fault: clear it with POST /api/reset");
     case Error::kLimit:
       return refused(Status::kConflict, "that direction is blocked by a limit");
+    case Error::kStowed:
+      return refused(Status::kConflict,
+                     "stowed for the wind: moves are refused until it is calm, or an operator "
+                     "overrides the stow (POST /api/wind/override)");
     case Error::kNotSupported:
       return refused(Status::kUnprocessable, "this rotator has no elevation axis");
     case Error::kOutOfRange:

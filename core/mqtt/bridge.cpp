@@ -39,6 +39,11 @@ Bridge::Bridge(web::Api& api, Transport& transport, std::string_view prefix,
       join_topic(this->prefix(), "availability", availability_, sizeof availability_);
   command_filter_len_ =
       join_topic(this->prefix(), "cmd/+", command_filter_, sizeof command_filter_);
+  const settings::Settings& s = api.settings();
+  if (s.i(Id::kWindSource) != 0) {
+    copy_text(s.text(Id::kWindMqttTopic), wind_topic_, sizeof wind_topic_);
+    copy_text(s.text(Id::kWindMqttDirTopic), wind_dir_topic_, sizeof wind_dir_topic_);
+  }
 }
 
 Bridge::Fingerprint Bridge::fingerprint() const {
@@ -46,6 +51,7 @@ Bridge::Fingerprint Bridge::fingerprint() const {
   const RotatorStatus s = c.status();
   Fingerprint f;
   f.mode = static_cast<int>(s.mode);
+  f.wind_state = static_cast<int>(s.wind_state);
   f.speed_pct = s.speed_pct;
   f.fault = s.any_fault();
   f.lock = api_->controller().control_lock().held();
@@ -129,6 +135,19 @@ bool Bridge::publish_state() {
 }
 
 void Bridge::on_message(std::string_view topic, std::string_view payload, bool oversized) {
+  // The wind stow's topics first (a weather station's, outside our prefix).
+  if (is_wind_topic(topic)) {
+    Controller& c = api_->controller();
+    const bool speed = topic == wind_topic();
+    // An oversized payload is read as an empty one: counted as garbage.
+    const std::string_view body = oversized ? std::string_view{} : payload;
+    if (speed) {
+      c.wind_speed_message(body);
+    } else {
+      c.wind_direction_message(body);
+    }
+    return;
+  }
   const std::string_view name = command_name(prefix(), topic);
   if (name.empty()) {
     // Another rotord's (or our own) state, availability or info.

@@ -68,6 +68,16 @@ class Bridge {
   std::string_view prefix() const { return {prefix_, prefix_len_}; }
   std::string_view availability_topic() const { return {availability_, availability_len_}; }
   std::string_view command_filter() const { return {command_filter_, command_filter_len_}; }
+  /// The wind stow's topics (wind.mqtt_topic, wind.mqtt_dir_topic, read at
+  /// construction: they take effect after a restart), empty when unset; the
+  /// port subscribes to them (docs/care.md, "Wind stow").
+  std::string_view wind_topic() const { return wind_topic_; }
+  std::string_view wind_dir_topic() const { return wind_dir_topic_; }
+  /// Whether `topic` is one of them: the port delivers its messages even
+  /// when not a command (an oversized one is counted as garbage).
+  bool is_wind_topic(std::string_view topic) const {
+    return !topic.empty() && (topic == wind_topic() || topic == wind_dir_topic());
+  }
 
   /// Called on every pass of the loop with the transport's clock: publishes
   /// the state when it changed, at mqtt.state_hz while moving, and
@@ -95,6 +105,7 @@ class Bridge {
     int az_target_tenths = 0, el_target_tenths = 0;
     bool az_target = false, el_target = false;
     int az_state = 0, el_state = 0, az_fault = 0, el_fault = 0;
+    int wind_state = 0;
     bool operator==(const Fingerprint&) const = default;
   };
   Fingerprint fingerprint() const;
@@ -138,6 +149,8 @@ class Bridge {
   char availability_[kMaxTopicBytes] = {};
   std::size_t availability_len_ = 0;
   char command_filter_[kMaxTopicBytes] = {};
+  char wind_topic_[kMaxTopicBytes] = {};
+  char wind_dir_topic_[kMaxTopicBytes] = {};
   std::size_t command_filter_len_ = 0;
   bool was_connected_ = false;
   int announce_step_ = kAnnouncements;  ///< the next announcement to publish

@@ -48,6 +48,8 @@ const char* alarm_reason(Error e) {
       return "FAULT";
     case Error::kLimit:
       return "LIMIT";
+    case Error::kStowed:
+      return "STOWED";
     case Error::kNotSupported:
       return "UNSUPPORTED";
     case Error::kNotFound:

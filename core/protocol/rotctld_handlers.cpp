@@ -35,6 +35,7 @@ HamlibError from(Error e) {
     case Error::kFaulted:
     case Error::kLimit:
     case Error::kBusy:
+    case Error::kStowed:
       return HamlibError::kRejected;
     case Error::kStorage:
       return HamlibError::kIo;

@@ -24,6 +24,8 @@ const char* error_reason(Error e) {
       return "FAULT";
     case Error::kLimit:
       return "LIMIT";
+    case Error::kStowed:
+      return "STOWED";
     case Error::kNotSupported:
       return "NOT SUPPORTED";
     default:

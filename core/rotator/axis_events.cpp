@@ -9,6 +9,48 @@ void AxisEvents::begin(const RotatorStatus& status) {
   slips_ = {status.az.slips, status.el.slips};
   faults_ = {status.az.fault, status.el.fault};
   held_ = {status.az.start_held, status.el.start_held};
+  wind_state_ = status.wind_state;
+  wind_rejected_ = status.wind_rejected;
+}
+
+bool AxisEvents::wind_event(const RotatorStatus& s, char* line, std::size_t capacity) {
+  if (s.wind_rejected != wind_rejected_) {
+    wind_rejected_ = s.wind_rejected;
+    if (wind_rejected_ >= wind_rejected_told_at_) {
+      while (wind_rejected_told_at_ <= wind_rejected_ && wind_rejected_told_at_ < 1000000000u)
+        wind_rejected_told_at_ *= 10;
+      std::snprintf(line, capacity,
+                    "wind: a reading ignored (garbage, negative, too high or stale: see "
+                    "/api/status wind.rejected); %lu since start",
+                    static_cast<unsigned long>(wind_rejected_));
+      return true;
+    }
+  }
+  if (s.wind_state == wind_state_) return false;
+  const care::WindState was = wind_state_;
+  wind_state_ = s.wind_state;
+  using care::WindState;
+  if (s.wind_state == WindState::kStowed) {
+    std::snprintf(line, capacity,
+                  was == WindState::kOverride
+                      ? "wind: the operator's override ended at %.1f m/s: stowing again"
+                      : "wind: %.1f m/s held for wind.hold_s: stowing, other moves refused until "
+                        "calm",
+                  static_cast<double>(s.wind_speed_mps));
+    return true;
+  }
+  if (s.wind_state == WindState::kOverride) {
+    std::snprintf(line, capacity, "wind: the stow overridden by an operator (wind.override_min)");
+    return true;
+  }
+  if (s.wind_state == WindState::kCalm &&
+      (was == WindState::kStowed || was == WindState::kOverride)) {
+    std::snprintf(line, capacity,
+                  "wind: calm (%.1f m/s) for wind.calm_min: the stow ends, moves obeyed again",
+                  static_cast<double>(s.wind_speed_mps));
+    return true;
+  }
+  return false;
 }
 
 bool AxisEvents::next(const RotatorStatus& status, char* line, std::size_t capacity) {
@@ -43,7 +85,7 @@ bool AxisEvents::next(const RotatorStatus& status, char* line, std::size_t capac
       return true;
     }
   }
-  return false;
+  return wind_event(status, line, capacity);
 }
 
 }  // namespace rotord

@@ -20,6 +20,8 @@ const char* mode_name(Mode mode) {
       return "park";
     case Mode::kTrack:
       return "track";
+    case Mode::kStow:
+      return "stow";
   }
   return "?";
 }
@@ -40,6 +42,7 @@ void Controller::apply_settings() {
   az_.configure(axis_config_from(settings_, AxisId::kAz));
   if (has_el_) el_.configure(axis_config_from(settings_, AxisId::kEl));
   buttons_.configure(settings_.b(Id::kButtonsEnabled), settings_.i(Id::kButtonsDebounceMs));
+  wind_.configure(wind_config());
   applied_revision_ = settings_.revision();
 }
 
@@ -83,6 +86,7 @@ void Controller::tick(Millis now) {
     apply_settings();
   }
   read_estop();
+  tick_wind(now);
   if (recognition_.active && !settings_.b(Id::kTrackRecognise))
     end_recognition(RecognitionEnd::kOff);
   apply_buttons(now);
@@ -158,6 +162,7 @@ bool Controller::station_set() const {
 }
 
 TrackError Controller::track(const TrackRequest& request) {
+  if (wind_.refusing()) return TrackError::kStowed;
   note_command();  // ends a track already armed
   stream_.interrupt();
   // A fixed az/el needs no station; a satellite, the Sun and the Moon do.
@@ -258,6 +263,9 @@ std::optional<float> Controller::resolve_az(float az_deg, AzTarget mode) const {
 Error Controller::go_to(std::optional<float> az_deg, std::optional<float> el_deg, AzTarget az_mode,
                         CommandSource source) {
   last_goto_recognised_ = false;
+  // Refused before anything changes: a recognised pass ended by the stow
+  // is not re-begun, and a client's stream is not judged.
+  if (wind_.refusing()) return Error::kStowed;
   bool literal = false;
   if (recognition_.active) {
     if (source == recognition_.source && az_deg && el_deg && on_recognised(*az_deg, *el_deg)) {
@@ -371,6 +379,7 @@ StreamLead::Plan Controller::lead_axis(const Axis& axis, float sent_deg,
 }
 
 Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman_ms) {
+  if (dir != Direction::kNone && wind_.refusing()) return Error::kStowed;
   note_command();
   stream_.interrupt();
   if (axis == AxisId::kEl && !has_el_) return Error::kNotSupported;
@@ -383,6 +392,10 @@ Error Controller::move(AxisId axis, Direction dir, int speed_pct, Millis deadman
 }
 
 void Controller::stop() {
+  // STOP always works, a stow's move included; that stow is not commanded
+  // again by itself this windy spell (controller_wind.cpp).
+  if (stow_pending_ || mode_ == Mode::kStow) wind_.stopped_by_operator();
+  stow_pending_ = false;
   if (commissioning_.running()) commissioning_.abort(commissioned_axis(), "STOP");
   end_recognition(RecognitionEnd::kStop);
   note_command();
@@ -405,6 +418,8 @@ Error Controller::park() {
 Error Controller::reset() {
   stop();
   if (estop_active_) return Error::kFaulted;  // released first, then RESET
+  // RESET carries on: a stow that a fault (or STOP) cut short goes on.
+  if (wind_.refusing()) stow_pending_ = wind_.restow();
   az_.clear_fault();
   el_.clear_fault();
   count_faults();  // a fault that comes back after the reset counts again
@@ -447,6 +462,13 @@ RotatorStatus Controller::status() const {
   s.mode = mode_;
   s.speed_pct = speed_pct_;
   s.limits = limits();
+  s.wind_state = wind_.state();
+  s.wind_has_speed = wind_.has_speed();
+  s.wind_speed_mps = wind_.speed_mps();
+  s.wind_stows = wind_.stows();
+  s.wind_overrides = wind_.overrides();
+  for (std::size_t n = 0; n < care::kWindRejectKinds; ++n)
+    s.wind_rejected += wind_.rejected(static_cast<care::WindReject>(n));
   return s;
 }
 
@@ -462,6 +484,10 @@ Error Controller::commission(const Commissioning::Request& request, const char**
   if (tracker_.armed()) {
     *why = "a track is running: stop it first";
     return Error::kBusy;
+  }
+  if (wind_.refusing()) {
+    *why = "stowed for the wind: wait for calm or override the stow";
+    return Error::kStowed;
   }
   stop();
   // Settings accepted just now (a swap) are the frame the run starts from.

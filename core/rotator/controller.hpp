@@ -1,10 +1,14 @@
 #pragma once
 #include <optional>
+#include <string_view>
 
 #include "access/control_lock.hpp"
 #include "axis/axis.hpp"
 #include "care/odometer.hpp"
 #include "care/start_ceiling.hpp"
+#include "care/wind_pulses.hpp"
+#include "care/wind_stow.hpp"
+#include "hal/pulse_counter.hpp"
 #include "hal/wall_clock.hpp"
 #include "input/manual_buttons.hpp"
 #include "rotator/commissioning.hpp"
@@ -18,7 +22,7 @@
 
 namespace rotord {
 
-enum class Mode : std::uint8_t { kIdle, kGoto, kManual, kPark, kTrack };
+enum class Mode : std::uint8_t { kIdle, kGoto, kManual, kPark, kTrack, kStow };
 
 const char* mode_name(Mode mode);
 
@@ -32,6 +36,13 @@ struct RotatorStatus {
   Mode mode = Mode::kIdle;
   int speed_pct = 50;
   Limits limits;
+  // The wind stow (docs/care.md), for the log and the protocols' status.
+  care::WindState wind_state = care::WindState::kOff;
+  bool wind_has_speed = false;
+  float wind_speed_mps = 0.0f;
+  std::uint32_t wind_stows = 0;
+  std::uint32_t wind_overrides = 0;
+  std::uint32_t wind_rejected = 0;  ///< every reason
   bool any_fault() const { return az.fault != AxisFault::kNone || el.fault != AxisFault::kNone; }
   bool moving() const {
     return (az.state != AxisState::kIdle && az.state != AxisState::kFault) ||
@@ -169,6 +180,26 @@ class Controller {
     return starts_held_[static_cast<std::size_t>(axis_index(axis))];
   }
 
+  /// Wind stow (docs/care.md, "Wind stow"; controller_wind.cpp): the rule,
+  /// its readings and counts. While it refuses, go-tos, jogs, PARK, tracks
+  /// and self-commissioning answer Error::kStowed; STOP always works.
+  const care::WindStow& wind() const { return wind_; }
+  /// The anemometer's pulse counter (pins.wind / gpiod.wind), or nullptr;
+  /// read every tick when wind.source is pulses.
+  void attach_wind_pulses(hal::PulseCounter* counter) { wind_pulses_ = counter; }
+  /// A message on wind.mqtt_topic (speed in wind.mqtt_unit) or on
+  /// wind.mqtt_dir_topic (deg): taken when wind.source uses it, else
+  /// ignored; garbage is counted.
+  void wind_speed_message(std::string_view payload);
+  void wind_direction_message(std::string_view payload);
+  /// An operator lifts the stow's refusal for `minutes` (0: wind.override_min);
+  /// kNotFound when nothing is stowed. end_wind_override() stows again if
+  /// still windy.
+  Error wind_override(int minutes);
+  void end_wind_override();
+  /// The heading a stow goes to now (compass, resolved within the travel).
+  float wind_stow_az_deg() const;
+
   /// What the continuity rule added to the last go-to's azimuth (whole
   /// turns; 0 when it was taken literally). A session that sent it reports
   /// positions in its own frame from then on (rotator/client_frame.hpp).
@@ -227,6 +258,9 @@ class Controller {
   void count_faults();
   /// The odometer and the starts ceiling, after the axes ticked.
   void count_wear(Millis now);
+  /// The wind rule's step: its readings, and the stow move when it asks.
+  void tick_wind(Millis now);
+  care::WindConfig wind_config() const;
   Axis& commissioned_axis() { return commissioning_.axis() == AxisId::kEl ? el_ : az_; }
 
   settings::Settings& settings_;
@@ -259,6 +293,10 @@ class Controller {
   std::array<care::StartCeiling, kMaxAxes> ceilings_;
   std::array<bool, kMaxAxes> was_held_{};
   std::array<std::uint32_t, kMaxAxes> starts_held_{};
+  care::WindStow wind_;
+  care::WindPulseMeter wind_meter_;
+  bool stow_pending_ = false;  ///< the stow move is to be (re)commanded
+  hal::PulseCounter* wind_pulses_ = nullptr;
   std::array<AxisFault, kMaxAxes> counted_fault_{};  // each axis's fault, as last counted
   std::array<std::array<std::uint32_t, kAxisFaultKinds>, kMaxAxes> faults_latched_{};
 };

@@ -77,6 +77,9 @@ const char* track_error_text(TrackError error) {
       return "an axis has a latched fault: clear it first";
     case TrackError::kNoTarget:
       return "nothing to track";
+    case TrackError::kStowed:
+      return "stowed for the wind: moves are refused until it is calm (wind.calm_min) or an "
+             "operator overrides the stow";
     case TrackError::kNoStation:
       return "the station's position is not set: enter the antenna's latitude and longitude "
              "(station.lat_deg, station.lon_deg) in Settings; passes and pointing would "

@@ -43,6 +43,7 @@ enum class TrackError : std::uint8_t {
   kFaulted,        ///< an axis has (or latched) a fault
   kNoTarget,       ///< nothing to track
   kNoStation,      ///< station.lat_deg / lon_deg never set (both 0)
+  kStowed,         ///< the wind stow refuses moves until calm (docs/care.md)
 };
 const char* track_error_text(TrackError error);
 

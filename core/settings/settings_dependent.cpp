@@ -38,6 +38,29 @@ Rejection Settings::check_dependent_rules(Touched touched) const {
       return {Error::kOutOfRange, detail_};
     }
   }
+  // Wind stow (docs/care.md): checked once a source is set, so an unused
+  // default never blocks a change of the travel.
+  const bool wind_on = i(Id::kWindSource) != 0;
+  if (wind_on && !continuous &&
+      touched(
+          {Id::kWindStowAzDeg, Id::kWindSource, Id::kAzMinDeg, Id::kAzMaxDeg, Id::kAzContinuous})) {
+    const double stow = get(Id::kWindStowAzDeg);
+    if (stow < az_min || stow > az_max) {
+      std::snprintf(detail_, sizeof detail_,
+                    "wind.stow_az_deg %g is outside the azimuth travel az.min_deg..az.max_deg "
+                    "(%g..%g): a wind stow could not go there",
+                    stow, az_min, az_max);
+      return {Error::kOutOfRange, detail_};
+    }
+  }
+  if (wind_on && touched({Id::kWindCalmMps, Id::kWindStowMps, Id::kWindSource}) &&
+      get(Id::kWindCalmMps) > get(Id::kWindStowMps)) {
+    std::snprintf(detail_, sizeof detail_,
+                  "wind.calm_mps %g is above wind.stow_mps %g: the wind could be calm and a "
+                  "storm at once",
+                  get(Id::kWindCalmMps), get(Id::kWindStowMps));
+    return {Error::kOutOfRange, detail_};
+  }
   // A slow zone as long as the travel makes every move a slow one.
   const double az_travel = continuous ? 360.0 : az_max - az_min;
   if (touched({Id::kAzSlowZoneDeg, Id::kAzMinDeg, Id::kAzMaxDeg, Id::kAzContinuous}) &&

@@ -22,6 +22,8 @@ const char* error_name(Error error) {
       return "NOT FOUND";
     case Error::kStorage:
       return "STORAGE";
+    case Error::kStowed:
+      return "STOWED";
   }
   return "UNKNOWN";
 }

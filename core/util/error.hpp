@@ -15,6 +15,7 @@ enum class Error : std::uint8_t {
   kBusy,             ///< resource exhausted (too many clients, queue full)
   kNotFound,         ///< unknown key or command
   kStorage,          ///< persistence failed
+  kStowed,           ///< the wind stow refuses moves until calm (or an override)
 };
 
 const char* error_name(Error error);

@@ -1,6 +1,7 @@
 #include "web/metrics_page.hpp"
 
 #include "web/care_api.hpp"
+#include "web/wind_api.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -212,13 +213,15 @@ void write_metrics(PrometheusWriter& w, const Controller& controller,
   write_axes(w, controller, s);
   write_axis_counters(w, controller, s);
   w.family("rotord_mode", "gauge", "1 for the controller's mode now, 0 for the others.");
-  for (const Mode m : {Mode::kIdle, Mode::kGoto, Mode::kManual, Mode::kPark, Mode::kTrack})
+  for (const Mode m :
+       {Mode::kIdle, Mode::kGoto, Mode::kManual, Mode::kPark, Mode::kTrack, Mode::kStow})
     w.integer({{"mode", mode_name(m)}}, s.mode == m ? 1 : 0);
   w.family("rotord_speed_percent", "gauge", "Commanded speed, 1..100 %.");
   w.integer({}, static_cast<std::uint64_t>(s.speed_pct));
   w.family("rotord_estop_active", "gauge", "1 while the emergency-stop input is active.");
   w.integer({}, controller.estop_active() ? 1 : 0);
   write_care_metrics(w, controller, registry);
+  write_wind_metrics(w, controller);
   if (registry == nullptr) return;
   write_protocols(w, *registry);
   if (registry->ticks != nullptr) write_ticks(w, *registry->ticks);

@@ -7,6 +7,7 @@
 #include "web/place_api.hpp"
 #include "web/recognition_report.hpp"
 #include "web/web_api.hpp"
+#include "web/wind_api.hpp"
 
 namespace rotord::web {
 namespace {
@@ -151,6 +152,7 @@ void Api::write_status(JsonWriter& w) const {
   write_beam(w, s);
   write_recognition(w, c.recognition());
   write_odometer_status(w, ctx_.controller);
+  write_wind_status(w, ctx_.controller);
   write_settings_load(w, values, ctx_.load_report);
   w.key("az");
   write_axis(w, s.az, values.i(Id::kAzSensor));

@@ -64,6 +64,7 @@ int track_error_status(TrackError e) {
     case TrackError::kClockUnsynced:
     case TrackError::kNoStation:
     case TrackError::kFaulted:
+    case TrackError::kStowed:
     case TrackError::kBelowHorizon:
       return 409;
     default:

@@ -10,6 +10,7 @@
 #include "util/utc_time.hpp"
 #include "web/care_api.hpp"
 #include "web/place_api.hpp"
+#include "web/wind_api.hpp"
 
 namespace rotord::web {
 namespace {
@@ -218,6 +219,8 @@ const Api::Route Api::kRoutes[] = {
     {"/api/odometer", false, N::kRead, false, false, get_odometer, "the wear odometer"},
     {"/api/odometer/reset", true, N::kControl, true, true, post_odometer_reset,
      "reset the wear odometer, dated"},
+    {"/api/wind/override", true, N::kControl, true, true, post_wind_override,
+     "override a wind stow for a time ({\"minutes\": n}), or end the override ({\"end\": true})"},
 };
 
 std::span<const Api::Route> Api::routes() {

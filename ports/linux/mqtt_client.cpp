@@ -209,6 +209,10 @@ void MqttClient::on_connect(mosquitto* m, void* self, int rc) {
   // The station page: every rotord on a two-level prefix (rotord/<hostname>).
   static const char* const kStation[] = {"+/+/state", "+/+/availability", "+/+/info"};
   for (const char* topic : kStation) mosquitto_subscribe(m, nullptr, topic, 0);
+  // The wind stow's topics (a weather station's; docs/care.md).
+  for (const std::string_view wind : {c->bridge_.wind_topic(), c->bridge_.wind_dir_topic()}) {
+    if (!wind.empty()) mosquitto_subscribe(m, nullptr, std::string(wind).c_str(), 0);
+  }
   {
     std::lock_guard<std::mutex> lock(c->mutex_);
     c->broker_peer_ = peer_of_socket(mosquitto_socket(m));
@@ -242,9 +246,14 @@ void MqttClient::on_message(mosquitto* /*m*/, void* self, const mosquitto_messag
       message->payloadlen > 0 ? static_cast<std::size_t>(message->payloadlen) : 0;
   const bool command = !mqtt::command_name(c->bridge_.prefix(), in.topic).empty();
   if (!command) {
-    // Another rotord's topics (or ours echoed), for the station page.
-    if (length > mqtt::Bridge::kMaxStateBytes) return;
-    in.payload.assign(static_cast<const char*>(message->payload), length);
+    // Another rotord's topics (or ours echoed), for the station page, and
+    // the wind stow's: an oversized wind reading is counted, not dropped.
+    if (length > mqtt::Bridge::kMaxStateBytes) {
+      if (!c->bridge_.is_wind_topic(in.topic)) return;
+      in.oversized = true;
+    } else {
+      in.payload.assign(static_cast<const char*>(message->payload), length);
+    }
     std::lock_guard<std::mutex> lock(c->mutex_);
     if (c->station_inbox_.size() >= kMaxStationInbox) c->station_inbox_.pop_front();
     c->station_inbox_.push_back(std::move(in));
@@ -326,7 +335,7 @@ void MqttClient::poll(Millis wall_ms) {
     dropped_logged_ms_ = wall_ms;
   }
   for (const Inbound& in : arrived) bridge_.on_message(in.topic, in.payload, in.oversized);
-  for (const Inbound& in : station) bridge_.on_message(in.topic, in.payload, false);
+  for (const Inbound& in : station) bridge_.on_message(in.topic, in.payload, in.oversized);
   bridge_.poll(wall_ms);
 }
 

@@ -123,9 +123,17 @@ void LwipMqtt::poll(Millis now, bool network_up) {
     return;
   }
   if (subscribe_pending_) {
-    // Commands only: the station page (other rotords' topics) is Linux's.
-    subscribe_pending_ =
-        mqtt_subscribe(&client_, bridge_.command_filter().data(), 1, nullptr, nullptr) != ERR_OK;
+    // Commands, then the wind stow's topics (a weather station's, QoS 0);
+    // the station page (other rotords' topics) is Linux's. One a pass, each
+    // tried again on a later pass while lwIP's queue is full.
+    const std::string_view topics[] = {bridge_.command_filter(), bridge_.wind_topic(),
+                                       bridge_.wind_dir_topic()};
+    while (subscribe_step_ < 3 && topics[subscribe_step_].empty()) ++subscribe_step_;
+    if (subscribe_step_ < 3 &&
+        mqtt_subscribe(&client_, topics[subscribe_step_].data(), subscribe_step_ == 0 ? 1 : 0,
+                       nullptr, nullptr) == ERR_OK)
+      ++subscribe_step_;
+    subscribe_pending_ = subscribe_step_ < 3;
   }
   if (online_pending_) {
     const std::string_view topic = bridge_.availability_topic();
@@ -243,6 +251,7 @@ void LwipMqtt::on_connection(mqtt_connection_status_t status) {
   ++counters_.connects;
   // Subscribe and say online from poll(): lwIP's queue may need a pass.
   subscribe_pending_ = true;
+  subscribe_step_ = 0;
   online_pending_ = true;
   std::printf("rotord: mqtt: connected to %s:%u\n", host_, static_cast<unsigned>(port_));
 }
@@ -374,8 +383,10 @@ void LwipMqtt::on_publish_start(const char* topic, std::uint32_t total_bytes) {
   in_total_ = total_bytes;
   in_len_ = 0;
   const std::size_t topic_len = topic != nullptr ? std::strlen(topic) : sizeof in_topic_;
+  // Commands, and the wind stow's topics (docs/care.md); the rest is not ours.
   in_skip_ = topic_len >= sizeof in_topic_ ||
-             mqtt::command_name(bridge_.prefix(), std::string_view(topic, topic_len)).empty();
+             (mqtt::command_name(bridge_.prefix(), std::string_view(topic, topic_len)).empty() &&
+              !bridge_.is_wind_topic(std::string_view(topic, topic_len)));
   if (!in_skip_) std::memcpy(in_topic_, topic, topic_len + 1);
   // A body over the limit is answered 413 and never stored.
   in_oversized_ = total_bytes > mqtt::Bridge::kMaxCommandBytes;

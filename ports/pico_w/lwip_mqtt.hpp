@@ -149,6 +149,7 @@ class LwipMqtt final : public mqtt::Transport {
   /// Sent on (re)connection before the bridge's announcements; retried.
   bool online_pending_ = false;
   bool subscribe_pending_ = false;
+  int subscribe_step_ = 0;  ///< the next of: commands, wind speed, wind direction
   std::uint16_t port_ = 1883;
   char host_[64] = {};
   char user_[64] = {};
