@@ -115,6 +115,26 @@
     // Looked after unattended (docs/care.md): slips and rejected readings.
     $('care').textContent = axes.map(([n, a]) => `${n} ${a.slips} slip${a.slips === 1 ? '' : 's'}` +
       (a.slipping ? ' (slipping now)' : '') + `, ${a.readings_rejected} rejected`).join(' · ');
+    // Wind stow (docs/care.md): shown once a source is configured.
+    const wd = s.wind;
+    $('wind-row').hidden = !wd || wd.source === 'off';
+    if (wd && wd.source !== 'off') {
+      const speed = wd.speed_mps === null ? 'no reading yet' : `${wd.speed_mps.toFixed(1)} m/s`;
+      const dir = wd.dir_deg === null ? '' : ` from ${Math.round(wd.dir_deg)}°`;
+      const what = {
+        calm: `calm (stows at ${wd.stow_mps} m/s)`,
+        rising: `above ${wd.stow_mps} m/s: stowing if it holds`,
+        stowed: `STOWED at ${wd.stow_az_deg.toFixed(0)}°: moves refused until calm ` +
+          `(${Math.ceil(wd.calm_left_s / 60)} min below ${wd.calm_mps} m/s)` +
+          (wd.stopped_by_operator ? '; stopped by STOP' : ''),
+        override: `stow overridden for ${Math.ceil(wd.override_left_s / 60)} min more`,
+      }[wd.state] || wd.state;
+      const bad = Object.values(wd.rejected).reduce((x, y) => x + y, 0);
+      $('wind').textContent = `${speed}${dir}, ${what}, ${wd.stows} stow${wd.stows === 1 ? '' : 's'}` +
+        (bad ? `, ${bad} readings ignored` : '');
+      $('wind-override').hidden = wd.state !== 'stowed';
+      $('wind-end-override').hidden = wd.state !== 'override';
+    }
     // The wear odometer (docs/care.md), and a go-to the starts ceiling holds.
     const o = s.odometer;
     if (o) {
@@ -213,6 +233,10 @@
 
   $('stop').addEventListener('click', () => { stopHold(false); command('/api/stop', {}, 'stopped'); });
   $('park').addEventListener('click', () => command('/api/park', {}, 'parking'));
+  $('wind-override').addEventListener('click',
+    () => command('/api/wind/override', {}, 'stow overridden: moves obeyed for wind.override_min'));
+  $('wind-end-override').addEventListener('click',
+    () => command('/api/wind/override', { end: true }, 'stowing again'));
   $('clear').addEventListener('click', () => command('/api/reset', {}, 'faults cleared'));
   $('speed').addEventListener('change', () => command('/api/speed', { speed_pct: Number($('speed').value) }));
   $('speed').addEventListener('input', () => { $('speed-out').textContent = $('speed').value + '%'; });

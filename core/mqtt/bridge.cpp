@@ -39,11 +39,11 @@ Bridge::Bridge(web::Api& api, Transport& transport, std::string_view prefix,
       join_topic(this->prefix(), "availability", availability_, sizeof availability_);
   command_filter_len_ =
       join_topic(this->prefix(), "cmd/+", command_filter_, sizeof command_filter_);
+  // Subscribed whenever set, so that wind.source may change without a
+  // restart; the controller takes the readings only from its source.
   const settings::Settings& s = api.settings();
-  if (s.i(Id::kWindSource) != 0) {
-    copy_text(s.text(Id::kWindMqttTopic), wind_topic_, sizeof wind_topic_);
-    copy_text(s.text(Id::kWindMqttDirTopic), wind_dir_topic_, sizeof wind_dir_topic_);
-  }
+  copy_text(s.text(Id::kWindMqttTopic), wind_topic_, sizeof wind_topic_);
+  copy_text(s.text(Id::kWindMqttDirTopic), wind_dir_topic_, sizeof wind_dir_topic_);
 }
 
 Bridge::Fingerprint Bridge::fingerprint() const {

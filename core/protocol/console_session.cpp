@@ -64,6 +64,10 @@ constexpr ConsoleSession::Command ConsoleSession::kCommands[] = {
      false},
     {"odometer", "odometer [reset]", &C::odometer,
      "the wear odometer of each axis; reset: every count to zero, dated", false},
+    {"wind", "wind [override [minutes] | stow]", &C::wind,
+     "the wind stow: state, speed, counts; override: obey moves for a time; stow: end the "
+     "override",
+     false},
     {"stop", "stop", &C::stop, "stop every motion", false},
     {"reset", "reset", &C::reset, "stop, clear latched faults", true},
     {"reboot", "reboot", &C::reboot, "restart the controller (settings are saved first)", true},

@@ -119,6 +119,8 @@ class ConsoleSession final : public Session {
   void preset(std::string_view args, ByteSink& out);
   // The wear odometer (console_care.cpp).
   void odometer(std::string_view args, ByteSink& out);
+  // The wind stow (console_care.cpp, docs/care.md).
+  void wind(std::string_view args, ByteSink& out);
 
   void start_listing(Listing listing, std::string_view prefix, ByteSink& out);
   /// Writes the whole listing into `out` (which drops what lies outside the

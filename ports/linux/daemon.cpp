@@ -231,6 +231,7 @@ bool Daemon::start_controller() {
   // Linux the whole catalogue per go-to (26 evaluations, well under 1 ms).
   controller_->attach_catalog(tles_.get());
   if (gpio_ && gpio_->estop() != nullptr) controller_->attach_estop(gpio_->estop());
+  if (gpio_) controller_->attach_wind_pulses(gpio_->wind_pulses());
   load_odometer();
   metrics_.ticks = &ticks_;
   if (saver_) {

@@ -47,6 +47,16 @@ class LineRequester {
     return chip_.request(r, error_);
   }
 
+  /// An edge line counted as pulses (the anemometer), with the inputs'
+  /// polarity and bias (a reed contact to ground wants the pull-up).
+  std::unique_ptr<GpiodPulseCounter> pulses(Id id) {
+    if (failed() || s_.i(id) < 0) return nullptr;
+    const LineRequest r{key(id), s_.i(id), LineMode::kBothEdges, s_.b(Id::kGpiodInputsActiveLow),
+                        static_cast<LineBias>(s_.i(Id::kGpiodInputBias))};
+    auto l = chip_.request(r, error_);
+    return l ? std::make_unique<GpiodPulseCounter>(std::move(l)) : nullptr;
+  }
+
   std::unique_ptr<GpiodSwitch> input(Id id, const char* needed_by = nullptr) {
     auto l = line(id, LineMode::kInput, needed_by);
     return l ? std::make_unique<GpiodSwitch>(std::move(l), key(id)) : nullptr;
@@ -214,7 +224,14 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
                     drive_where + ", " + sensor_where;
   }
   hw->estop_ = req.input(Id::kGpiodEstop);
+  const bool wind_pulses = s.i(Id::kWindSource) == 2;
+  if (wind_pulses) hw->wind_ = req.pulses(Id::kGpiodWind);
   if (req.failed()) return nullptr;
+  if (hw->wind_) {
+    hw->summary_ += "; anemometer on line " + std::to_string(s.i(Id::kGpiodWind));
+  } else if (wind_pulses) {
+    hw->summary_ += "; wind.source = pulses, but gpiod.wind names no line: no wind readings";
+  }
   if (hw->estop_)
     hw->summary_ += "; emergency stop on line " + std::to_string(s.i(Id::kGpiodEstop)) + " (" +
                     (s.b(Id::kEstopNormallyClosed) ? "normally-closed" : "normally-open") + ")";
@@ -285,6 +302,7 @@ AxisIo GpiodRotator::io(AxisId id) {
 void GpiodRotator::watch(asio::io_context& io) {
   for (AxisHw* a : {&az_, &el_})
     if (a->ma3) a->ma3->watch(io);
+  if (wind_) wind_->watch(io);
 }
 
 void GpiodRotator::sample() {

@@ -10,6 +10,7 @@
 
 #include "axis/axis_io.hpp"
 #include "gpio_line.hpp"
+#include "gpiod_pulse_counter.hpp"
 #include "hal/pwm_out.hpp"
 #include "i2c_dev.hpp"
 #include "iio_adc.hpp"
@@ -89,6 +90,9 @@ class GpiodRotator {
   AxisIo io(AxisId axis);
   /// The emergency-stop switch (gpiod.estop), or nullptr when not wired.
   hal::DigitalIn* estop() { return estop_.get(); }
+  /// The anemometer's pulses (gpiod.wind, with wind.source = pulses), or
+  /// nullptr when not wired.
+  hal::PulseCounter* wind_pulses() { return wind_.get(); }
   /// Drains MA3 edges as they arrive, on the daemon's loop.
   void watch(asio::io_context& io);
   /// Once per control tick, before it: one conversion per pot.
@@ -120,6 +124,7 @@ class GpiodRotator {
   AxisHw az_;
   AxisHw el_;
   std::unique_ptr<GpiodSwitch> estop_;
+  std::unique_ptr<GpiodPulseCounter> wind_;
   std::unique_ptr<I2cDev> i2c_;
   std::string summary_;
 };

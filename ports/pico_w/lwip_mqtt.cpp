@@ -409,6 +409,12 @@ void LwipMqtt::deliver() {
   in_active_ = false;
   if (in_skip_) return;
   const std::string_view topic(in_topic_);
+  if (bridge_.is_wind_topic(topic)) {
+    // A weather station's reading, not a command: outside the commands' budget.
+    bridge_.on_message(topic, std::string_view(in_body_, in_oversized_ ? 0 : in_len_),
+                       in_oversized_);
+    return;
+  }
   if (commands_this_tick_ >= kCommandsPerTick &&
       mqtt::command_name(bridge_.prefix(), topic) != "stop") {
     ++counters_.dropped_commands;  // a flood: a stop still gets through

@@ -201,6 +201,7 @@ struct AxisParts {
 };
 AxisParts g_axes[2];  // az, el: the order of kAxisPins
 std::optional<PicoSwitch> g_estop;
+std::optional<PicoPulseCounter> g_wind_pulses;
 std::optional<PicoI2c> g_i2c;
 
 /// Builds the object for a wired pin and returns it, or nullptr.
@@ -432,6 +433,14 @@ const char* restart_reason() {
     controller.attach_estop(estop);
     std::printf("rotord: emergency stop on GPIO %d (%s contact)\n", p(Id::kPinEstop),
                 settings.b(Id::kEstopNormallyClosed) ? "normally-closed" : "normally-open");
+  }
+  // Wind stow (docs/care.md): the anemometer's pulses on pins.wind.
+  if (settings.i(Id::kWindSource) == 2 && p(Id::kPinWind) != kNoPin) {
+    g_wind_pulses.emplace(p(Id::kPinWind));
+    g_wind_pulses->begin();
+    controller.attach_wind_pulses(&*g_wind_pulses);
+    std::printf("rotord: anemometer on GPIO %d (%.2f pulses per m/s)\n", p(Id::kPinWind),
+                settings.get(Id::kWindPulsesPerMps));
   }
   controller.begin(now_ms());
   // The wear odometer (docs/care.md): back from its flash slots, saved every

@@ -51,6 +51,35 @@ namespace {
 std::array<Ma3EdgeInput*, 2> g_ma3_inputs{};
 }  // namespace
 
+namespace {
+PicoPulseCounter* g_pulse_counter = nullptr;
+}  // namespace
+
+void PicoPulseCounter::begin() {
+  if (g_pulse_counter != nullptr) return;  // one anemometer
+  g_pulse_counter = this;
+  gpio_init(pin(gpio_));
+  gpio_set_dir(pin(gpio_), GPIO_IN);
+  gpio_pull_up(pin(gpio_));
+  // A raw handler, as the MA3's: the cyw43 driver's GPIO interrupt is left alone.
+  gpio_add_raw_irq_handler(pin(gpio_), &PicoPulseCounter::on_irq);
+  gpio_set_irq_enabled(pin(gpio_), GPIO_IRQ_EDGE_FALL, true);
+  irq_set_enabled(IO_IRQ_BANK0, true);
+}
+
+void PicoPulseCounter::on_irq() {
+  PicoPulseCounter* c = g_pulse_counter;
+  if (c == nullptr) return;
+  const std::uint32_t events = gpio_get_irq_event_mask(pin(c->gpio_));
+  if (events == 0) return;
+  gpio_acknowledge_irq(pin(c->gpio_), events);
+  const std::uint32_t now = time_us_32();
+  if (now - c->last_us_ < kDebounceUs) return;
+  c->last_us_ = now;
+  // A 32-bit store is atomic on the M0+: the loop reads it without a lock.
+  c->count_ = c->count_ + 1;
+}
+
 void Ma3EdgeInput::begin() {
   const auto free = std::find(g_ma3_inputs.begin(), g_ma3_inputs.end(), nullptr);
   if (free == g_ma3_inputs.end()) return;  // more than two encoders: not wired

@@ -9,6 +9,7 @@
 #include "hal/analog_in.hpp"
 #include "hal/digital_in.hpp"
 #include "hal/i2c.hpp"
+#include "hal/pulse_counter.hpp"
 #include "hal/pwm_in.hpp"
 
 namespace rotord::pico_w {
@@ -40,6 +41,26 @@ class PicoSwitch final : public hal::DigitalIn {
 
  private:
   int gpio_;
+};
+
+/// An anemometer's reed contact (or open collector) to ground on pins.wind
+/// (docs/care.md, "Wind stow"): falling edges counted in a GPIO interrupt,
+/// the pull-up on. An edge within kDebounceUs of the last one counted is the
+/// contact bouncing (a cup anemometer at 75 m/s closes it 110 times a
+/// second: 9 ms apart). One input at most.
+class PicoPulseCounter final : public hal::PulseCounter {
+ public:
+  static constexpr std::uint32_t kDebounceUs = 2000;
+
+  explicit PicoPulseCounter(int gpio) : gpio_(gpio) {}
+  void begin();
+  std::uint32_t count() override { return count_; }
+
+ private:
+  static void on_irq();
+  int gpio_;
+  volatile std::uint32_t count_ = 0;
+  std::uint32_t last_us_ = 0;
 };
 
 /// The MA3's PWM output timed from GPIO edge interrupts: each rising edge

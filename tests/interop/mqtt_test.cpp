@@ -559,3 +559,105 @@ TEST_F(Mqtt, ABrokerThatIsDownHoldsNothingUp) {
 
 }  // namespace
 }  // namespace rotord::testing
+
+namespace rotord::testing {
+namespace {
+
+/// Wind stow from a weather station's topic (docs/care.md), through the real
+/// daemon on its manual clock: the readings come from mosquitto_pub, the
+/// refusals are each protocol's own (REST 409, the MQTT result, Hamlib's
+/// RPRT, WRC), STOP works, an override lets a move through.
+class MqttWind : public Mqtt {
+ protected:
+  /// /api/status once its text holds `text` (the loop reads the broker on
+  /// the wall clock; bounded, for liveness only).
+  std::string status_with(const std::string& text) {
+    std::string body;
+    for (int n = 0; n < 100; ++n) {
+      body = http(daemon->ports().web, "GET", "/api/status").body;
+      if (body.find(text) != std::string::npos) return body;
+      usleep(50000);
+    }
+    return body;
+  }
+  void wind(const std::string& payload, const std::string& topic = "weather/wind_kmh") {
+    ASSERT_EQ(run_command("mosquitto_pub -p " + p() + " -t " + topic + " -m '" + payload + "'").rc,
+              0);
+  }
+};
+
+TEST_F(MqttWind, AStormOnTheWeatherTopicStowsAndRefusesMovesUntilOverridden) {
+  daemon_args = {"--clock", "manual"};
+  start_daemon(true, "rotord/test", true,
+               R"(, "wind.source": "mqtt", "wind.mqtt_topic": "weather/wind_kmh",)"
+               R"( "wind.mqtt_unit": "km/h", "wind.stow_az_deg": 90, "wind.hold_s": 10)");
+  const int web = daemon->ports().web;
+  std::string s = status_with(R"("wind":{"source":"mqtt","state":"calm")");
+  ASSERT_NE(s.find(R"("wind":{"source":"mqtt","state":"calm","speed_mps":null)"), std::string::npos)
+      << s;
+  // Bad readings: counted by reason, never taken.
+  wind("gusty");
+  wind("-12");
+  wind("9000");
+  s = status_with(R"("too_high":1)");
+  EXPECT_NE(s.find(R"("rejected":{"garbage":1,"negative":1,"too_high":1)"), std::string::npos) << s;
+  EXPECT_NE(s.find(R"("speed_mps":null)"), std::string::npos) << s;
+  // 90 km/h (25 m/s) for wind.hold_s: stowed.
+  wind("90");
+  status_with(R"("speed_mps":25)");
+  daemon->advance_ms(100);  // the rule steps in the control tick
+  s = status_with(R"("state":"rising")");
+  ASSERT_NE(s.find(R"("state":"rising")"), std::string::npos) << s;
+  daemon->advance_ms(5900);
+  wind("90");
+  status_with(R"("readings":2)");
+  daemon->advance_ms(4100);
+  s = status_with(R"("state":"stowed")");
+  ASSERT_NE(s.find(R"("mode":"stow")"), std::string::npos) << s;
+  EXPECT_NE(s.find(R"("stow_az_deg":90)"), std::string::npos) << s;
+  EXPECT_TRUE(seen("rotord/test/state", R"("state":"stowed")"));
+  // Every protocol refuses a move in its own way; nothing moves.
+  const HttpResponse rest = http(web, "POST", "/api/goto", R"({"az": 200})");
+  EXPECT_EQ(rest.status, 409) << rest.body;
+  EXPECT_NE(rest.body.find("stowed for the wind"), std::string::npos) << rest.body;
+  EXPECT_NE(command("goto", R"({"az": 200})").find(R"("status":409)"), std::string::npos);
+  TcpClient rotctld(daemon->ports().rotctld);
+  EXPECT_EQ(rotctld.ask("P 200 0\n"), "RPRT -9");  // RIG_EREJECTED
+  TcpClient wrc(daemon->ports().wrc);
+  EXPECT_EQ(wrc.ask("AZ 200\n"), "ERROR STOWED");
+  // STOP works (over MQTT too).
+  EXPECT_EQ(command("stop", ""), R"({"cmd":"stop","status":200,"response":{"ok":true}})"
+                                 "\n");
+  s = status_with(R"("stopped_by_operator":true)");
+  EXPECT_NE(s.find(R"("stopped_by_operator":true)"), std::string::npos) << s;
+  // /metrics.
+  const std::string metrics = http(web, "GET", "/metrics").body;
+  EXPECT_NE(metrics.find("rotord_wind_stowed 1"), std::string::npos) << metrics;
+  EXPECT_NE(metrics.find("rotord_wind_stows_total 1"), std::string::npos) << metrics;
+  EXPECT_NE(metrics.find(R"(rotord_wind_readings_rejected_total{reason="garbage"} 1)"),
+            std::string::npos)
+      << metrics;
+  // An operator's override: a move goes through.
+  EXPECT_EQ(http(web, "POST", "/api/wind/override", R"({"minutes": "ten"})").status, 400);
+  const HttpResponse over = http(web, "POST", "/api/wind/override", R"({"minutes": 5})");
+  EXPECT_EQ(over.status, 200) << over.body;
+  EXPECT_NE(over.body.find(R"("state":"override")"), std::string::npos) << over.body;
+  EXPECT_EQ(http(web, "POST", "/api/goto", R"({"az": 200})").status, 200);
+  EXPECT_TRUE(daemon->wait_for_output("wind: the stow overridden by an operator"))
+      << daemon->output();
+  EXPECT_TRUE(daemon->output().find("wind: 25.0 m/s held for wind.hold_s: stowing") !=
+              std::string::npos)
+      << daemon->output();
+}
+
+TEST_F(MqttWind, OffUntilASourceIsConfigured) {
+  start_daemon(true);
+  wind("200");
+  const std::string s = http(daemon->ports().web, "GET", "/api/status").body;
+  EXPECT_NE(s.find(R"("wind":{"source":"off","state":"off","speed_mps":null)"), std::string::npos)
+      << s;
+  EXPECT_EQ(http(daemon->ports().web, "POST", "/api/goto", R"({"az": 200})").status, 200);
+}
+
+}  // namespace
+}  // namespace rotord::testing

@@ -7,6 +7,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "gpio_line.hpp"
 
@@ -19,6 +20,7 @@ struct FakeBoard {
     bool active = false;  ///< logical value: outputs as written, inputs as set by the test
     int writes = 0;
     bool released = false;
+    std::vector<linux_port::LineEdge> edges;  ///< edge lines: queued, oldest first
   };
   int line_count = 54;  ///< a Raspberry Pi's bank 0 and 1
   std::map<int, Line> lines;
@@ -43,7 +45,13 @@ class FakeGpioLine final : public linux_port::GpioLine {
   }
   int get_active() override { return line().active ? 1 : 0; }
   int event_fd() const override { return -1; }
-  std::size_t read_edges(linux_port::LineEdge*, std::size_t) override { return 0; }
+  std::size_t read_edges(linux_port::LineEdge* out, std::size_t capacity) override {
+    std::vector<linux_port::LineEdge>& q = line().edges;
+    const std::size_t n = q.size() < capacity ? q.size() : capacity;
+    for (std::size_t k = 0; k < n; ++k) out[k] = q[k];
+    q.erase(q.begin(), q.begin() + static_cast<std::ptrdiff_t>(n));
+    return n;
+  }
 
  private:
   FakeBoard::Line& line() { return board_->lines[offset_]; }

@@ -425,6 +425,41 @@ TEST_F(GpiodIoTest, Ma3AxisRequestsABothEdgesLineWithoutInversion) {
   EXPECT_EQ(hw->io(AxisId::kAz).pot, nullptr);
 }
 
+TEST_F(GpiodIoTest, AnAnemometerOnItsLineStowsTheAntenna) {
+  // A cup anemometer's reed contact to ground on line 13 (docs/care.md).
+  constexpr int kWind = 13;
+  set(Id::kWindSource, 2);
+  set(Id::kGpiodWind, kWind);
+  set(Id::kWindStowAzDeg, 90);
+  auto hw = open();
+  ASSERT_TRUE(hw) << error;
+  ASSERT_TRUE(board->lines[kWind].requested);
+  EXPECT_EQ(board->lines[kWind].request.mode, LineMode::kBothEdges);
+  EXPECT_TRUE(board->lines[kWind].request.active_low);  // a contact to ground
+  EXPECT_EQ(board->lines[kWind].request.bias, LineBias::kPullUp);
+  EXPECT_NE(hw->summary().find("anemometer on line 13"), std::string::npos) << hw->summary();
+  ASSERT_NE(hw->wind_pulses(), nullptr);
+  Controller c(s, hw->io(AxisId::kAz), hw->io(AxisId::kEl));
+  c.attach_wind_pulses(hw->wind_pulses());
+  c.begin(now);
+  // 40 pulses a second (26.7 m/s at 1.5 pulses per m/s) for 13 s.
+  std::uint64_t t_ns = 0;
+  for (int n = 0; n < 1300; ++n) {
+    if (n % 10 == 0)
+      for (int k = 0; k < 4; ++k) {
+        board->lines[kWind].edges.push_back({true, t_ns});
+        board->lines[kWind].edges.push_back({false, t_ns + 1000000});
+        t_ns += 25000000;
+      }
+    run_ms(c, *hw, 10);
+  }
+  EXPECT_NEAR(c.wind().speed_mps(), 26.7f, 0.7f);
+  EXPECT_EQ(c.wind().state(), care::WindState::kStowed);
+  // Turning from 200 to the stow heading, 90: counter-clockwise.
+  EXPECT_TRUE(board->output_active(kAzCcw));
+  EXPECT_EQ(c.go_to(250.0f, std::nullopt), Error::kStowed);
+}
+
 TEST_F(GpiodIoTest, ElevationLinesAreRequestedWhenEnabled) {
   set(Id::kElEnabled, 1);
   sys.add_ads1115(0, 1, 1000);  // iio.el_channel = 1
