@@ -71,6 +71,20 @@ test('small phone: STOP stays in reach; the elevation arc shows both travel limi
     { 'el.min_deg': 0, 'el.max_deg': 180, 'park.el_deg': 0 })).status, 200);
 });
 
+test('the Wind row shows once a wind source is set (docs/care.md)', async () => {
+  const page = await openPage(browser, rotord.url + '/');
+  await page.waitForSelector('#conn.live');
+  assert.equal(await page.isHidden('#wind-row'), true);  // wind.source off: nothing shown
+  assert.equal((await rotord.post('/api/settings', { 'wind.source': 'mqtt' })).status, 200);
+  await rotord.advance(100);
+  await until(async () => !(await page.isHidden('#wind-row')), { what: 'the Wind row' });
+  assert.equal(await page.textContent('#wind'), 'no reading yet, calm (stows at 20 m/s), 0 stows');
+  assert.equal(await page.isHidden('#wind-override'), true);  // nothing stowed to override
+  assert.deepEqual(page.errors, []);
+  await page.context().close();
+  assert.equal((await rotord.post('/api/settings', { 'wind.source': 'off' })).status, 200);
+});
+
 test('clicking the rose moves the rotator and the displayed azimuth follows', async () => {
   const page = await openPage(browser, rotord.url + '/');
   await page.waitForSelector('#conn.live');
