@@ -149,8 +149,9 @@ class Bridge {
   char availability_[kMaxTopicBytes] = {};
   std::size_t availability_len_ = 0;
   char command_filter_[kMaxTopicBytes] = {};
-  char wind_topic_[kMaxTopicBytes] = {};
-  char wind_dir_topic_[kMaxTopicBytes] = {};
+  // wind.mqtt_topic and wind.mqtt_dir_topic hold at most 63 bytes (RAM).
+  char wind_topic_[64] = {};
+  char wind_dir_topic_[64] = {};
   std::size_t command_filter_len_ = 0;
   bool was_connected_ = false;
   int announce_step_ = kAnnouncements;  ///< the next announcement to publish
