@@ -15,7 +15,10 @@
 #define MEM_SIZE 16000
 #define MEMP_NUM_TCP_SEG 32
 #define MEMP_NUM_ARP_QUEUE 10
-#define PBUF_POOL_SIZE 24
+// Receive buffers (about 1.5 KB each): two full TCP windows and more. 21, not
+// the SDK examples' 24: the wind stow's settings and state took the RAM of
+// three (ports/pico_w/README.md, "RAM").
+#define PBUF_POOL_SIZE 21
 // Pbufs that reference data in flash: the web UI's files go out without a
 // copy (lwip_transport.hpp, ServerConfig::is_immutable).
 #define MEMP_NUM_PBUF 32
