@@ -642,6 +642,124 @@ const scenarios = {
     }
   },
 
+  /**
+   * Wind stow from a cup anemometer on the emulated chip (docs/care.md, "Wind
+   * stow"): wired on GPIO 13 (pins.wind, wind.source pulses: stored, as a
+   * user's wiring is, since the counter is set up at boot), the rest set over
+   * the console (wind.hold_s 2, wind.stow_az_deg 180). The harness closes the
+   * reed contact 37.5 times a second (25 m/s at wind.pulses_per_mps 1.5,
+   * above wind.stow_mps 20): the GPIO interrupt counts them, the antenna
+   * turns from 200 to 180, and a GS-232 go-to is then refused.
+   */
+  async 'wind-pulses'() {
+    const windPin = 13;
+    const holdS = 2;
+    const stowDeg = 180;
+    const r = await rig({ thetaDeg: 200, settings: { 'wind.source': 'pulses', 'pins.wind': windPin } });
+    const logBridge = new PtyBridge({ endpoint: r.board.logEndpoint() });
+    const con = new LineClient({ board: r.board, pty: await logBridge.start() }, logBridge);
+    const gs = new LineClient(r);
+    try {
+      r.board.anemometer(windPin, 0); // the contact open: the line pulled up
+      const fitted = await r.board.waitForLog(/anemometer on GPIO/, 1000);
+      check(fitted?.text.includes(`anemometer on GPIO ${windPin} (1.50 pulses per m/s)`), `log: "${fitted?.text}"`);
+      for (const [key, value] of [['wind.hold_s', holdS], ['wind.stow_az_deg', stowDeg]]) {
+        const set = await con.command(`set ${key} ${value}`);
+        check(set.at(-1)?.startsWith(`ok ${key}=`), `console: set ${key} ${value}: "${set.at(-1)}"`);
+      }
+      await r.board.run(2500); // calm readings fill the meter's 2 s window
+      const calm = (await con.command('wind')).find((l) => l.startsWith('wind source='));
+      check(/source=pulses state=calm/.test(calm ?? ''), `console: "${calm}"`);
+      check(!driving(r), 'no drive');
+      const since = r.board.logLines.length;
+      const windMs = r.board.nowMs;
+      r.board.anemometer(windPin, 25 * 1.5);
+      check(await r.board.runUntil(() => driving(r), holdS * 1000 + 5000, 1), 'the drive starts');
+      const stowBeganMs = r.board.nowMs - (windMs + holdS * 1000);
+      const line = await r.board.waitForLog(/wind: .* held for wind.hold_s: stowing/, 500, since);
+      check(line !== null, `log: "${line?.text}"`);
+      check(r.board.outputLevel(pins.az_ccw) && stowBeganMs > 0 && stowBeganMs <= 2000,
+        `stow began ${stowBeganMs.toFixed(0)} ms after the wind had held for wind.hold_s (${holdS} s; goal within 2 s), turning CCW (${r.board.anemometerPulses} pulses played)`);
+      const reached = await r.board.runUntil(() => Math.abs(angle(r) - stowDeg) < 1.5 && !driving(r), 15000, 1);
+      check(reached && (await settle(r, 5000)), `stowed at ${angle(r).toFixed(2)} deg for wind.stow_az_deg ${stowDeg}, ${((r.board.nowMs - windMs) / 1000).toFixed(1)} s after the wind rose`);
+      const status = (await con.command('wind')).filter((l) => l.startsWith('wind '));
+      const speed = Number(status[0]?.match(/speed_mps=([\d.]+)/)?.[1]);
+      check(/state=stowed/.test(status[0] ?? '') && /stows=1/.test(status[1] ?? '') && Math.abs(speed - 25) < 1.5,
+        `console: "${status[0]}" / "${status[1]}"`);
+      const refused = await gs.send('M250');
+      await r.board.run(500);
+      check(refused === '?>' && !driving(r), `GS-232 M250 refused while stowed: "${refused}", nothing moves`);
+      const override = (await con.command('wind override 5')).find((l) => l.startsWith('wind source='));
+      check(/state=override/.test(override ?? ''), `console: wind override 5: "${override}"`);
+      check((await gs.send('M250')) !== '?>' && (await r.board.runUntil(() => r.board.outputLevel(pins.az_cw), 2000, 1)),
+        'overridden by the operator: M250 obeyed, CW on');
+      await gs.send('S');
+      check(await settle(r, 3000), 'S stops');
+      // The wind drops to 5 m/s: the meter follows it down, and the calm
+      // time (wind.calm_min, at least a minute; played in virtual time by
+      // scenario_tests' Wind.*) starts counting.
+      r.board.anemometer(windPin, 5 * 1.5);
+      await r.board.run(2500);
+      const easing = (await con.command('wind')).filter((l) => l.startsWith('wind '));
+      const eased = Number(easing[0]?.match(/speed_mps=([\d.]+)/)?.[1]);
+      const calmLeftS = Number(easing[1]?.match(/calm_left_s=(\d+)/)?.[1]);
+      check(Math.abs(eased - 5) < 0.8 && calmLeftS < 600, `5 m/s played: console: "${easing[0]}" / "${easing[1]}"`);
+      benchRows.push({ name: `hil/${boardName}_wind_stow`, inputs: { wind_mps: 25, pulses_per_mps: 1.5, hold_s: holdS }, metrics: { stow_began_ms_after_hold: Math.round(stowBeganMs) } });
+    } finally {
+      r.board.anemometer(windPin, 0);
+      con.close();
+      gs.close();
+      await logBridge.stop();
+      await r.close();
+    }
+  },
+
+  /**
+   * A slip on the emulated chip (docs/care.md, "Slip and uncommanded
+   * motion"): a Ham IV at rest, its brake set and every output off; the
+   * plant's wind turns the mast 3 deg in 0.75 s against the brake. The
+   * firmware logs the slip (slip.deg 2) and switches nothing on. Then, with
+   * slip.fault set over the console, a second gust latches SLIP and a
+   * go-to is refused.
+   */
+  async 'slip'() {
+    const r = await rig({ profile: 'ham4', sensor: 'pot', thetaDeg: 100 });
+    const logBridge = new PtyBridge({ endpoint: r.board.logEndpoint() });
+    const con = new LineClient({ board: r.board, pty: await logBridge.start() }, logBridge);
+    const gs = new LineClient(r);
+    const outputsOn = (fromMs) => r.board.edges.filter((e) => e.value && e.ms >= fromMs);
+    try {
+      await r.board.run(1500); // at rest since boot
+      check(!driving(r) && !r.board.outputLevel(pins.az_brake), 'at rest, the outputs off, the brake set');
+      let since = r.board.logLines.length;
+      const gustMs = r.board.nowMs;
+      await r.plant.command('slip 4 0.75'); // 3 deg in 0.75 s
+      const line = await r.board.waitForLog(/az: slip:/, 2000, since);
+      const flaggedMs = (line?.ms ?? NaN) - gustMs;
+      check(line !== null && /now at 10[0-9]\.\d deg \(1 slips since start\)/.test(line.text), `log: "${line?.text}"`);
+      check(flaggedMs <= 1000, `slip flagged ${flaggedMs.toFixed(0)} ms after the mast began to turn (2 deg at 4 deg/s: 500 ms; goal within 1 s)`);
+      await r.board.run(1500);
+      check(outputsOn(gustMs).length === 0 && !driving(r), `no output switched on (plant at ${angle(r).toFixed(2)} deg)`);
+      const set = await con.command('set slip.fault true');
+      check(/^ok slip.fault=/.test(set.at(-1) ?? ''), `console: set slip.fault true: "${set.at(-1)}"`);
+      since = r.board.logLines.length;
+      const secondMs = r.board.nowMs;
+      await r.plant.command('slip -4 0.75');
+      check((await r.board.waitForLog(/az: slip:.*\(2 slips since start\)/, 2000, since)) !== null, 'a second gust: a second slip');
+      const az = (await con.command('status')).find((l) => l.startsWith('az '));
+      check(/fault=SLIP/.test(az ?? ''), `console status: "${az}"`);
+      const refused = await gs.send('M150');
+      await r.board.run(500);
+      check(refused === '?>' && outputsOn(secondMs).length === 0, `GS-232 M150 refused with SLIP latched: "${refused}", no output switched on`);
+      benchRows.push({ name: `hil/${boardName}_slip`, inputs: { slip_deg: 3, slip_deg_s: 4 }, metrics: { flagged_ms: Math.round(flaggedMs) } });
+    } finally {
+      con.close();
+      gs.close();
+      await logBridge.stop();
+      await r.close();
+    }
+  },
+
   /** A hung loop: the watchdog resets the chip within 2 s; the relay drops and the firmware comes back. */
   async 'watchdog'() {
     const r = await rig({ thetaDeg: 200 });

@@ -445,6 +445,37 @@ export class Board {
     if (this.sensors) this.applySensors(this.sensors);
   }
 
+  /**
+   * A cup anemometer's reed contact to ground on `gpio` (pins.wind): closed
+   * (low) for `closedMs` `hz` times a second, open (high: the pull-up, which
+   * the emulator does not model) between; hz 0 leaves it open. On the
+   * chip's own clock, as the MA3's frames, so the pulses fall between the
+   * harness's millisecond steps as a real contact's would. Returns the
+   * number of closures played so far through `board.anemometerPulses`.
+   */
+  anemometer(gpio, hz, closedMs = 5) {
+    const rp = this.rp;
+    const pin = rp.gpio[gpio];
+    this.anemometerAlarms?.forEach((a) => a.cancel());
+    this.anemometerAlarms = null;
+    this.anemometerPulses ??= 0;
+    pin.setInputValue(true);
+    if (hz <= 0) return;
+    const periodNs = 1e9 / hz;
+    const closedNs = Math.min(closedMs * 1e6, periodNs / 2);
+    const open = rp.clock.createAlarm(() => {
+      pin.setInputValue(true);
+      close.schedule(periodNs - closedNs);
+    });
+    const close = rp.clock.createAlarm(() => {
+      this.anemometerPulses++;
+      pin.setInputValue(false);
+      open.schedule(closedNs);
+    });
+    close.schedule(periodNs - closedNs);
+    this.anemometerAlarms = [open, close];
+  }
+
   /** A reset puts every pin back to an input: the outputs drop. A log line cut by it ends there. */
   resetAllOutputs() {
     if (this.partialLine) this.onLog(new TextEncoder().encode(' [cut by the reset]\n'));

@@ -32,6 +32,9 @@
 //   jam [az|el] SECONDS  -> ok     mechanical jam (-1: for ever)
 //   limit [az|el] cw|ccw 0|1 S -> ok  a limit switch stuck open/closed for S seconds
 //                                     (on the elevation cw is UP, ccw DOWN)
+//   slip [az|el] SPEED_DEG_S S -> ok  the wind turns the unpowered antenna
+//                                     against its brake at SPEED_DEG_S for S
+//                                     seconds (sim::AxisPlant::wind_slip)
 //   sensor [az|el] loss|stuck S -> ok  the position sensor fails for S seconds
 //                                     (-1: for ever): loss is an open pot wiper
 //                                     (0 counts) and an MA3 without pulses, stuck
@@ -390,6 +393,17 @@ int main(int argc, char** argv) {
       const AxisId axis = parse_axis(args);
       const double s = std::atof(args);
       rotator.jam(axis, s < 0 ? sim::kForever_s : s);
+      std::printf("ok\n");
+    } else if (std::strncmp(line, "slip ", 5) == 0) {
+      const char* args = line + 5;
+      const AxisId axis = parse_axis(args);
+      double speed_deg_s = 0;
+      double s = 0;
+      if (std::sscanf(args, "%lf %lf", &speed_deg_s, &s) != 2 || speed_deg_s == 0) {
+        std::printf("error: slip [az|el] SPEED_DEG_S SECONDS\n");
+        continue;
+      }
+      rotator.wind_slip(axis, speed_deg_s, s < 0 ? sim::kForever_s : s);
       std::printf("ok\n");
     } else if (std::strncmp(line, "limit ", 6) == 0) {
       char which[8] = "";
