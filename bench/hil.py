@@ -1,6 +1,8 @@
 """The Pico W firmware on an emulated RP2040 (make hil): the CPU cycles per
 10 ms control tick period of the whole loop, at rest and during go-tos, and
-the most heap malloc used in any scenario of the room the static RAM leaves, as
+the most heap malloc used in any scenario of the room the static RAM leaves,
+how long after the wind had held for wind.hold_s the stow began and how
+long after a gust began to turn the mast the slip was flagged, as
 the last `make hil` measured them (build/bench/hil_<board>.json, one file
 per image: pico_w, pico). Emulation takes
 minutes and needs the pico-sdk and a bootrom, so this part reports the file
