@@ -67,6 +67,7 @@ Error Axis::go_to(float target_deg, bool paced) {
     move_distance_deg_ = std::fabs(target_deg - pos_deg());
   }
   request_ = {RequestKind::kGoto, target_deg, Direction::kNone, 0, paced};
+  reholding_ = false;  // a command's go-to is no re-hold (rehold() sets it after)
   arrived_ = false;
   publish();
   return Error::kOk;
@@ -85,6 +86,7 @@ Error Axis::jog(Direction dir, Millis until) {
   if (blocked(dir) || (at_limit && state_ == AxisState::kIdle)) return Error::kLimit;
   const bool new_jog = request_.kind != RequestKind::kJog || request_.dir != dir;
   request_ = {RequestKind::kJog, 0.0f, dir, until};
+  reholding_ = false;
   if (new_jog) {
     move_started_ = now_;
     move_distance_deg_ = request_distance_deg();
@@ -106,6 +108,7 @@ void Axis::set_speed_pct(int pct) {
 
 void Axis::stop() {
   request_ = {};
+  reholding_ = false;
   publish();
 }
 
@@ -130,6 +133,7 @@ void Axis::latch_fault(AxisFault fault) {
   out_.all_off();
   if (io_.drive) io_.drive->apply(out_);
   request_ = {};
+  reholding_ = false;
   fault_ = fault;
   state_ = AxisState::kFault;
   dir_ = Direction::kNone;
@@ -343,7 +347,11 @@ void Axis::check_slip(Millis now) {
     ++slips_;
     slip_quiet_deg_ = pos;
     slip_quiet_at_ = now;
-    if (cfg_.slip_fault) latch_fault(AxisFault::kSlip);
+    if (cfg_.slip_fault) {
+      latch_fault(AxisFault::kSlip);  // the fault wins over a re-hold
+      return;
+    }
+    rehold(now);
     return;
   }
   // One slip, however far it goes: over once the position has settled.
@@ -354,6 +362,28 @@ void Axis::check_slip(Millis now) {
     slipping_ = false;
     rest_deg_ = pos;  // the new rest
   }
+}
+
+void Axis::rehold(Millis now) {
+  // A brake holds the mast by itself; an axis with one never re-holds. A
+  // command under way (even one waiting at rest) owns the axis.
+  if (!cfg_.slip_rehold || cfg_.has_brake || !rehold_allowed_ ||
+      request_.kind != RequestKind::kNone)
+    return;
+  // The oldest of the last kMaxReholds re-holds sits where the next one
+  // goes in the ring: within the window, the wind wins and the slip is only
+  // counted (a fixed ring: no heap in the tick).
+  const std::size_t slot = reholds_ % kMaxReholds;
+  if (reholds_ >= kMaxReholds && now - rehold_at_[slot] < kReholdWindowMs) {
+    ++reholds_refused_;
+    return;
+  }
+  const float target_deg = rest_deg_;
+  if (go_to(target_deg) != Error::kOk) return;  // e.g. rested outside today's limits
+  rehold_at_[slot] = now;
+  ++reholds_;
+  reholding_ = true;
+  rehold_deg_ = target_deg;
 }
 
 void Axis::begin_start(Direction dir, Millis now) {
@@ -532,6 +562,11 @@ void Axis::publish() {
   status_.moves = moves_;
   status_.slips = slips_;
   status_.slipping = slipping_;
+  if (request_.kind != RequestKind::kGoto) reholding_ = false;  // arrived, or given up
+  status_.reholds = reholds_;
+  status_.rehold_deg = cfg_.continuous ? wrap_360(rehold_deg_) : rehold_deg_;
+  status_.reholding = reholding_;
+  status_.reholds_refused = reholds_refused_;
   status_.start_held = start_held_;
   status_.outputs = out_;
 }

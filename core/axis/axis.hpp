@@ -1,4 +1,7 @@
 #pragma once
+#include <array>
+#include <cstddef>
+
 #include "axis/axis_config.hpp"
 #include "axis/axis_io.hpp"
 #include "axis/axis_status.hpp"
@@ -31,6 +34,10 @@ class Axis {
   /// A slip is over once the position has stayed within half of slip.deg
   /// for this long; the next one counts again.
   static constexpr Millis kSlipQuietMs = 1000;
+  /// slip.rehold must not fight a wind that keeps turning the mast: at most
+  /// this many re-holds within kReholdWindowMs, then slips are only counted.
+  static constexpr std::size_t kMaxReholds = 3;
+  static constexpr Millis kReholdWindowMs = 10 * 60 * 1000;
 
   Axis(AxisId id, const AxisIo& io);
   // The tracker refers to this axis's io and configuration.
@@ -60,6 +67,9 @@ class Axis {
   /// tick): while held, a go-to does not start the motor from rest (its
   /// target kept, started once allowed); jogs and STOP are never held.
   void hold_starts(bool held) { starts_held_ = held; }
+  /// slip.rehold is allowed now (set by the controller each tick): not
+  /// while a track is armed or self-commissioning runs, which own the axis.
+  void allow_rehold(bool allowed) { rehold_allowed_ = allowed; }
   int speed_pct() const { return speed_pct_; }
 
   const AxisStatus& status() const { return status_; }
@@ -97,6 +107,9 @@ class Axis {
   void check_motion(Millis now);
   /// Uncommanded motion while the outputs are off (slip.deg).
   void check_slip(Millis now);
+  /// After a slip on a brakeless axis (slip.rehold): a go-to back to the
+  /// rest heading, within the limit of re-holds.
+  void rehold(Millis now);
   void publish();
 
   AxisId id_;
@@ -138,6 +151,12 @@ class Axis {
   float slip_quiet_deg_ = 0.0f;  // where a slip last moved to ...
   Millis slip_quiet_at_ = 0;     // ... and when
   std::uint32_t slips_ = 0;
+  bool rehold_allowed_ = true;  // allow_rehold()
+  bool reholding_ = false;      // the go-to under way is a re-hold
+  float rehold_deg_ = 0.0f;
+  std::uint32_t reholds_ = 0;
+  std::uint32_t reholds_refused_ = 0;
+  std::array<Millis, kMaxReholds> rehold_at_{};  // the last re-holds' times, a ring
   bool starts_held_ = false;  // hold_starts()
   bool start_held_ = false;   // a go-to waits for it now
 

@@ -112,6 +112,7 @@ AxisConfig axis_config_from(const settings::Settings& s, AxisId axis) {
   c.coast_learn = s.b(k.coast_learn);
   c.slip_deg = s.f(Id::kSlipDeg);
   c.slip_fault = s.b(Id::kSlipFault);
+  c.slip_rehold = s.b(Id::kSlipRehold);
   if (axis == AxisId::kAz) {  // an elevation axis has none of these
     c.continuous = s.b(Id::kAzContinuous);
     c.has_brake = s.b(Id::kAzHasBrake);

@@ -54,6 +54,7 @@ struct AxisConfig {
   bool coast_learn = true;
   float slip_deg = 2.0f;  ///< uncommanded motion at rest counted as a slip (0 = off)
   bool slip_fault = false;
+  bool slip_rehold = false;  ///< a brakeless axis turns back after a slip (slip.rehold)
 };
 
 AxisConfig axis_config_from(const settings::Settings& s, AxisId axis);

@@ -68,6 +68,14 @@ struct AxisStatus {
   /// one is going on now.
   std::uint32_t slips = 0;
   bool slipping = false;
+  /// slip.rehold: go-tos back to the rest heading after a slip since boot,
+  /// the heading of the last one, whether one goes on now, and the slips
+  /// not re-held because the limit (Axis::kMaxReholds in
+  /// Axis::kReholdWindowMs) was reached.
+  std::uint32_t reholds = 0;
+  float rehold_deg = 0.0f;
+  bool reholding = false;
+  std::uint32_t reholds_refused = 0;
   /// A go-to waits at rest, outside its tolerance, because the starts
   /// ceiling (care.max_starts_h) allows no start yet: its tolerance is
   /// widened to the distance it waits at.

@@ -7,6 +7,8 @@ namespace rotord {
 
 void AxisEvents::begin(const RotatorStatus& status) {
   slips_ = {status.az.slips, status.el.slips};
+  reholds_ = {status.az.reholds, status.el.reholds};
+  reholds_refused_ = {status.az.reholds_refused, status.el.reholds_refused};
   faults_ = {status.az.fault, status.el.fault};
   held_ = {status.az.start_held, status.el.start_held};
   wind_state_ = status.wind_state;
@@ -66,6 +68,22 @@ bool AxisEvents::next(const RotatorStatus& status, char* line, std::size_t capac
                     "(%lu slips since start)",
                     names[n], static_cast<double>(a.position_deg),
                     static_cast<unsigned long>(a.slips));
+      return true;
+    }
+    if (a.reholds != reholds_[n]) {
+      reholds_[n] = a.reholds;
+      std::snprintf(line, capacity, "%s: slip: re-holding %.1f deg (%lu re-holds since start)",
+                    names[n], static_cast<double>(a.rehold_deg),
+                    static_cast<unsigned long>(a.reholds));
+      return true;
+    }
+    if (a.reholds_refused != reholds_refused_[n]) {
+      reholds_refused_[n] = a.reholds_refused;
+      std::snprintf(line, capacity,
+                    "%s: slip: not re-holding: %u re-holds within %u min (slip.rehold's limit); "
+                    "the wind wins, slips are only counted",
+                    names[n], static_cast<unsigned>(Axis::kMaxReholds),
+                    static_cast<unsigned>(Axis::kReholdWindowMs / 60000));
       return true;
     }
     if (a.fault != faults_[n]) {

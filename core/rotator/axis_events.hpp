@@ -9,7 +9,8 @@ namespace rotord {
 
 /// What the log should say about the axes since it last asked: a fault
 /// latched (named: a frozen sensor, a burst, a stall, a slip), a slip
-/// (counted and published whether or not slip.fault is on), a go-to held by
+/// (counted and published whether or not slip.fault is on), a re-hold after
+/// it (slip.rehold) or its limit reached, a go-to held by
 /// the starts ceiling (care.max_starts_h: its tolerance widened), the wind
 /// stow beginning and ending, wind readings ignored. The ports ask
 /// from their main loop, never from the control tick. No heap.
@@ -23,6 +24,8 @@ class AxisEvents {
 
  private:
   std::array<std::uint32_t, 2> slips_{};
+  std::array<std::uint32_t, 2> reholds_{};
+  std::array<std::uint32_t, 2> reholds_refused_{};
   std::array<AxisFault, 2> faults_{};
   std::array<bool, 2> held_{};
   /// The wind stow's (docs/care.md): its state, and the rejected readings

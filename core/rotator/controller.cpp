@@ -90,6 +90,10 @@ void Controller::tick(Millis now) {
   if (recognition_.active && !settings_.b(Id::kTrackRecognise))
     end_recognition(RecognitionEnd::kOff);
   apply_buttons(now);
+  // A track or self-commissioning owns the axes: no re-hold after a slip.
+  const bool rehold_allowed = !tracker_.armed() && !commissioning_.running();
+  az_.allow_rehold(rehold_allowed);
+  el_.allow_rehold(rehold_allowed);
   az_.tick(now);
   if (has_el_) el_.tick(now);
   if (commissioning_.running()) commissioning_.tick(now, commissioned_axis());

@@ -111,6 +111,15 @@ void write_axis_counters(PrometheusWriter& w, const Controller& c, const Rotator
   w.family("rotord_axis_slipping", "gauge", "1 while a slip goes on.");
   for (std::size_t n = 0; n < count; ++n)
     w.integer({{"axis", all[n].label}}, all[n].status->slipping ? 1 : 0);
+  w.family("rotord_axis_reholds_total", "counter",
+           "Go-tos back to the rest heading after a slip (slip.rehold, an axis without a brake) "
+           "since the controller started.");
+  for (std::size_t n = 0; n < count; ++n)
+    w.integer({{"axis", all[n].label}}, all[n].status->reholds);
+  w.family("rotord_axis_reholds_refused_total", "counter",
+           "Slips not re-held because slip.rehold's limit (3 in 10 min) was reached.");
+  for (std::size_t n = 0; n < count; ++n)
+    w.integer({{"axis", all[n].label}}, all[n].status->reholds_refused);
   w.family("rotord_goto_continuity_total", "counter",
            "Go-tos of a tracker's stream put on the turn continuous with it instead of the "
            "literal one (track.continuity: a pass through north kept in the overlap).");

@@ -81,7 +81,10 @@ void write_axis(JsonWriter& w, const AxisStatus& a, int sensor) {
       .member("moves", a.moves)
       .member("readings_rejected", a.readings_rejected)
       .member("slips", a.slips)
-      .member("slipping", a.slipping);
+      .member("slipping", a.slipping)
+      .member("reholds", a.reholds)
+      .member("reholding", a.reholding)
+      .member("reholds_refused", a.reholds_refused);
   w.key("outputs").begin_object();
   for (std::size_t n = 0; n < kOutputChannelCount; ++n)
     w.member(kOutputChannelNames[n], a.outputs.value[n]);
