@@ -157,8 +157,8 @@ class Axis {
   std::uint32_t reholds_ = 0;
   std::uint32_t reholds_refused_ = 0;
   std::array<Millis, kMaxReholds> rehold_at_{};  // the last re-holds' times, a ring
-  bool starts_held_ = false;  // hold_starts()
-  bool start_held_ = false;   // a go-to waits for it now
+  bool starts_held_ = false;                     // hold_starts()
+  bool start_held_ = false;                      // a go-to waits for it now
 
   AxisStatus status_;
 };

@@ -101,7 +101,7 @@ TEST(SlipRehold, APersistentWindIsReheldAtMostThreeTimesInTenMinutes) {
   EXPECT_EQ(a.reholds, Axis::kMaxReholds);
   EXPECT_GE(a.reholds_refused, 1u);
   EXPECT_EQ(a.slips, a.reholds + a.reholds_refused);  // every slip re-held or refused
-  EXPECT_GT(a.position_deg, 230.0f);  // the wind won: no fight
+  EXPECT_GT(a.position_deg, 230.0f);                  // the wind won: no fight
   EXPECT_EQ(a.fault, AxisFault::kNone);
   EXPECT_TRUE(r.logged("az: slip: not re-holding: 3 re-holds within 10 min"));
   // Once the window has passed, a new slip is re-held again.
@@ -164,7 +164,7 @@ TEST(SlipRehold, StopDuringAReholdStopsIt) {
   EXPECT_FALSE(a.has_target);
   EXPECT_EQ(a.state, AxisState::kIdle);
   EXPECT_EQ(a.reholds, 1u);
-  EXPECT_GT(a.position_deg - rest_deg, 2.0f);  // it did not go on back
+  EXPECT_GT(a.position_deg - rest_deg, 2.0f);         // it did not go on back
   EXPECT_NEAR(a.position_deg, stopped_at_deg, 1.5f);  // only the coast
 }
 
