@@ -157,6 +157,7 @@ class TrackScenario {
   int starts_in_pass() const { return starts_in_pass_; }
   Controller& controller() { return *controller_; }
   settings::Settings& settings() { return settings_; }
+  sim::SimRotator& sim() { return *sim_; }
   std::int64_t utc_now() const { return *clock_.unix_ms(); }
   double theta(AxisId axis) const { return sim_->plant(axis).theta_deg(); }
 
@@ -300,6 +301,28 @@ TEST(TrackingScenario, AnyCommandEndsTheTrackAndParksNoMoreWhileArmed) {
   ASSERT_EQ(s.track_satellite(TrackWhen::kNextPass), TrackError::kOk);
   ASSERT_EQ(s.controller().go_to(100.0f, std::nullopt), Error::kOk);
   EXPECT_FALSE(s.controller().track_status().armed());
+}
+
+TEST(TrackingScenario, AnArmedTrackOwnsTheAxesNoReholdAfterASlip) {
+  // slip.rehold (docs/care.md) turns a brakeless axis back after a slip, but
+  // not while a track is armed: the track's plan, not the rest, decides.
+  TrackScenario s("g5500", "2019-12-09T19:00:00Z", 39.86366, -119.17875, 0.0, 50.0, 10.0);
+  s.settings().set(Id::kSlipRehold, 1.0);
+  s.power_on();
+  ASSERT_EQ(s.track_satellite(TrackWhen::kNextPass), TrackError::kOk);
+  s.run_ms(5 * 60 * 1000);  // AOS at 19:26: waiting at rest
+  ASSERT_TRUE(s.controller().track_status().armed());
+  s.sim().wind_slip(AxisId::kAz, 4.0, 1.0);
+  s.run_ms(10000);
+  EXPECT_EQ(s.controller().status().az.slips, 1u);
+  EXPECT_EQ(s.controller().status().az.reholds, 0u);
+  // With the track ended, the next slip is re-held.
+  s.controller().stop();
+  s.run_ms(5000);
+  s.sim().wind_slip(AxisId::kAz, 4.0, 1.0);
+  s.run_ms(20000);
+  EXPECT_EQ(s.controller().status().az.slips, 2u);
+  EXPECT_EQ(s.controller().status().az.reholds, 1u);
 }
 
 /// A system clock the kernel does not call synchronized (no NTP).
