@@ -570,10 +570,11 @@ namespace {
 class MqttWind : public Mqtt {
  protected:
   /// /api/status once its text holds `text` (the loop reads the broker on
-  /// the wall clock; bounded, for liveness only).
+  /// the wall clock: the condition ends the wait, the 20 s bound is for
+  /// liveness only, wide for a loaded 2-core machine).
   std::string status_with(const std::string& text) {
     std::string body;
-    for (int n = 0; n < 100; ++n) {
+    for (int n = 0; n < 400; ++n) {
       body = http(daemon->ports().web, "GET", "/api/status").body;
       if (body.find(text) != std::string::npos) return body;
       usleep(50000);

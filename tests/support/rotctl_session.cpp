@@ -40,8 +40,10 @@ bool RotctlSession::read(double& az_deg, double& el_deg) {
   const std::size_t before = positions().size();
   send("p\n");
   // Wall-clock poll for the bytes to cross the socket and rotctl's stdout:
-  // the daemon's clock stands still meanwhile.
-  for (int i = 0; i < 300; ++i) {
+  // the daemon's clock stands still meanwhile. The condition ends the wait;
+  // the bound (10 s) only keeps a dead rotctl from hanging the test, and is
+  // wide for a loaded 2-core machine (1.5 s was seen to be too short there).
+  for (int i = 0; i < 2000; ++i) {
     const std::vector<std::pair<double, double>> v = positions();
     if (v.size() > before) {
       az_deg = v.back().first;
