@@ -24,14 +24,20 @@ bool sensor_fault(AxisFault f) {
          f == AxisFault::kSensorJump || f == AxisFault::kSensorStuck || f == AxisFault::kNoSensor;
 }
 
-Result run_day(const char* name) {
-  const sim::Profile& profile = *sim::find_profile(name);
+/// The profile's settings with the wind stow on an anemometer, stowing at
+/// 90 deg (wind.stow_mps 20 for wind.hold_s 10, the defaults).
+settings::Settings stow_settings(const sim::Profile& profile) {
   settings::Settings settings;
   for (const auto& o : profile.overrides) settings.set(*settings::find(o.key), o.value);
-  // Wind stow on an anemometer (wind.stow_mps 20 for wind.hold_s 10, the
-  // defaults): the day's wind stays below it.
   settings.set(settings::Id::kWindSource, 2);
   settings.set(settings::Id::kWindStowAzDeg, 90);
+  return settings;
+}
+
+Result run_day(const char* name) {
+  const sim::Profile& profile = *sim::find_profile(name);
+  // The day's wind stays below the stow's threshold.
+  settings::Settings settings = stow_settings(profile);
   sim::Anemometer anemometer(kPulsesPerMps);
   sim::SimRotator rotator(profile, 27);
   rotator.set_theta_deg(AxisId::kAz, 180.0);
@@ -118,10 +124,7 @@ Result run_day(const char* name) {
 /// wind.hold_s the stow began (the motor started), and reached the heading.
 Result run_storm(const char* name) {
   const sim::Profile& profile = *sim::find_profile(name);
-  settings::Settings settings;
-  for (const auto& o : profile.overrides) settings.set(*settings::find(o.key), o.value);
-  settings.set(settings::Id::kWindSource, 2);
-  settings.set(settings::Id::kWindStowAzDeg, 90);
+  settings::Settings settings = stow_settings(profile);
   sim::Anemometer anemometer(kPulsesPerMps);
   sim::SimRotator rotator(profile, 27);
   rotator.set_theta_deg(AxisId::kAz, 250.0);
