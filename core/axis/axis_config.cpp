@@ -1,115 +1,48 @@
 #include "axis/axis_config.hpp"
 
+#include "settings/axis_rows.hpp"
 #include "settings/pot_table.hpp"
 
 namespace rotord {
 
+using settings::AxisRow;
 using settings::Id;
 
-namespace {
-
-/// The settings both axes have, by axis (the az-only ones are read below).
-struct AxisKeys {
-  Id min_deg, max_deg, offset_deg, tolerance_deg, slow_zone_deg, drive;
-  Id dir_settle_ms, soft_ms, reverse_dead_ms, min_dwell_ms, pwm_slow_duty, pwm_fast_duty;
-  Id sensor, pot_samples, pot_median, pot_lowpass_ms, ma3_zero_deg, ma3_reverse, ma3_bits;
-  Id stall_deg, stall_ms, jump_deg, move_timeout_s, speed_deg_s, slow_speed_ratio, pwm_dead_band;
-  Id coast_s, coast_learn;
-};
-
-constexpr AxisKeys kAzKeys{
-    .min_deg = Id::kAzMinDeg,
-    .max_deg = Id::kAzMaxDeg,
-    .offset_deg = Id::kAzOffsetDeg,
-    .tolerance_deg = Id::kAzToleranceDeg,
-    .slow_zone_deg = Id::kAzSlowZoneDeg,
-    .drive = Id::kAzDrive,
-    .dir_settle_ms = Id::kAzDirSettleMs,
-    .soft_ms = Id::kAzSoftMs,
-    .reverse_dead_ms = Id::kAzReverseDeadMs,
-    .min_dwell_ms = Id::kAzMinDwellMs,
-    .pwm_slow_duty = Id::kAzPwmSlowDuty,
-    .pwm_fast_duty = Id::kAzPwmFastDuty,
-    .sensor = Id::kAzSensor,
-    .pot_samples = Id::kAzPotSamples,
-    .pot_median = Id::kAzPotMedian,
-    .pot_lowpass_ms = Id::kAzPotLowpassMs,
-    .ma3_zero_deg = Id::kAzMa3ZeroDeg,
-    .ma3_reverse = Id::kAzMa3Reverse,
-    .ma3_bits = Id::kAzMa3Bits,
-    .stall_deg = Id::kAzStallDeg,
-    .stall_ms = Id::kAzStallMs,
-    .jump_deg = Id::kAzJumpDeg,
-    .move_timeout_s = Id::kAzMoveTimeoutS,
-    .speed_deg_s = Id::kAzSpeedDegS,
-    .slow_speed_ratio = Id::kAzSlowSpeedRatio,
-    .pwm_dead_band = Id::kAzPwmDeadBand,
-    .coast_s = Id::kAzCoastS,
-    .coast_learn = Id::kAzCoastLearn,
-};
-constexpr AxisKeys kElKeys{
-    .min_deg = Id::kElMinDeg,
-    .max_deg = Id::kElMaxDeg,
-    .offset_deg = Id::kElOffsetDeg,
-    .tolerance_deg = Id::kElToleranceDeg,
-    .slow_zone_deg = Id::kElSlowZoneDeg,
-    .drive = Id::kElDrive,
-    .dir_settle_ms = Id::kElDirSettleMs,
-    .soft_ms = Id::kElSoftMs,
-    .reverse_dead_ms = Id::kElReverseDeadMs,
-    .min_dwell_ms = Id::kElMinDwellMs,
-    .pwm_slow_duty = Id::kElPwmSlowDuty,
-    .pwm_fast_duty = Id::kElPwmFastDuty,
-    .sensor = Id::kElSensor,
-    .pot_samples = Id::kElPotSamples,
-    .pot_median = Id::kElPotMedian,
-    .pot_lowpass_ms = Id::kElPotLowpassMs,
-    .ma3_zero_deg = Id::kElMa3ZeroDeg,
-    .ma3_reverse = Id::kElMa3Reverse,
-    .ma3_bits = Id::kElMa3Bits,
-    .stall_deg = Id::kElStallDeg,
-    .stall_ms = Id::kElStallMs,
-    .jump_deg = Id::kElJumpDeg,
-    .move_timeout_s = Id::kElMoveTimeoutS,
-    .speed_deg_s = Id::kElSpeedDegS,
-    .slow_speed_ratio = Id::kElSlowSpeedRatio,
-    .pwm_dead_band = Id::kElPwmDeadBand,
-    .coast_s = Id::kElCoastS,
-    .coast_learn = Id::kElCoastLearn,
-};
-
-}  // namespace
-
 AxisConfig axis_config_from(const settings::Settings& s, AxisId axis) {
-  const AxisKeys& k = axis == AxisId::kAz ? kAzKeys : kElKeys;
+  // The one mapping from the per-axis rows (settings/axis_settings.def) to
+  // the fields, for either axis; the azimuth-only rows are read below.
+  // One reader per type, so each field costs the M0+ a call, not a lookup.
+  const auto f = [&s, axis](AxisRow row) { return s.f(settings::axis_id(axis, row)); };
+  const auto i = [&s, axis](AxisRow row) { return s.i(settings::axis_id(axis, row)); };
+  const auto b = [&s, axis](AxisRow row) { return s.b(settings::axis_id(axis, row)); };
   AxisConfig c;
-  c.min_deg = s.f(k.min_deg);
-  c.max_deg = s.f(k.max_deg);
-  c.offset_deg = s.f(k.offset_deg);
-  c.tolerance_deg = s.f(k.tolerance_deg);
-  c.slow_zone_deg = s.f(k.slow_zone_deg);
-  c.drive = static_cast<DriveType>(s.i(k.drive));
-  c.dir_settle_ms = s.i(k.dir_settle_ms);
-  c.soft_ms = s.i(k.soft_ms);
-  c.reverse_dead_ms = s.i(k.reverse_dead_ms);
-  c.min_dwell_ms = s.i(k.min_dwell_ms);
-  c.pwm_slow_duty = s.f(k.pwm_slow_duty);
-  c.pwm_fast_duty = s.f(k.pwm_fast_duty);
-  c.sensor = static_cast<SensorType>(s.i(k.sensor));
+  c.min_deg = f(AxisRow::kMinDeg);
+  c.max_deg = f(AxisRow::kMaxDeg);
+  c.offset_deg = f(AxisRow::kOffsetDeg);
+  c.tolerance_deg = f(AxisRow::kToleranceDeg);
+  c.slow_zone_deg = f(AxisRow::kSlowZoneDeg);
+  c.drive = static_cast<DriveType>(i(AxisRow::kDrive));
+  c.dir_settle_ms = i(AxisRow::kDirSettleMs);
+  c.soft_ms = i(AxisRow::kSoftMs);
+  c.reverse_dead_ms = i(AxisRow::kReverseDeadMs);
+  c.min_dwell_ms = i(AxisRow::kMinDwellMs);
+  c.pwm_slow_duty = f(AxisRow::kPwmSlowDuty);
+  c.pwm_fast_duty = f(AxisRow::kPwmFastDuty);
+  c.sensor = static_cast<SensorType>(i(AxisRow::kSensor));
   c.pot_cal = settings::pot_calibration_from(s, axis);
-  c.pot_filter = {s.i(k.pot_samples), s.b(k.pot_median), s.i(k.pot_lowpass_ms)};
-  c.ma3_zero_deg = s.f(k.ma3_zero_deg);
-  c.ma3_reverse = s.b(k.ma3_reverse);
-  c.ma3_bits = s.i(k.ma3_bits) == 0 ? 10 : 12;
-  c.stall_deg = s.f(k.stall_deg);
-  c.stall_ms = s.i(k.stall_ms);
-  c.jump_deg = s.f(k.jump_deg);
-  c.move_timeout_ms = s.i(k.move_timeout_s) * 1000;
-  c.speed_deg_s = s.f(k.speed_deg_s);
-  c.slow_speed_ratio = s.f(k.slow_speed_ratio);
-  c.pwm_dead_band = s.f(k.pwm_dead_band);
-  c.coast_s = s.f(k.coast_s);
-  c.coast_learn = s.b(k.coast_learn);
+  c.pot_filter = {i(AxisRow::kPotSamples), b(AxisRow::kPotMedian), i(AxisRow::kPotLowpassMs)};
+  c.ma3_zero_deg = f(AxisRow::kMa3ZeroDeg);
+  c.ma3_reverse = b(AxisRow::kMa3Reverse);
+  c.ma3_bits = i(AxisRow::kMa3Bits) == 0 ? 10 : 12;
+  c.stall_deg = f(AxisRow::kStallDeg);
+  c.stall_ms = i(AxisRow::kStallMs);
+  c.jump_deg = f(AxisRow::kJumpDeg);
+  c.move_timeout_ms = i(AxisRow::kMoveTimeoutS) * 1000;
+  c.speed_deg_s = f(AxisRow::kSpeedDegS);
+  c.slow_speed_ratio = f(AxisRow::kSlowSpeedRatio);
+  c.pwm_dead_band = f(AxisRow::kPwmDeadBand);
+  c.coast_s = f(AxisRow::kCoastS);
+  c.coast_learn = b(AxisRow::kCoastLearn);
   c.slip_deg = s.f(Id::kSlipDeg);
   c.slip_fault = s.b(Id::kSlipFault);
   c.slip_rehold = s.b(Id::kSlipRehold);

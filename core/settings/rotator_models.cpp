@@ -5,7 +5,7 @@
 namespace rotord::settings {
 namespace {
 
-// The values of az.drive and az.sensor (settings_table.def).
+// The values of az.drive and az.sensor (axis_settings.def).
 constexpr double kRelay = 0;
 constexpr double kHBridge = 3;
 constexpr double kPot = 0;

@@ -8,6 +8,7 @@
 
 #include "access/api_token.hpp"
 #include "access/password_hash.hpp"
+#include "settings/axis_label.hpp"
 #include "settings/gpiod_rules.hpp"
 #include "settings/network_list.hpp"
 #include "settings/pin_rules.hpp"

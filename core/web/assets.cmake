@@ -10,12 +10,14 @@ include(${CMAKE_CURRENT_LIST_DIR}/world_map.cmake)  # world.js, the map's coastl
 # settings_help.js: the settings table's help column, served gzipped rather
 # than compiled into the core (web/tools/settings_help.mjs says why).
 set(ROTORD_SETTINGS_TABLE ${CMAKE_CURRENT_LIST_DIR}/../settings/settings_table.def)
+# The per-axis rows it expands (settings_table.def includes them).
+set(ROTORD_AXIS_SETTINGS ${CMAKE_CURRENT_LIST_DIR}/../settings/axis_settings.def)
 set(ROTORD_SETTINGS_HELP_JS ${ROTORD_WEB_GENERATED_DIR}/settings_help.js)
 add_custom_command(
   OUTPUT ${ROTORD_SETTINGS_HELP_JS}
   COMMAND ${ROTORD_NODE_FOR_MAP} ${ROTORD_WEB_DIR}/tools/settings_help.mjs ${ROTORD_SETTINGS_TABLE}
           ${ROTORD_SETTINGS_HELP_JS}
-  DEPENDS ${ROTORD_SETTINGS_TABLE} ${ROTORD_WEB_DIR}/tools/settings_help.mjs
+  DEPENDS ${ROTORD_SETTINGS_TABLE} ${ROTORD_AXIS_SETTINGS} ${ROTORD_WEB_DIR}/tools/settings_help.mjs
   COMMENT "Writing the settings' help for the web UI"
   VERBATIM)
 set(ROTORD_WEB_ASSETS_CPP ${CMAKE_CURRENT_BINARY_DIR}/web_assets.cpp)

@@ -98,7 +98,7 @@ struct Options {
   bool mag = false;                 // a QMC5883L on the azimuth
 };
 
-// az.drive's values, in the settings table's order (core/settings/settings_table.def).
+// az.drive's values, in the settings table's order (core/settings/axis_settings.def).
 constexpr std::array<std::string_view, 4> kDriveNames{"relay", "relay_two_speed",
                                                       "relay_voltage_select", "hbridge"};
 constexpr std::array<sim::DriveKind, 4> kDriveKinds{
