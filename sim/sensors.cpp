@@ -60,7 +60,7 @@ void SimMa3::sample() {
   next_refresh_s_ = now_s_ + kRefresh_s;
   if (stuck_.active(now_s_)) return;
   const double sigma_deg = noise_burst_.active(now_s_) ? burst_sigma_deg_ : sigma_deg_;
-  const double wrapped_deg = std::fmod(plant_.theta_deg(), 360.0);
+  const double wrapped_deg = std::fmod(plant_.theta_deg() + mount_deg_, 360.0);
   const double deg = wrapped_deg + rng_.normal(sigma_deg);
   const auto raw = static_cast<long long>(std::floor(deg / 360.0 * kCounts));
   code_ = static_cast<int>(((raw % kCounts) + kCounts) % kCounts);  // noise may cross 0/360
@@ -102,7 +102,7 @@ bool SimMag::write_read(std::uint8_t address, const std::uint8_t* wdata, std::si
                         std::uint8_t* rdata, std::size_t rlength) {
   if (address != kAddress || wlength != 1) return false;
   std::uint8_t regs[14] = {};
-  const double rad = plant_.theta_deg() * (3.14159265358979 / 180.0);
+  const double rad = (plant_.theta_deg() + mount_deg_) * (3.14159265358979 / 180.0);
   const auto put = [&](int reg, double value) {
     const auto v = static_cast<std::int16_t>(std::lround(value + rng_.normal(sigma_counts_)));
     regs[reg] = static_cast<std::uint8_t>(static_cast<std::uint16_t>(v) & 0xFF);

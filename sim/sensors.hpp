@@ -81,6 +81,9 @@ class SimMa3 final : public hal::PwmIn {
   /// Latches a new code now (after the test moved the plant).
   void sample();
   int code() const { return code_; }
+  /// The encoder reads the shaft this many degrees ahead of the antenna's
+  /// bearing (a coupling not set at north): what its zero corrects.
+  void set_mount_deg(double deg) { mount_deg_ = deg; }
 
   /// No edges (cable off): read() reports valid = false.
   void inject_loss(double duration_s) { loss_.start(now_s_, duration_s); }
@@ -93,6 +96,7 @@ class SimMa3 final : public hal::PwmIn {
   const AxisPlant& plant_;
   double sigma_deg_;
   Rng rng_;
+  double mount_deg_ = 0.0;
   double now_s_ = 0.0;
   double next_refresh_s_ = 0.0;
   int code_ = 0;
@@ -121,11 +125,15 @@ class SimMag final : public hal::I2c {
   bool write(std::uint8_t address, const std::uint8_t* data, std::size_t length) override;
   bool write_read(std::uint8_t address, const std::uint8_t* wdata, std::size_t wlength,
                   std::uint8_t* rdata, std::size_t rlength) override;
+  /// The chip's north lies this many degrees off the boom's (declination
+  /// and mounting angle together): what its heading offset corrects.
+  void set_mount_deg(double deg) { mount_deg_ = deg; }
 
  private:
   const AxisPlant& plant_;
   double sigma_counts_;
   Rng rng_;
+  double mount_deg_ = 0.0;
 };
 
 /// A switch that closes on one side of a threshold angle (limit switch, T1/T2

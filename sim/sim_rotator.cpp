@@ -88,6 +88,13 @@ void SimRotator::set_theta_deg(AxisId axis, double theta_deg) {
   s.ma3.sample();
 }
 
+void SimRotator::set_sensor_mount_deg(AxisId axis, double deg) {
+  AxisSim& s = sim(axis);
+  s.ma3.set_mount_deg(deg);
+  s.mag.set_mount_deg(deg);
+  s.ma3.sample();
+}
+
 void SimRotator::sensor_loss(AxisId axis, double duration_s) {
   sim(axis).pot.inject_loss(duration_s);
   sim(axis).ma3.inject_loss(duration_s);

@@ -46,6 +46,10 @@ class SimRotator {
 
   /// Test set-up: axis at rest at this angle (sensors resample at once).
   void set_theta_deg(AxisId axis, double theta_deg);
+  /// The absolute sensors (MA3, magnetometer) read the antenna's bearing
+  /// plus this angle: mounted off north, as self-commissioning's known
+  /// bearing finds them (docs/commissioning.md).
+  void set_sensor_mount_deg(AxisId axis, double deg);
 
   // Fault injection, from now for a duration (kForever_s for permanent).
   void jam(AxisId axis, double duration_s) { plant(axis).jam(duration_s); }

@@ -59,8 +59,10 @@ constexpr ConsoleSession::Command ConsoleSession::kCommands[] = {
      "list the rotator models, fill the settings from one (docs/rotator_models.md), or set the "
      "station's position",
      true},
-    {"commission", "commission <az|el> [step] [ccw_deg cw_deg] | status | accept", &C::commission,
-     "self-commissioning: start a step (all, direction, ends, speeds), its result, accept it",
+    {"commission", "commission <az|el> [step] [ccw_deg cw_deg | deg] | status | accept",
+     &C::commission,
+     "self-commissioning: start a step (all, direction, ends, speeds, bearing), its result, accept "
+     "it",
      false},
     {"odometer", "odometer [reset]", &C::odometer,
      "the wear odometer of each axis; reset: every count to zero, dated", false},

@@ -125,9 +125,7 @@ void ConsoleSession::commission(std::string_view args, ByteSink& out) {
   }
   const bool az = text::iequals(word, "az");
   if (!az && !text::iequals(word, "el"))
-    return error(out,
-                 "usage: commission <az|el> [all|direction|ends|speeds] [ccw_deg cw_deg] | "
-                 "commission status | commission accept");
+    return error(out, "usage: commission <az|el> [step] [ccw_deg cw_deg | deg] | status | accept");
   Commissioning::Request request;
   request.axis = az ? AxisId::kAz : AxisId::kEl;
   const settings::Settings& s = controller_.settings();
@@ -140,11 +138,18 @@ void ConsoleSession::commission(std::string_view args, ByteSink& out) {
   if (!token.empty() && parse_commissioning_step(token.data(), token.size(), request.step)) {
     rest = after_step;
   } else if (!token.empty() && !text::parse_double(token, number)) {
-    return error(out, "unknown step (all, direction, ends or speeds)");
+    return error(out, "unknown step (all, direction, ends, speeds or bearing)");
   }
   const std::string_view lo_word = text::next_token(rest);
   const std::string_view hi_word = text::next_token(rest);
-  if (!lo_word.empty() || !hi_word.empty()) {
+  const bool bearing = request.step == Commissioning::Step::kBearing;
+  if (bearing) {
+    // One number, the bearing the antenna points at now: anything else is
+    // refused with the range's reason (NaN is out of it).
+    double deg = 0.0;
+    const bool one = text::parse_double(lo_word, deg) && hi_word.empty();
+    request.bearing_deg = one ? static_cast<float>(deg) : NAN;
+  } else if (!lo_word.empty() || !hi_word.empty()) {
     double lo = 0.0;
     double hi = 0.0;
     if (!text::parse_double(lo_word, lo) || !text::parse_double(hi_word, hi) ||
@@ -155,6 +160,10 @@ void ConsoleSession::commission(std::string_view args, ByteSink& out) {
   }
   const char* why = "";
   if (controller_.commission(request, &why) != Error::kOk) return send(out, "error: %s", why);
+  if (bearing) {
+    report(controller_, out);
+    return send(out, "ok");
+  }
   send(out, "ok commissioning %s started: STOP (stop) aborts it; commission status follows it",
        az ? "az" : "el");
 }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "motion/angles.hpp"
+
 namespace rotord {
 namespace {
 
@@ -73,6 +75,7 @@ Error Commissioning::start(const Request& request, Axis& axis, const char** why)
     *why = "self-commissioning is already running";
     return Error::kBusy;
   }
+  if (request.step == Step::kBearing) return propose_bearing(request, axis, why);
   if (!(request.cw_stop_deg > request.ccw_stop_deg)) {
     *why = "the CW stop must lie above the CCW stop";
     return Error::kOutOfRange;
@@ -130,6 +133,39 @@ Error Commissioning::start(const Request& request, Axis& axis, const char** why)
   phase_ = first;
   phase_at_ = -1;
   run_.clear();
+  *why = "";
+  return Error::kOk;
+}
+
+// The known bearing moves nothing. An absolute sensor reads degrees whatever
+// its zero, so one bearing the owner gives (a landmark, the Sun) fixes the
+// zero: the reading moves by exactly a change of it (the axis unwraps it into
+// its travel), so the proposal turns it by the shortest way from the reading
+// to the bearing. A pot's calibration comes from the ends instead.
+Error Commissioning::propose_bearing(const Request& request, const Axis& axis, const char** why) {
+  const float bearing_deg = request.bearing_deg;
+  const AxisConfig& c = axis.config();
+  *why = "the bearing is a number from 0 to 360";
+  if (!(bearing_deg >= 0.0f && bearing_deg <= 360.0f)) return Error::kOutOfRange;
+  *why = "a pot has no zero: the ends step calibrates it";
+  if (c.sensor == SensorType::kPot) return Error::kNotSupported;
+  *why = "the antenna is moving";
+  if (axis.status().state != AxisState::kIdle) return Error::kBusy;
+  const float turn_deg = wrap_180(bearing_deg - axis.status().position_deg);
+  req_ = request;
+  m_ = Measured{};  // the ends of a sensor's old zero
+  samples_n_ = 0;
+  proposals_n_ = 0;
+  // The MA3 reads its code less the zero; the magnetometer's heading is
+  // magnetic plus declination (and so takes its mounting angle too).
+  if (c.sensor == SensorType::kMa3)
+    add(request.axis == AxisId::kEl ? Id::kElMa3ZeroDeg : Id::kAzMa3ZeroDeg,
+        wrap_360(c.ma3_zero_deg - turn_deg));
+  else
+    add(Id::kMagDeclinationDeg, wrap_180(c.mag_cal.declination_deg + turn_deg));
+  reason_ = "";
+  state_ = State::kDone;
+  phase_ = Phase::kFinished;
   *why = "";
   return Error::kOk;
 }
@@ -579,7 +615,8 @@ bool parse_commissioning_step(const char* name, std::size_t len, Commissioning::
   constexpr Entry kSteps[] = {{"all", Commissioning::Step::kAll},
                               {"direction", Commissioning::Step::kDirection},
                               {"ends", Commissioning::Step::kEnds},
-                              {"speeds", Commissioning::Step::kSpeeds}};
+                              {"speeds", Commissioning::Step::kSpeeds},
+                              {"bearing", Commissioning::Step::kBearing}};
   for (const Entry& e : kSteps) {
     if (std::strlen(e.name) == len && std::memcmp(e.name, name, len) == 0) {
       out = e.step;

@@ -18,7 +18,9 @@ namespace rotord {
 /// fixed-size members, no heap, no exceptions.
 class Commissioning {
  public:
-  enum class Step : std::uint8_t { kAll, kDirection, kEnds, kSpeeds };
+  /// kBearing moves nothing: an absolute sensor's zero from the bearing the
+  /// antenna points at now, which the owner gives (bearing_deg).
+  enum class Step : std::uint8_t { kAll, kDirection, kEnds, kSpeeds, kBearing };
   enum class State : std::uint8_t { kIdle, kRunning, kDone, kAborted };
 
   struct Request {
@@ -28,6 +30,9 @@ class Commissioning {
     /// travel unless the owner knows better. Calibration maps them here.
     float ccw_stop_deg = 0.0f;
     float cw_stop_deg = 450.0f;
+    /// kBearing: the true bearing (elevation on el) the antenna points at
+    /// now, 0 to 360; anything else (NaN: not given) is refused.
+    float bearing_deg = -1.0f;
   };
 
   /// One evidence sample: time since the run began, position (degrees in
@@ -131,6 +136,7 @@ class Commissioning {
   void record(Millis now, const Axis& axis);
   void finish(Axis& axis);
   void propose(const AxisConfig& base);
+  Error propose_bearing(const Request& request, const Axis& axis, const char** why);
   void add(settings::Id id, double value);
 
   Request req_;
@@ -163,7 +169,7 @@ class Commissioning {
 };
 
 const char* commissioning_state_name(Commissioning::State state);
-/// "all", "direction", "ends", "speeds"; false when the name is unknown.
+/// "all", "direction", "ends", "speeds", "bearing"; false when the name is unknown.
 bool parse_commissioning_step(const char* name, std::size_t len, Commissioning::Step& out);
 
 }  // namespace rotord

@@ -1,6 +1,7 @@
 // The set-up endpoints (docs/web_api.md, docs/commissioning.md): the rotator
 // model list, filling the settings from a model, and self-commissioning
 // (start, follow with its evidence, accept).
+#include <cmath>
 #include <cstdio>
 
 #include "json/json_reader.hpp"
@@ -84,25 +85,8 @@ Api::Outcome Api::post_model(const Call& call) {
     send_error(call.out, 422, "give model: one of the ids GET /api/models lists", call.options);
     return Outcome::kDone;
   }
-  settings::Settings& values = ctx_.controller.settings();
-  backup_ = values;
-  const settings::Rejection r = settings::apply_rotator_model(*model, values);
-  if (r.error != Error::kOk) {
-    char message[200];
-    std::snprintf(message, sizeof message, "nothing changed: %s", r.reason);
-    send_error(call.out, 422, message, call.options);
-    return Outcome::kDone;
-  }
-  SettingSet changed;
-  for (std::size_t n = 0; n < settings::kCount; ++n)
-    changed[n] = !values.same_value(static_cast<Id>(n), backup_);
-  if (changed.any() && !persist(call.out, call.options)) {
-    for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed[n]) values.copy_value(static_cast<Id>(n), backup_);
-    return Outcome::kDone;
-  }
-  send_changed(call.out, call.options, changed);
-  return Outcome::kDone;
+  backup_ = ctx_.controller.settings();
+  return saved_change(call, settings::apply_rotator_model(*model, ctx_.controller.settings()), 422);
 }
 
 Api::Outcome Api::post_commission(const Call& call) {
@@ -124,7 +108,11 @@ Api::Outcome Api::post_commission(const Call& call) {
     } else if (key == "step") {
       if (value.type != JsonType::kString ||
           !parse_commissioning_step(value.text.data(), value.text.size(), request.step))
-        bad = "step is one of \"all\", \"direction\", \"ends\", \"speeds\"";
+        bad = "step is one of \"all\", \"direction\", \"ends\", \"speeds\", \"bearing\"";
+    } else if (key == "bearing_deg") {
+      // Not a number: refused with the range's reason (NaN is out of it).
+      request.bearing_deg =
+          value.type == JsonType::kNumber ? static_cast<float>(value.number) : NAN;
     } else if (key == "ccw_deg" || key == "cw_deg") {
       if (value.type != JsonType::kNumber) {
         bad = "ccw_deg and cw_deg are numbers (degrees)";
@@ -136,7 +124,7 @@ Api::Outcome Api::post_commission(const Call& call) {
         have_cw = true;
       }
     } else {
-      bad = "unknown member (axis, step, ccw_deg, cw_deg)";
+      bad = "unknown member (axis, step, ccw_deg, cw_deg, bearing_deg)";
     }
   }
   if (!reader.valid()) bad = reader.error();
@@ -208,13 +196,20 @@ Api::Outcome Api::get_commission(const Call& call) {
 }
 
 Api::Outcome Api::post_commission_accept(const Call& call) {
+  backup_ = ctx_.controller.settings();
+  return saved_change(call, ctx_.controller.accept_commissioning(), 409);
+}
+
+// One answer for the set-up's changes (backup_ holds the settings before
+// them), shared to keep the firmware small: a rejection's reason with
+// `refused_status`, nothing changed; else what changed, saved (restored when
+// saving fails).
+Api::Outcome Api::saved_change(const Call& call, const settings::Rejection& r, int refused_status) {
   settings::Settings& values = ctx_.controller.settings();
-  backup_ = values;
-  const settings::Rejection r = ctx_.controller.accept_commissioning();
   if (r.error != Error::kOk) {
     char message[200];
     std::snprintf(message, sizeof message, "nothing changed: %s", r.reason);
-    send_error(call.out, 409, message, call.options);
+    send_error(call.out, refused_status, message, call.options);
     return Outcome::kDone;
   }
   SettingSet changed;

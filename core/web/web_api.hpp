@@ -232,6 +232,7 @@ class Api {
   Outcome post_commission(const Call& call);
   Outcome get_commission(const Call& call);
   Outcome post_commission_accept(const Call& call);
+  Outcome saved_change(const Call& call, const settings::Rejection& r, int refused_status);
 
   void get_settings(protocol::ByteSink& out, const ResponseOptions& options);
   void post_settings(std::string_view body, protocol::ByteSink& out, const ResponseOptions& options,

@@ -95,6 +95,7 @@ bool Daemon::setup() {
   defaults_ = settings_;
   if (!load_settings(profile)) return false;
   sim_ = std::make_unique<sim::SimRotator>(*profile, options_.sim_seed);
+  sim_->set_sensor_mount_deg(AxisId::kAz, options_.sim_sensor_mount_deg);
   if (options_.clock == "manual" || options_.speedup != 1.0 || !options_.utc_start.empty()) {
     // Simulated time: UTC moves with it (tracking follows the simulated sky).
     std::int64_t start = 0;

@@ -34,6 +34,12 @@ int main(int argc, char** argv) {
                  "tracking runs on simulated time");
   app.add_option("--sim-seed", o.sim_seed, "Seed of the simulator's noise (same seed, same run)")
       ->capture_default_str();
+  app.add_option("--sim-sensor-mount", o.sim_sensor_mount_deg,
+                 "Degrees the simulated azimuth's MA3 encoder and magnetometer read ahead of the "
+                 "antenna's bearing (a sensor mounted off north; self-commissioning's known "
+                 "bearing finds it)")
+      ->check(CLI::Range(-360.0, 360.0))
+      ->capture_default_str();
   app.add_option("--bind", o.bind,
                  "Address to listen on (:: serves IPv6 and IPv4; 0.0.0.0 IPv4 only)")
       ->capture_default_str();

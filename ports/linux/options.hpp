@@ -26,6 +26,9 @@ struct Options {
   /// (tracking tests); empty: the system clock at start.
   std::string utc_start;
   std::uint32_t sim_seed = 1;
+  /// --sim-sensor-mount: the simulated azimuth's MA3 and magnetometer read
+  /// the antenna's bearing plus this (a sensor mounted off north).
+  double sim_sensor_mount_deg = 0.0;
   /// "::": IPv6 and IPv4 on one socket per port (IPV6_V6ONLY off); on a
   /// host without IPv6 the daemon falls back to 0.0.0.0.
   std::string bind = "::";

@@ -127,6 +127,9 @@ TEST_F(ConsoleInterop, SetupModelAndCommissionThroughThePty) {
   const std::string model = type("setup model yaesu-g5500\n");
   EXPECT_NE(model.find("az.max_deg=450 [Y1][Y2] 450 deg\r\n"), std::string::npos) << model;
   EXPECT_NE(model.find("ok Yaesu G-5500: 9 settings filled"), std::string::npos) << model;
+  // A known bearing sets an absolute sensor's zero: the G-5500's pot has none.
+  const std::string pot = type("commission az bearing 90\n");
+  EXPECT_EQ(pot, "error: a pot has no zero: the ends step calibrates it\r\n") << pot;
   const std::string started = type("commission az all -1 451\n");
   EXPECT_EQ(started.rfind("ok commissioning az started", 0), 0u) << started;
   ASSERT_GE(daemon->advance_ms(3000), 0);

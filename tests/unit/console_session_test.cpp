@@ -313,7 +313,7 @@ TEST_F(ConsoleTest, CommissionStartsReportsAndStopAbortsIt) {
   EXPECT_EQ(last_line(ask("commission az speeds\n")),
             "error: the speeds step needs the direction and ends steps first");
   EXPECT_EQ(ask("commission az sideways\n"),
-            "error: unknown step (all, direction, ends or speeds)\r\n");
+            "error: unknown step (all, direction, ends, speeds or bearing)\r\n");
   EXPECT_EQ(ask("commission az all 10\n"),
             "error: the ends are two numbers in degrees: ccw_deg cw_deg\r\n");
   EXPECT_EQ(last_line(ask("commission az all 0 450\n")).rfind("ok commissioning az started", 0),
