@@ -27,6 +27,19 @@
   }
 
   // --- 1. the model
+  // The model shown after a reload: the one chosen in this tab (the
+  // session's progress), else the one the settings in force match best
+  // (what was saved; commissioning changes the limits and speeds, not the
+  // drive, sensor, travel's kind or brake), else the first.
+  function chooseModel() {
+    let best = models.find((x) => x.id === sessionStorage.model);
+    for (let top = 0, i = 0; !best && i < models.length; i++) {
+      let score = 0;
+      for (const f of models[i].figures) if (f.value !== null && f.key in values) score += values[f.key] === f.value ? 1 : -2;
+      if (score > top) [top, best] = [score, models[i]];
+    }
+    if (best) $('model').value = best.id;
+  }
   function showModel() {
     const m = models.find((x) => x.id === $('model').value);
     if (!m) return;
@@ -34,7 +47,10 @@
       f.value === null ? 'not published: measured' : String(f.value), f.source ?? '']));
     $('model-note').textContent = m.note;
   }
-  $('model').addEventListener('change', showModel);
+  $('model').addEventListener('change', () => {
+    sessionStorage.model = $('model').value;
+    showModel();
+  });
   $('use-model').addEventListener('click', async () => {
     const r = await rotord.post('/api/setup/model', { model: $('model').value });
     rotord.message($('model-msg'), r.status === 200
@@ -63,8 +79,15 @@
     const a = $('axis').value;
     $('ccw').value = values[a + '.min_deg'];
     $('cw').value = values[a + '.max_deg'];
+    // The known bearing sets an absolute sensor's zero: offered only for one.
+    const pot = values[a + '.sensor'] === 'pot';
+    if (($('step-bearing').disabled = pot) && $('step').value === 'bearing') $('step').value = 'all';
+    const bearing = $('step').value === 'bearing';
+    $('ccw-label').hidden = $('cw-label').hidden = bearing;
+    $('bearing-label').hidden = !bearing;
   }
   $('axis').addEventListener('change', showEnds);
+  $('step').addEventListener('change', showEnds);
   function plot(samples) {
     if (!samples.length) return;
     const t1 = samples[samples.length - 1][0] || 1;
@@ -99,8 +122,11 @@
   }
   $('start').addEventListener('click', async () => {
     const body = { axis: $('axis').value, step: $('step').value };
-    if ($('ccw').value !== '') body.ccw_deg = Number($('ccw').value);
-    if ($('cw').value !== '') body.cw_deg = Number($('cw').value);
+    // Left empty: the controller says what it wants.
+    const n = (k, id) => { if ($(id).value !== '' && !$(id).closest('label').hidden) body[k] = Number($(id).value); };
+    n('ccw_deg', 'ccw');
+    n('cw_deg', 'cw');
+    n('bearing_deg', 'bearing');
     const r = await rotord.post('/api/commission', body);
     if (r.status !== 200) return rotord.message($('run-state'), r.body?.error, false);
     follow();
@@ -148,6 +174,7 @@
     wiring = rotordWiring.create({ schema: schema.body, values: () => values, box: $('pins'),
       boards: $('boards'), forSelect: $('wiring-for'), forRow: $('wiring-for-row'), note: $('pins-note') });
     for (const x of models) $('model').appendChild(Object.assign(document.createElement('option'), { value: x.id, textContent: x.name }));
+    chooseModel();
     showModel();
     showPins();
     showEnds();

@@ -49,6 +49,12 @@ test('from an empty settings file to a commissioned, located, protected controll
   assert.match(await phone.textContent('#figures'), /not published: measured/);
   await phone.click('#use-model');
   await until(async () => /Saved/.test(await phone.textContent('#model-msg')), { what: 'model saved' });
+  // A reload keeps the owner's model (it showed the first of the list, the
+  // G-5500, before).
+  await phone.reload();
+  await phone.waitForSelector('#model option[value="hygain-ham4"]', { state: 'attached' });
+  await until(async () => /\[HG3\] 360 deg/.test(await phone.textContent('#figures')), { what: 'figures' });
+  assert.equal(await phone.inputValue('#model'), 'hygain-ham4');
 
   // 2. The wiring: the simulator has none of its own, so the page asks
   // which board's to prepare. A relay drive with a brake and a pot: the
@@ -90,6 +96,8 @@ test('from an empty settings file to a commissioned, located, protected controll
 
   // 3. Self-commissioning: the simulated Ham IV's switches sit 1 deg
   // outside 0..360. Controller time runs while the page follows the run.
+  // Its pot has no zero to set: no known-bearing step.
+  assert.equal(await phone.$eval('#step-bearing', (o) => o.disabled), true);
   await phone.fill('#ccw', '-1');
   await phone.fill('#cw', '361');
   await phone.click('#start');
@@ -123,6 +131,9 @@ test('from an empty settings file to a commissioned, located, protected controll
 
   const desk = await openPage(browser, rotord.url + '/setup.html', { width: 1280, height: 900 });
   await until(async () => /done/.test(await desk.textContent('#run-state')), { what: 'desktop state' });
+  // Another browser, nothing chosen in it: the model the settings in force
+  // match (after commissioning moved the limits), not the first of the list.
+  assert.equal(await desk.inputValue('#model'), 'hygain-ham4');
   const width = await desk.evaluate(() => document.documentElement.scrollWidth);
   assert.ok(width <= 1280, `no sideways scrolling: ${width}`);
   await screenshot(desk, 'setup-1280x900.png');
@@ -202,3 +213,54 @@ test('on a desktop, from an empty settings file to tracking the Sun on the commi
     assert.deepEqual(page.errors, []);
     await page.context().close();
   });
+
+test('an absolute sensor\'s zero from a known bearing, on a phone', async () => {
+  // The SPID's azimuth MA3 coupled 20 deg short of north: the antenna at
+  // 180 (where the simulator starts it) reads 160.
+  const spid = await new Rotord({ configPath: path.join(dir, 'spid.json'), profile: 'spid',
+    clock: 'manual', extraArgs: ['--sim-sensor-mount', '-20'] }).start();
+  try {
+    await spid.advance(1000);
+    const az = async () => (await spid.status()).az.position_deg;
+    const off = (deg, bearing) => Math.abs(((deg - bearing + 540) % 360) - 180);
+    assert.ok(off(await az(), 160) < 0.2, String(await az()));
+    const page = await openPage(browser, spid.url + '/setup.html', { width: 390, height: 844 });
+    await page.waitForSelector('#model option[value="spid-ras"]', { state: 'attached' });
+    await page.selectOption('#axis', 'az');
+    await page.selectOption('#step', 'bearing');
+    assert.ok(await page.isVisible('#bearing') && !(await page.isVisible('#ccw')));
+    // Out of range, then nothing: refused with the controller's reason.
+    await page.fill('#bearing', '400');
+    await page.click('#start');
+    await until(async () => /0 to 360/.test(await page.textContent('#run-state')), { what: 'refused' });
+    await page.fill('#bearing', '');
+    await page.evaluate(() => { document.getElementById('run-state').textContent = ''; });
+    await page.click('#start');
+    await until(async () => /0 to 360/.test(await page.textContent('#run-state')), { what: 'refused empty' });
+    assert.equal((await request(spid.url + '/api/settings')).body['az.ma3_zero_deg'], 0);
+
+    await page.fill('#bearing', '180');
+    await page.click('#start');
+    await until(async () => /az\.ma3_zero_deg/.test(await page.textContent('#proposal')), { what: 'proposal' });
+    const row = await page.$$eval('#proposal tbody tr', (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
+    assert.equal(row.length, 1, JSON.stringify(row));
+    assert.equal(row[0][0], 'az.ma3_zero_deg');
+    assert.ok(Math.abs(Number(row[0][1]) - 340) < 0.2, row[0][1]);  // 160 - 340 = 180 (mod 360)
+    assert.equal(row[0][2], '0');
+    await screenshot(page, 'setup-bearing-390x844.png');
+    await page.click('#accept');
+    await until(async () => /Saved/.test(await page.textContent('#accept-msg')), { what: 'accepted' });
+    const after = await spid.untilAdvancing(async () => {
+      const deg = await az();
+      return off(deg, 180) < 0.2 ? deg : null;
+    }, { stepMs: 500, timeout: 20000, what: 'reads the bearing' });
+    console.log(`known bearing: MA3 read 160 at bearing 180; az.ma3_zero_deg ${row[0][1]} accepted; reads ${after.toFixed(2)}`);
+    const phoneWidth = await page.evaluate(() => document.documentElement.scrollWidth);
+    assert.ok(phoneWidth <= 390, `no sideways scrolling on the phone: ${phoneWidth}`);
+    // The two refusals' 422s are the resource errors the browser logs.
+    assert.deepEqual(page.errors.filter((e) => !/status of 422/.test(e)), []);
+    await page.context().close();
+  } finally {
+    await spid.stop();
+  }
+});
