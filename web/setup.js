@@ -29,15 +29,17 @@
   // --- 1. the model
   // The model shown after a reload: the one chosen in this tab (the
   // session's progress), else the one the settings in force match best
-  // (what was saved; commissioning changes the limits and speeds, not the
-  // drive, sensor, travel's kind or brake), else the first.
+  // (what was saved): no figure differs (a number within 30 matches, as
+  // commissioning keeps the limits up to 30 deg inside the stops), the most
+  // figures, the first of equals; else the first.
   function chooseModel() {
-    let best = models.find((x) => x.id === sessionStorage.model);
-    for (let top = 0, i = 0; !best && i < models.length; i++) {
+    let best = null;
+    for (let top = 0, i = 0; i < models.length; i++) {
       let score = 0;
-      for (const f of models[i].figures) if (f.value !== null && f.key in values) score += values[f.key] === f.value ? 1 : -2;
+      for (const f of models[i].figures) if (f.value !== null && f.key in values) score += Math.abs(values[f.key] - f.value) <= 30 || values[f.key] === f.value ? 1 : -99;
       if (score > top) [top, best] = [score, models[i]];
     }
+    best = models.find((x) => x.id === sessionStorage.model) ?? best;
     if (best) $('model').value = best.id;
   }
   function showModel() {
