@@ -75,8 +75,7 @@ TEST_F(KnownBearing, RestProposesTheMa3ZeroAndTheAcceptedZeroIsSaved) {
                           R"({"step":"bearing","bearing_deg":360.5})", R"({"step":"bearing"})"}) {
     const HttpResponse r = http(port, "POST", "/api/commission", bad);
     EXPECT_EQ(r.status, 422) << bad;
-    EXPECT_NE(r.body.find("the bearing is a number from 0 to 360"), std::string::npos)
-        << r.body;
+    EXPECT_NE(r.body.find("the bearing is a number from 0 to 360"), std::string::npos) << r.body;
   }
   EXPECT_EQ(http(port, "POST", "/api/commission", R"({"step":"north"})").status, 400);
 

@@ -26,14 +26,13 @@ using settings::Id;
 struct Bench {
   /// The profile's settings, its azimuth at `theta_deg` with its absolute
   /// sensors mounted `mount_deg` off north.
-  Bench(const char* name, double theta_deg, double mount_deg)
-      : profile(*sim::find_profile(name)) {
+  Bench(const char* name, double theta_deg, double mount_deg) : profile(*sim::find_profile(name)) {
     for (const auto& o : profile.overrides) settings.set(*settings::find(o.key), o.value);
     rotator = std::make_unique<sim::SimRotator>(profile, 7);
     rotator->set_theta_deg(AxisId::kAz, theta_deg);
     rotator->set_sensor_mount_deg(AxisId::kAz, mount_deg);
-    controller = std::make_unique<Controller>(settings, rotator->io(AxisId::kAz),
-                                              rotator->io(AxisId::kEl));
+    controller =
+        std::make_unique<Controller>(settings, rotator->io(AxisId::kAz), rotator->io(AxisId::kEl));
     controller->begin(now);
   }
   /// The azimuth on the simulated magnetometer, calibrated to its true
@@ -107,8 +106,9 @@ TEST(KnownBearing, MagnetometerReading350AtBearing10ProposesAHeadingOffsetOf20) 
   b.run_ms(500);
   EXPECT_LT(off_deg(b.position_deg(), 350.0), 0.5);
   const float after = b.accept_and_read();
-  std::printf("magnetometer: read %.2f at bearing 10, proposed mag.declination_deg %.3f, reads %.2f\n",
-              static_cast<double>(before), value, static_cast<double>(after));
+  std::printf(
+      "magnetometer: read %.2f at bearing 10, proposed mag.declination_deg %.3f, reads %.2f\n",
+      static_cast<double>(before), value, static_cast<double>(after));
   EXPECT_LT(off_deg(after, 10.0), 0.3) << after;
   EXPECT_NEAR(b.settings.f(Id::kMagDeclinationDeg), value, 1e-3);
 }
