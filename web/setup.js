@@ -36,7 +36,7 @@
     let best = null;
     for (let top = 0, i = 0; i < models.length; i++) {
       let score = 0;
-      for (const f of models[i].figures) if (f.value !== null && f.key in values) score += Math.abs(values[f.key] - f.value) <= 30 || values[f.key] === f.value ? 1 : -99;
+      for (const f of models[i].figures) if (f.value !== null && f.key in values) score += (typeof f.value === 'number' ? Math.abs(values[f.key] - f.value) <= 30 : values[f.key] === f.value) ? 1 : -99;
       if (score > top) [top, best] = [score, models[i]];
     }
     best = models.find((x) => x.id === sessionStorage.model) ?? best;
@@ -125,10 +125,7 @@
   $('start').addEventListener('click', async () => {
     const body = { axis: $('axis').value, step: $('step').value };
     // Left empty: the controller says what it wants.
-    const n = (k, id) => { if ($(id).value !== '' && !$(id).closest('label').hidden) body[k] = Number($(id).value); };
-    n('ccw_deg', 'ccw');
-    n('cw_deg', 'cw');
-    n('bearing_deg', 'bearing');
+    for (const k of ['ccw', 'cw', 'bearing']) if ($(k).value !== '' && !$(k + '-label').hidden) body[k + '_deg'] = Number($(k).value);
     const r = await rotord.post('/api/commission', body);
     if (r.status !== 200) return rotord.message($('run-state'), r.body?.error, false);
     follow();

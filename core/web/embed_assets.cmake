@@ -1,8 +1,9 @@
 # cmake -DGZIP=gzip -DWEB_DIR=web [-DEXTRA_DIR=dir] -DOUT=web_assets.cpp -P embed_assets.cmake
 # Writes a C++ file with every web/ file (and every *.js of EXTRA_DIR, the
-# files generated at build time: the map's world.js) gzipped (-9 -n: reproducible, no name
-# or time stamp; scripts without their comment-only lines) as a byte array, plus the
-# table web::find_asset() searches.
+# files generated at build time: the map's world.js) gzipped (-9 -n:
+# reproducible, no name or time stamp; scripts without their comment-only
+# lines and indentation) as a byte array, plus the table web::find_asset()
+# searches.
 cmake_minimum_required(VERSION 3.25)
 find_program(SED sed REQUIRED)
 
@@ -26,9 +27,11 @@ foreach(name IN LISTS files)
   if(ext STREQUAL ".js")
     # Lines that are only a // comment are left out: they say why for the
     # source's readers, not for a browser, and were about 4 KB of the Pico
-    # W's flash gzipped. (No script has a template literal over several
-    # lines, where such a line would be text: web.browser* load every page.)
-    execute_process(COMMAND ${SED} -e "/^[[:space:]]*[/][/]/d" ${source}
+    # W's flash gzipped. So is each line's indentation (about 1 KB gzipped
+    # over all the scripts): JavaScript does not read it. (No script has a
+    # template literal or a string over several lines, where such a line
+    # would be text: web.browser* load every page.)
+    execute_process(COMMAND ${SED} -e "/^[[:space:]]*[/][/]/d" -e "s/^[[:space:]]*//" ${source}
                     COMMAND ${GZIP} -9 -n -c
                     OUTPUT_FILE ${OUT}.${index}.gz COMMAND_ERROR_IS_FATAL ANY)
   else()

@@ -51,12 +51,7 @@ void Api::post_settings(std::string_view body, protocol::ByteSink& out,
     });
     return;
   }
-  if (r.changed.any() && !persist(out, options)) {
-    for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (r.changed[n]) values.copy_value(static_cast<Id>(n), backup_);
-    return;
-  }
-  send_changed(out, options, r.changed);
+  save_changed(out, options, r.changed);
 }
 
 void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options) {
@@ -79,7 +74,13 @@ void Api::reset_settings(protocol::ByteSink& out, const ResponseOptions& options
       values.copy_value(id, defaults);
     }
   }
+  save_changed(out, options, changed);
+}
+
+void Api::save_changed(protocol::ByteSink& out, const ResponseOptions& options,
+                       const SettingSet& changed) {
   if (changed.any() && !persist(out, options)) {
+    settings::Settings& values = ctx_.controller.settings();
     for (std::size_t n = 0; n < settings::kCount; ++n)
       if (changed[n]) values.copy_value(static_cast<Id>(n), backup_);
     return;

@@ -215,12 +215,7 @@ Api::Outcome Api::saved_change(const Call& call, const settings::Rejection& r, i
   SettingSet changed;
   for (std::size_t n = 0; n < settings::kCount; ++n)
     changed[n] = !values.same_value(static_cast<Id>(n), backup_);
-  if (changed.any() && !persist(call.out, call.options)) {
-    for (std::size_t n = 0; n < settings::kCount; ++n)
-      if (changed[n]) values.copy_value(static_cast<Id>(n), backup_);
-    return Outcome::kDone;
-  }
-  send_changed(call.out, call.options, changed);
+  save_changed(call.out, call.options, changed);
   return Outcome::kDone;
 }
 

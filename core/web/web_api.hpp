@@ -240,6 +240,11 @@ class Api {
   void reset_settings(protocol::ByteSink& out, const ResponseOptions& options);
   /// Persists the settings, or restores `backup_` when that fails.
   bool persist(protocol::ByteSink& out, const ResponseOptions& options);
+  /// Saves a change (backup_ holds the settings before it) and lists what
+  /// changed; when saving fails, restores the changed settings (persist
+  /// answered the failure).
+  void save_changed(protocol::ByteSink& out, const ResponseOptions& options,
+                    const SettingSet& changed);
   /// Saves the settings; false (nothing answered) when that fails.
   bool save();
 
