@@ -89,6 +89,8 @@ class TrackerClient {
     ++commands_;
     if (ask(session, cmd) != "RPRT 0\n") ++refused_;
   }
+  /// The error it lets stand before sending (0: none, a go-to every cycle).
+  double threshold_deg() const { return threshold_deg_; }
   int commands() const { return commands_; }
   int refused() const { return refused_; }
 

@@ -47,13 +47,6 @@ void GotoMatcher::sky_direction(float& az_deg, float& el_deg) {
   az_deg = wrap_360(az_deg);
 }
 
-float GotoMatcher::separation_deg(float az1_deg, float el1_deg, float az2_deg, float el2_deg) {
-  const Vec3 a = unit(az1_deg, el1_deg);
-  const Vec3 b = unit(az2_deg, el2_deg);
-  const Vec3 d = sub(a, b);
-  return chord_to_deg(std::sqrt(dot(d, d)));
-}
-
 bool GotoMatcher::load(int candidate, const tracking::TleCatalog* catalog,
                        tracking::SkyTarget& target) {
   const int stored = catalog != nullptr ? static_cast<int>(catalog->size()) : 0;
@@ -69,7 +62,7 @@ bool GotoMatcher::load(int candidate, const tracking::TleCatalog* catalog,
 }
 
 bool GotoMatcher::near(tracking::SkyTarget& target, float az_deg, float el_deg, std::int64_t utc_ms,
-                       const tracking::Observer& observer) {
+                       const tracking::Observer& observer, const Pointing* before, bool* in_step) {
   tracking::LookAngles look;
   if (target.look(utc_ms, observer, look) != tracking::Sgp4Error::kOk) return false;
   // The object's recent path as a straight segment through where it is now
@@ -95,7 +88,19 @@ bool GotoMatcher::near(tracking::SkyTarget& target, float az_deg, float el_deg, 
   float s = ab2 > 0.0f ? dot(sub(q, a), ab) / ab2 : 0.0f;
   s = s < 0.0f ? 0.0f : (s > 1.0f ? 1.0f : s);
   const Vec3 d = sub(q, along(a, ab, s));
-  return chord_to_deg(std::sqrt(dot(d, d))) <= kToleranceDeg;
+  if (chord_to_deg(std::sqrt(dot(d, d))) > kToleranceDeg) return false;
+  if (in_step != nullptr) {
+    // The step from the earlier go-to against the object's motion over the
+    // same time (along its path as above: short steps only; chords in
+    // radians, near enough degrees * kDeg2Rad at these sizes).
+    const float dt_s = static_cast<float>(utc_ms - before->utc_ms) / 1000.0f;
+    const Vec3 motion = along({0.0f, 0.0f, 0.0f}, v, dt_s);
+    const float moved = std::sqrt(dot(motion, motion));
+    const Vec3 off = sub(sub(q, unit(before->az_deg, before->el_deg)), motion);
+    *in_step = moved >= kInStepMinDeg * kDeg2Rad && moved <= kLookBackMaxDeg * kDeg2Rad &&
+               std::sqrt(dot(off, off)) <= kInStepToleranceDeg * kDeg2Rad + kInStepOfMotion * moved;
+  }
+  return true;
 }
 
 bool GotoMatcher::catalog_changed(const tracking::TleCatalog* catalog) const {
@@ -112,6 +117,7 @@ void GotoMatcher::start(const tracking::TleCatalog* catalog) {
   for (int n = 0; n < stored; ++n)
     catalog_ids_[n] = catalog->entry(static_cast<std::size_t>(n)).catalog;
   for (int n = 0; n < count_; ++n) hits_[n] = kUnchecked;
+  hit_last_ = 0;
   cursor_ = 0;
   started_ = true;
 }
@@ -130,13 +136,24 @@ GotoMatcher::Verdict GotoMatcher::consider(float az_deg, float el_deg, std::int6
   // The sweep gets one evaluation of every go-to while it lasts, so a small
   // budget is not spent on the candidates still in alone.
   const int in_budget = any_unchecked ? budget - 1 : budget;
+  const Pointing here = {az_deg, el_deg, utc_ms};
+  const std::uint32_t hit_before = hit_last_;
+  hit_last_ = 0;
   Verdict v;
-  // First the candidates still in: each must match this go-to to stay in.
+  // First the candidates still in: each must match this go-to to stay in;
+  // one that matched the last go-to too and stepped with it is recognised
+  // now (kInStep...).
   for (int n = 0; n < count_ && v.evaluated < in_budget; ++n) {
     if (hits_[n] == kOut || hits_[n] == kUnchecked) continue;
     ++v.evaluated;
-    const bool hit = load(n, catalog, scratch_) && near(scratch_, az_deg, el_deg, utc_ms, observer);
-    hits_[n] = hit ? static_cast<std::uint8_t>(hits_[n] < 100 ? hits_[n] + 1 : 100) : kOut;
+    bool in_step = false;
+    const bool was_hit = (hit_before >> n) & 1u;
+    const bool hit = load(n, catalog, scratch_) && near(scratch_, az_deg, el_deg, utc_ms, observer,
+                                                        &last_, was_hit ? &in_step : nullptr);
+    int hits = hits_[n] + 1;
+    if (in_step && hits < kMinHits) hits = kMinHits;
+    hits_[n] = hit ? static_cast<std::uint8_t>(hits < 100 ? hits : 100) : kOut;
+    if (hit) hit_last_ |= 1u << n;
   }
   // Then the sweep of those not yet compared, as far as the budget goes.
   const int from = cursor_;
@@ -146,8 +163,10 @@ GotoMatcher::Verdict GotoMatcher::consider(float az_deg, float el_deg, std::int6
     ++v.evaluated;
     const bool hit = load(n, catalog, scratch_) && near(scratch_, az_deg, el_deg, utc_ms, observer);
     hits_[n] = hit ? 1 : kOut;
+    if (hit) hit_last_ |= 1u << n;
     cursor_ = (n + 1) % count_;
   }
+  last_ = here;
   int in = 0;
   bool unchecked = false;
   for (int n = 0; n < count_; ++n) {

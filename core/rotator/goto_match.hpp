@@ -11,10 +11,10 @@ namespace rotord {
 /// "Trackers through the protocols"): a stored satellite, the Sun or the
 /// Moon. Each go-to of the stream is compared with where each candidate was
 /// recently; a candidate that misses once is out for the stream, one that
-/// matched kMinHits go-tos in a row while every other candidate is out is
-/// recognised. Two that keep matching (docked objects, the same object twice
-/// in the store, the Sun beside the Moon) are ambiguous: nothing is
-/// recognised.
+/// matched kMinHits go-tos in a row, or two in step with it (kInStep...),
+/// while every other candidate is out is recognised. Two that keep matching
+/// (docked objects, the same object twice in the store, the Sun beside the
+/// Moon) are ambiguous: nothing is recognised.
 ///
 /// Cost: work is done only when a go-to arrives, never in the control tick,
 /// and at most `budget` candidates are evaluated per go-to (one SGP4 set-up
@@ -43,6 +43,21 @@ class GotoMatcher {
   /// Matched go-tos in a row before an object is recognised: one or two
   /// points near an object may be chance, three in step with it are not.
   static constexpr int kMinHits = 3;
+  /// ... or two, when the step between them is the object's own motion over
+  /// the time between them, in direction and rate: within
+  /// kInStepToleranceDeg plus kInStepOfMotion of that motion (a client's lag
+  /// varies by up to its cycle; a constant lag, a clock offset or elements a
+  /// day old shift both go-tos alike and cancel), and the motion at least
+  /// kInStepMinDeg (a step smaller than the tolerances says nothing: the
+  /// Sun, the Moon and a fast client's 1 s steps still need three) and at
+  /// most kLookBackMaxDeg (the straight path holds that far). Chance does not
+  /// put two go-tos within the tolerance of an object's path AND a step
+  /// apart that matches its motion; a threshold client (Gpredict 5 deg, the
+  /// SatNOGS client 4) sends its third go-to a minute or more after its
+  /// first, which the third hit cost in pointing.
+  static constexpr float kInStepMinDeg = 2.0f;
+  static constexpr float kInStepToleranceDeg = 1.0f;
+  static constexpr float kInStepOfMotion = 0.25f;
 
   /// What a go-to told.
   struct Verdict {
@@ -74,25 +89,37 @@ class GotoMatcher {
 
   /// Loads candidate `n` into `target`; false when it cannot be computed.
   static bool load(int candidate, const tracking::TleCatalog* catalog, tracking::SkyTarget& target);
+  /// A go-to as the matcher keeps it: its sky direction and when it came.
+  struct Pointing {
+    float az_deg = 0.0f, el_deg = 0.0f;
+    std::int64_t utc_ms = 0;
+  };
   /// Whether a go-to at `az_deg`, `el_deg` (sky direction) at `utc_ms` is
-  /// within kToleranceDeg of `target`'s recent path.
+  /// within kToleranceDeg of `target`'s recent path. With `before` (an
+  /// earlier go-to) and `in_step`: whether the step from `before` to this
+  /// go-to is also the object's motion over that time (kInStep...).
   static bool near(tracking::SkyTarget& target, float az_deg, float el_deg, std::int64_t utc_ms,
-                   const tracking::Observer& observer);
+                   const tracking::Observer& observer, const Pointing* before = nullptr,
+                   bool* in_step = nullptr);
   /// The sky direction a go-to points at: a flip frame (el above 90, as
   /// Gpredict with max el 180 and the SatNOGS client's mirrored pass send
   /// it: az +/- 180, 180 - el) is the same direction as az, el below 90.
   static void sky_direction(float& az_deg, float& el_deg);
-  /// The angle between two sky directions (degrees).
-  static float separation_deg(float az1_deg, float el1_deg, float az2_deg, float el2_deg);
 
  private:
   void start(const tracking::TleCatalog* catalog);
   bool catalog_changed(const tracking::TleCatalog* catalog) const;
 
-  // Per candidate: kUnchecked, kOut, or the matched go-tos in a row (1..).
+  // Per candidate: kUnchecked, kOut, or the matched go-tos in a row (1..;
+  // kMinHits at once for a pair in step).
   static constexpr std::uint8_t kUnchecked = 0xff;
   static constexpr std::uint8_t kOut = 0;
   std::uint8_t hits_[kMaxCandidates] = {};
+  // The last go-to, and which candidates it hit: the step from it is judged
+  // only for those (a small budget may skip a candidate for a go-to).
+  Pointing last_;
+  std::uint32_t hit_last_ = 0;
+  static_assert(kMaxCandidates <= 32, "one bit per candidate");
   std::uint32_t catalog_ids_[tracking::TleCatalog::kCapacity] = {};
   int count_ = 0;   // candidates in this comparison
   int cursor_ = 0;  // where the sweep of unchecked candidates goes on
