@@ -273,7 +273,13 @@ float PositionTracker::estimate_speed() const {
     if (newest.t - s.t >= 300) break;
   }
   const Millis dt = newest.t - oldest.t;
-  if (dt <= 0) return 0.0f;
+  // Over a shorter span (the first readings after a start-up or a
+  // recalibration) a pot's noise alone is tens of deg/s: two readings 10 ms
+  // apart that differ by 0.4 deg read as 40 deg/s. Such a "speed" made the
+  // stop rule cut a 2 deg move at its start (bench, commissioning rows);
+  // until the readings span enough time, no speed is claimed.
+  constexpr Millis kMinSpanMs = 100;
+  if (dt < kMinSpanMs) return 0.0f;
   return (newest.deg - oldest.deg) * 1000.0f / static_cast<float>(dt);
 }
 

@@ -69,7 +69,8 @@ class PositionTracker {
   /// reading; at rest the measured "speed" is the sensor's noise.
   void set_moving(bool moving) { moving_ = moving; }
   Update update(Millis now);
-  /// Degrees per second over the last ~300 ms of readings.
+  /// Degrees per second over the last ~300 ms of readings; 0 until the
+  /// readings span 100 ms.
   float estimate_speed() const;
   /// A fault was cleared: count sensor trouble afresh.
   void clear_errors();
