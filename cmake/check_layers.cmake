@@ -14,8 +14,15 @@
 #  - a file includes only its own layer and the layers its layer reaches
 #    through ROTORD_LAYER_<name> (transitively);
 #  - nor does it name a type of another layer by a forward declaration
-#    (`class TickScheduler;`) or an elaborated pointer (`class Foo*`): what
-#    the build does not see must follow the graph too;
+#    (`class TickScheduler;`, also `namespace loop { class TickScheduler; }`
+#    on one line) or an elaborated pointer (`class Foo*`): what the build
+#    does not see must follow the graph too;
+#  - nor a namespace that only layers out of its reach declare, by a
+#    qualified name (`loop::TickScheduler`, `rotord::web::Api`): a name
+#    written `X::` counts when X is a namespace some layer of the core
+#    declares (`namespace rotord::web {`); the file's layer must declare X
+#    itself or reach a layer that does. Comments and string literals are
+#    not read;
 #  - every edge is used: some file of the layer includes a header of the
 #    layer the edge names;
 #  - with SOURCE_DIR (the tree holding core/, sim/ and ports/), the rules of
@@ -108,6 +115,22 @@ foreach(layer IN LISTS ROTORD_LAYERS)
   set(sources_${layer} ${sources})
   foreach(source IN LISTS sources)
     file(READ ${source} content)
+    # Namespaces the layer declares (`namespace rotord::web {`), each part;
+    # not one that only wraps a forward declaration on its line, which
+    # would otherwise make another layer's namespace this one's.
+    file(STRINGS ${source} openings REGEX "^[ \t]*namespace[ \t]+[A-Za-z_][A-Za-z0-9_:]*[ \t]*{")
+    foreach(opening IN LISTS openings)
+      if(opening MATCHES "{[ \t]*(class|struct|enum)[ \t]")
+        continue()
+      endif()
+      string(REGEX REPLACE "^[ \t]*namespace[ \t]+([A-Za-z0-9_:]+).*" "\\1" names "${opening}")
+      string(REPLACE "::" ";" names "${names}")
+      foreach(name IN LISTS names)
+        if(NOT layer IN_LIST namespace_of_${name})
+          list(APPEND namespace_of_${name} ${layer})
+        endif()
+      endforeach()
+    endforeach()
     string(REGEX MATCHALL "(class|struct)[ \t\r\n]+[A-Za-z_][A-Za-z0-9_]*[ \t\r\n]*(final[ \t\r\n]*)?[:{]"
            definitions "${content}")
     foreach(definition IN LISTS definitions)
@@ -164,10 +187,11 @@ foreach(layer IN LISTS ROTORD_LAYERS)
       endif()
     endforeach()
 
-    # Types named without an include: `class Name;` on a line of its own
-    # (not `friend class Name;`) and `class Name*` / `struct Name&`.
+    # Types named without an include: `class Name;` on a line of its own or
+    # after a `{` (`namespace loop { class Name; }`), not `friend class
+    # Name;`; and `class Name*` / `struct Name&`.
     file(STRINGS ${source} declarations
-         REGEX "(^[ \t]*(class|struct)[ \t]+[A-Za-z_][A-Za-z0-9_:]*[ \t]*;)|([^A-Za-z0-9_](class|struct)[ \t]+[A-Za-z_][A-Za-z0-9_:]*[ \t]*[*&])")
+         REGEX "((^|{)[ \t]*(class|struct)[ \t]+[A-Za-z_][A-Za-z0-9_:]*[ \t]*;)|([^A-Za-z0-9_](class|struct)[ \t]+[A-Za-z_][A-Za-z0-9_:]*[ \t]*[*&])")
     foreach(declaration IN LISTS declarations)
       if(declaration MATCHES "^[ \t]*(//|\\*|/\\*)")
         continue()  # a comment
@@ -192,6 +216,41 @@ foreach(layer IN LISTS ROTORD_LAYERS)
                "(${layer} may include only: ${allowed}, per ${LAYERS_FILE}): invert the "
                "dependency (an interface or a callback in '${layer}') or add the edge")
       endif()
+    endforeach()
+
+    # Namespaces named by a qualified name (`web::Api`), once a file: the
+    # first line that names one out of reach is reported.
+    file(STRINGS ${source} qualified REGEX "[A-Za-z_][A-Za-z0-9_]*::")
+    set(named_here "")
+    foreach(code IN LISTS qualified)
+      if(code MATCHES "^[ \t]*(//|\\*|/\\*|#)" OR code MATCHES "^[ \t]*namespace[ \t]+[A-Za-z0-9_:]+[ \t]*{")
+        continue()  # a comment, a directive, or a namespace opened (see above)
+      endif()
+      set(line_text "${code}")
+      string(REGEX REPLACE "\"([^\"\\\\]|\\\\.)*\"" "\"\"" code "${code}")
+      string(REGEX REPLACE "//.*$" "" code "${code}")
+      string(REGEX MATCHALL "[A-Za-z_][A-Za-z0-9_]*::" names "${code}")
+      foreach(name IN LISTS names)
+        string(REGEX REPLACE "::$" "" name "${name}")
+        if(name IN_LIST named_here OR NOT DEFINED namespace_of_${name}
+           OR layer IN_LIST namespace_of_${name})
+          continue()  # seen, a class or std, or its own
+        endif()
+        list(APPEND named_here ${name})
+        set(reachable FALSE)
+        foreach(owner IN LISTS namespace_of_${name})
+          if(owner IN_LIST reach_${layer})
+            set(reachable TRUE)
+          endif()
+        endforeach()
+        if(NOT reachable)
+          line_of(${source} "${line_text}" line)
+          string(REPLACE ";" " " owners "${namespace_of_${name}}")
+          report("${shown}:${line}: names '${name}::', a namespace of layer '${owners}': "
+                 "layer '${layer}' may not use layer '${owners}' (${layer} may include only: "
+                 "${allowed}, per ${LAYERS_FILE})")
+        endif()
+      endforeach()
     endforeach()
   endforeach()
 endforeach()

@@ -43,7 +43,8 @@ set(ROTORD_LAYER_settings util access sensors)
 set(ROTORD_LAYER_json settings hal)
 # Flash slots, the settings saver.
 set(ROTORD_LAYER_storage json settings hal)
-# Button debouncing, manual buttons.
+# Button debouncing, manual buttons (what a press wants; the command
+# layer's Buttons turns it into commands).
 set(ROTORD_LAYER_input hal util)
 # Position tracking and the motion state machine of one axis.
 set(ROTORD_LAYER_axis sensors motion settings)
@@ -53,15 +54,16 @@ set(ROTORD_LAYER_axis sensors motion settings)
 set(ROTORD_LAYER_care axis json hal)
 # Who may connect and who may control, from the settings' network lists.
 set(ROTORD_LAYER_net access settings)
-# The Controller: axes, buttons, park, the control lock.
-set(ROTORD_LAYER_rotator axis care input tracking settings access)
+# The Controller: axes, park, tracks, the control lock.
+set(ROTORD_LAYER_rotator axis care tracking settings access)
 # The command layer: each command a client may send (go-to, move, stop,
 # park, reset, speed, place, preset) once, with its argument checks (typed
 # for the line protocols, read from JSON for REST and MQTT: the body and the
 # payload are the same document), who may call it (the allow-list from net),
 # the control lock, and its errors as values; the front ends above only
-# translate bytes.
-set(ROTORD_LAYER_command rotator net json)
+# translate bytes. On input: the manual buttons are a front end here
+# (command/buttons.hpp), polled by the port before the controller's tick.
+set(ROTORD_LAYER_command rotator net json input)
 # Byte sessions of the line protocols and the UDP messages, over the command
 # layer; the settings document's JSON codec for the console's export and
 # import.

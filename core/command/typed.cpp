@@ -27,6 +27,10 @@ Error move(Controller& controller, AxisId axis, Direction dir, int speed_pct) {
   return controller.move(axis, dir, speed_pct);
 }
 
+void end_jog(Controller& controller, AxisId axis) {
+  controller.end_jog(axis);
+}
+
 Error park(Controller& controller) {
   return controller.park();
 }

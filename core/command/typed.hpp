@@ -7,9 +7,8 @@
 // controller's own values (util/error.hpp), which every front end turns
 // into its own reply bytes (a Hamlib RPRT code, GS-232's `?>`, HTTP 409).
 //
-// The manual buttons are not here: they are hardware at the rotator, polled
-// by the controller's own tick below this layer (input/manual_buttons.hpp),
-// and no access rule applies to a hand on the box.
+// The manual buttons (buttons.hpp) are a front end over these too: a press
+// is `move`, a release `end_jog`.
 #include <optional>
 #include <string_view>
 
@@ -39,6 +38,9 @@ Error go_to(Controller& controller, std::optional<float> az_deg, std::optional<f
 /// Turn an axis (Direction::kNone stops it) at `speed_pct` (-1: the
 /// controller's speed).
 Error move(Controller& controller, AxisId axis, Direction dir, int speed_pct = -1);
+/// Ends the jog on `axis` if it still jogs (a manual button released):
+/// nothing else, so a go-to sent while the button was held goes on.
+void end_jog(Controller& controller, AxisId axis);
 Error park(Controller& controller);
 /// Stop and clear latched faults; kFaulted while the emergency stop is active.
 Error reset(Controller& controller);

@@ -27,6 +27,33 @@ std::size_t copy_text(std::string_view from, char* out, std::size_t cap) {
   return n;
 }
 
+// Home Assistant's entities of the rotator itself, announced in this order
+// (announce's steps 0..kEntityCount-1).
+enum class Kind : unsigned char {
+  kSensorAz,
+  kSensorEl,
+  kNumberAz,
+  kStop,
+  kPark,
+  kFault,
+  kSensorMechAz
+};
+struct Entity {
+  Kind kind;
+  const char* component;
+  const char* object;
+  const char* name;
+};
+constexpr Entity kEntities[] = {
+    {Kind::kSensorAz, "sensor", "azimuth", "Azimuth"},
+    {Kind::kSensorEl, "sensor", "elevation", "Elevation"},
+    {Kind::kNumberAz, "number", "target_azimuth", "Target azimuth"},
+    {Kind::kStop, "button", "stop", "Stop"},
+    {Kind::kPark, "button", "park", "Park"},
+    {Kind::kFault, "binary_sensor", "fault", "Fault"},
+    {Kind::kSensorMechAz, "sensor", "mechanical_azimuth", "Mechanical azimuth"},
+};
+
 }  // namespace
 
 Bridge::Bridge(web::Api& api, Transport& transport, std::string_view prefix,
@@ -250,104 +277,77 @@ bool Bridge::publish_info() {
 }
 
 bool Bridge::publish_discovery(int entity) {
-  const settings::Settings& s = api_->settings();
-  const bool has_el = s.b(Id::kElEnabled);
-  char state_topic[kMaxTopicBytes];
-  join_topic(prefix(), "state", state_topic, sizeof state_topic);
-  char goto_topic[kMaxTopicBytes];
-  join_topic(prefix(), "cmd/goto", goto_topic, sizeof goto_topic);
-  char stop_topic[kMaxTopicBytes];
-  join_topic(prefix(), "cmd/stop", stop_topic, sizeof stop_topic);
-  char park_topic[kMaxTopicBytes];
-  join_topic(prefix(), "cmd/park", park_topic, sizeof park_topic);
-
-  enum class Kind : unsigned char {
-    kSensorAz,
-    kSensorEl,
-    kNumberAz,
-    kStop,
-    kPark,
-    kFault,
-    kSensorMechAz
-  };
-  struct Entity {
-    Kind kind;
-    const char* component;
-    const char* object;
-    const char* name;
-  };
-  static constexpr Entity kEntities[] = {
-      {Kind::kSensorAz, "sensor", "azimuth", "Azimuth"},
-      {Kind::kSensorEl, "sensor", "elevation", "Elevation"},
-      {Kind::kNumberAz, "number", "target_azimuth", "Target azimuth"},
-      {Kind::kStop, "button", "stop", "Stop"},
-      {Kind::kPark, "button", "park", "Park"},
-      {Kind::kFault, "binary_sensor", "fault", "Fault"},
-      {Kind::kSensorMechAz, "sensor", "mechanical_azimuth", "Mechanical azimuth"},
-  };
   static_assert(std::size(kEntities) == kEntityCount, "one announcement per entity");
   if (entity < 0 || static_cast<std::size_t>(entity) >= std::size(kEntities)) return true;
   const Entity& e = kEntities[entity];
+  // homeassistant/<component>/<node_id>/<object_id>/config
+  char topic[kMaxTopicBytes];
+  const int tn = std::snprintf(topic, sizeof topic, "homeassistant/%s/%s/%s/config", e.component,
+                               node_id_, e.object);
+  if (tn <= 0 || static_cast<std::size_t>(tn) >= sizeof topic) return true;
+  const std::string_view config_topic(topic, static_cast<std::size_t>(tn));
+  if (e.kind == Kind::kSensorEl && !api_->settings().b(Id::kElEnabled)) {
+    // An empty retained config removes an entity published before.
+    return transport_.publish(config_topic, {}, true);
+  }
+  char unique_id[72];
+  std::snprintf(unique_id, sizeof unique_id, "%s_%s", node_id_, e.object);
+  FixedSink sink(message_, sizeof message_);
   {
-    // homeassistant/<component>/<node_id>/<object_id>/config
-    char topic[kMaxTopicBytes];
-    const int tn = std::snprintf(topic, sizeof topic, "homeassistant/%s/%s/%s/config", e.component,
-                                 node_id_, e.object);
-    if (tn <= 0 || static_cast<std::size_t>(tn) >= sizeof topic) return true;
-    if (e.kind == Kind::kSensorEl && !has_el) {
-      // An empty retained config removes an entity published before.
-      return transport_.publish(std::string_view(topic, static_cast<std::size_t>(tn)), {}, true);
-    }
-    char unique_id[72];
-    std::snprintf(unique_id, sizeof unique_id, "%s_%s", node_id_, e.object);
-    FixedSink sink(message_, sizeof message_);
-    {
-      web::JsonWriter w(sink);
-      write_entity_head(w, e.name, unique_id);
-      switch (e.kind) {
-        case Kind::kSensorAz:
-        case Kind::kSensorEl:
-        case Kind::kSensorMechAz:
-          // Where the beam points (after a flip over the zenith); the
-          // mechanism's azimuth beside it.
-          w.member("state_topic", state_topic)
-              .member("value_template",
-                      e.kind == Kind::kSensorAz   ? "{{ value_json.beam.az_deg | round(1) }}"
-                      : e.kind == Kind::kSensorEl ? "{{ value_json.beam.el_deg | round(1) }}"
-                                                  : "{{ value_json.az.position_deg | round(1) }}")
-              .member("unit_of_measurement", "\xc2\xb0")
-              .member("state_class", "measurement")
-              .member("icon", "mdi:compass");
-          break;
-        case Kind::kNumberAz:
-          w.member("command_topic", goto_topic)
-              .member("command_template", "{\"az\": {{ value }}}")
-              .member("state_topic", state_topic)
-              .member("value_template",
-                      "{{ value_json.az.target_deg if value_json.az.target_deg is not none "
-                      "else value_json.az.position_deg }}")
-              .member("min", s.get(Id::kAzMinDeg))
-              .member("max", s.get(Id::kAzMaxDeg))
-              .member("step", 1)
-              .member("mode", "box")
-              .member("unit_of_measurement", "\xc2\xb0");
-          break;
-        case Kind::kStop:
-        case Kind::kPark:
-          w.member("command_topic", e.kind == Kind::kStop ? stop_topic : park_topic)
-              .member("payload_press", "{}");
-          break;
-        case Kind::kFault:
-          w.member("state_topic", state_topic)
-              .member("value_template", "{{ 'ON' if value_json.fault else 'OFF' }}")
-              .member("device_class", "problem");
-          break;
-      }
-      w.end_object();
-    }
-    if (sink.overflowed()) return true;  // cannot ever fit: not retried
-    return transport_.publish(std::string_view(topic, static_cast<std::size_t>(tn)), sink.view(),
-                              true);
+    web::JsonWriter w(sink);
+    write_entity_head(w, e.name, unique_id);
+    write_entity_body(w, entity);
+    w.end_object();
+  }
+  if (sink.overflowed()) return true;  // cannot ever fit: not retried
+  return transport_.publish(config_topic, sink.view(), true);
+}
+
+void Bridge::write_entity_body(web::JsonWriter& w, int entity) const {
+  const Kind kind = kEntities[entity].kind;
+  char state_topic[kMaxTopicBytes];
+  join_topic(prefix(), "state", state_topic, sizeof state_topic);
+  char command_topic[kMaxTopicBytes];
+  switch (kind) {
+    case Kind::kSensorAz:
+    case Kind::kSensorEl:
+    case Kind::kSensorMechAz:
+      // Where the beam points (after a flip over the zenith); the
+      // mechanism's azimuth beside it.
+      w.member("state_topic", state_topic)
+          .member("value_template",
+                  kind == Kind::kSensorAz   ? "{{ value_json.beam.az_deg | round(1) }}"
+                  : kind == Kind::kSensorEl ? "{{ value_json.beam.el_deg | round(1) }}"
+                                            : "{{ value_json.az.position_deg | round(1) }}")
+          .member("unit_of_measurement", "\xc2\xb0")
+          .member("state_class", "measurement")
+          .member("icon", "mdi:compass");
+      break;
+    case Kind::kNumberAz:
+      join_topic(prefix(), "cmd/goto", command_topic, sizeof command_topic);
+      w.member("command_topic", command_topic)
+          .member("command_template", "{\"az\": {{ value }}}")
+          .member("state_topic", state_topic)
+          .member("value_template",
+                  "{{ value_json.az.target_deg if value_json.az.target_deg is not none "
+                  "else value_json.az.position_deg }}")
+          .member("min", api_->settings().get(Id::kAzMinDeg))
+          .member("max", api_->settings().get(Id::kAzMaxDeg))
+          .member("step", 1)
+          .member("mode", "box")
+          .member("unit_of_measurement", "\xc2\xb0");
+      break;
+    case Kind::kStop:
+    case Kind::kPark:
+      join_topic(prefix(), kind == Kind::kStop ? "cmd/stop" : "cmd/park", command_topic,
+                 sizeof command_topic);
+      w.member("command_topic", command_topic).member("payload_press", "{}");
+      break;
+    case Kind::kFault:
+      w.member("state_topic", state_topic)
+          .member("value_template", "{{ 'ON' if value_json.fault else 'OFF' }}")
+          .member("device_class", "problem");
+      break;
   }
 }
 

@@ -122,6 +122,9 @@ class Bridge {
   /// transport refused it (tried again later).
   bool announce(int step);
   bool publish_discovery(int entity);
+  /// What entity `entity` (0..kEntityCount-1) has beyond the head: its
+  /// topics, templates and units.
+  void write_entity_body(web::JsonWriter& w, int entity) const;
   bool publish_info();
   /// Home Assistant's button for preset slot `slot` (an empty config
   /// removes the button of an unused slot); presets.cpp.

@@ -124,6 +124,33 @@ const ProtocolInfo* find_protocol(std::string_view key);
 /// The row counted under `metric`, or nullptr (HTTP, which is no row).
 const ProtocolInfo* find_protocol(metrics::Protocol metric);
 
+/// Whether `choices` ('|'-separated, as an enum setting's) is "off" and
+/// then rows' keys, each at most once, in any order: usb.personality's
+/// choices (checked at compile time in protocol_registry.cpp). A row need
+/// not be offered; a choice that is no row's key (a typo, a key renamed)
+/// would leave the USB port silent, so it is refused.
+constexpr bool offers_off_and_rows(std::string_view choices) {
+  std::array<bool, kPersonalityCount> offered{};
+  std::size_t start = 0;
+  for (std::size_t n = 0; start <= choices.size(); ++n) {
+    std::size_t end = choices.find('|', start);
+    if (end == std::string_view::npos) end = choices.size();
+    const std::string_view choice = choices.substr(start, end - start);
+    start = end + 1;
+    if (n == 0) {
+      if (choice != "off") return false;
+      continue;
+    }
+    const auto row = std::find_if(rows::kProtocols.begin(), rows::kProtocols.end(),
+                                  [choice](const ProtocolInfo& p) { return p.key == choice; });
+    if (row == rows::kProtocols.end()) return false;  // no row's key
+    bool& seen = offered[static_cast<std::size_t>(row->personality)];
+    if (seen) return false;  // twice
+    seen = true;
+  }
+  return true;
+}
+
 /// What a port announces by DNS-SD: the web's port, and each row's TCP port
 /// as `port_of(personality)` gives it (0: off) where its dns_sd column says.
 template <typename PortOf>

@@ -30,8 +30,7 @@ Controller::Controller(settings::Settings& settings, const AxisIo& az_io, const 
     : settings_(settings),
       az_(AxisId::kAz, az_io),
       el_(AxisId::kEl, el_io),
-      has_el_(settings.b(Id::kElEnabled)),
-      buttons_({az_io.button_fwd, az_io.button_rev}, {el_io.button_fwd, el_io.button_rev}) {
+      has_el_(settings.b(Id::kElEnabled)) {
   apply_settings();
   speed_pct_ = settings_.i(Id::kSpeedPct);
   az_.set_speed_pct(speed_pct_);
@@ -41,7 +40,6 @@ Controller::Controller(settings::Settings& settings, const AxisIo& az_io, const 
 void Controller::apply_settings() {
   az_.configure(axis_config_from(settings_, AxisId::kAz));
   if (has_el_) el_.configure(axis_config_from(settings_, AxisId::kEl));
-  buttons_.configure(settings_.b(Id::kButtonsEnabled), settings_.i(Id::kButtonsDebounceMs));
   wind_.configure(wind_config());
   applied_revision_ = settings_.revision();
 }
@@ -89,7 +87,6 @@ void Controller::tick(Millis now) {
   tick_wind(now);
   if (recognition_.active && !settings_.b(Id::kTrackRecognise))
     end_recognition(RecognitionEnd::kOff);
-  apply_buttons(now);
   // A track or self-commissioning owns the axes: no re-hold after a slip.
   const bool rehold_allowed = !tracker_.armed() && !commissioning_.running();
   az_.allow_rehold(rehold_allowed);
@@ -226,24 +223,9 @@ void Controller::park_when_idle_long_enough(Millis now) {
   auto_parked_ = true;
 }
 
-void Controller::apply_buttons(Millis now) {
-  const auto commands = buttons_.poll(now);
-  for (const AxisId axis : {AxisId::kAz, AxisId::kEl}) {
-    const ManualButtons::Command& c = commands[static_cast<std::size_t>(axis_index(axis))];
-    if (!c.changed) continue;
-    bool& mine = button_jog_[static_cast<std::size_t>(axis_index(axis))];
-    if (c.dir != Direction::kNone) {
-      // Refused moves (fault, limit, no elevation) simply do nothing; the
-      // status already shows why.
-      mine = move(axis, c.dir) == Error::kOk;
-      continue;
-    }
-    // Released: stop the jog the button started, but not a go-to or a jog
-    // that a client commanded since.
-    Axis& a = axis == AxisId::kAz ? az_ : el_;
-    if (mine && a.status().jogging) a.stop();
-    mine = false;
-  }
+void Controller::end_jog(AxisId axis) {
+  Axis& a = axis == AxisId::kAz ? az_ : el_;
+  if (a.status().jogging) a.stop();
 }
 
 void Controller::shutdown() {

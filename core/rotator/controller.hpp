@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <optional>
 #include <string_view>
 
@@ -10,7 +11,6 @@
 #include "care/wind_stow.hpp"
 #include "hal/pulse_counter.hpp"
 #include "hal/wall_clock.hpp"
-#include "input/manual_buttons.hpp"
 #include "rotator/commissioning.hpp"
 #include "rotator/goto_match.hpp"
 #include "rotator/goto_stream.hpp"
@@ -113,6 +113,9 @@ class Controller {
   /// Moves one axis until stop, a limit, or for `deadman_ms` (0 = no dead-man;
   /// the web's hold-to-move buttons renew it).
   Error move(AxisId axis, Direction dir, int speed_pct = -1, Millis deadman_ms = 0);
+  /// Ends the jog on `axis` if it still jogs, and nothing else (not a
+  /// command: a manual button's release, command/buttons.hpp).
+  void end_jog(AxisId axis);
   void stop();
   Error park();
   /// Stops, clears latched faults, restores the default speed. kFaulted,
@@ -233,7 +236,6 @@ class Controller {
 
  private:
   void apply_settings();
-  void apply_buttons(Millis now);
   /// Any command restarts the idle time park.after_idle_min counts, and
   /// ends a track.
   void note_command();
@@ -270,8 +272,6 @@ class Controller {
   Axis az_;
   Axis el_;
   bool has_el_;
-  ManualButtons buttons_;
-  std::array<bool, kMaxAxes> button_jog_{};  // the jog on this axis came from a button
   std::uint32_t applied_revision_ = 0;
   Mode mode_ = Mode::kIdle;
   int speed_pct_ = 50;

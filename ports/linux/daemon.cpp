@@ -210,7 +210,10 @@ bool Daemon::load_settings(const sim::Profile* profile) {
 }
 
 bool Daemon::start_controller() {
-  controller_ = std::make_unique<Controller>(settings_, axis_io(AxisId::kAz), axis_io(AxisId::kEl));
+  const AxisIo az_io = axis_io(AxisId::kAz);
+  const AxisIo el_io = axis_io(AxisId::kEl);
+  controller_ = std::make_unique<Controller>(settings_, az_io, el_io);
+  buttons_ = std::make_unique<command::Buttons>(*controller_, az_io, el_io);
   controller_->attach_utc_clock(sim_utc_ ? static_cast<const hal::WallClock*>(sim_utc_.get())
                                          : &wall_clock_);
   // A pass search or plan: 64 evaluations per tick (about 1 ms here).
@@ -404,6 +407,7 @@ void Daemon::reboot() {
   datagram_handlers_.reset();
   mqtt_.reset();
   api_.reset();
+  buttons_.reset();
   controller_.reset();
   if (gpio_) {
     // Line and ADC settings take effect now: release every line, request anew.
@@ -556,7 +560,7 @@ void Daemon::on_tick() {
     if (wall_ms > now_ms_) {
       now_ms_ = wall_ms;
       gpio_->sample();
-      controller_->tick(now_ms_);
+      tick_controller();
     }
   } else {
     advance_simulation(wall_ms);
@@ -631,6 +635,11 @@ void Daemon::advance_simulation(Millis wall_ms) {
 void Daemon::tick_simulation() {
   now_ms_ += kTickMs;
   sim_->advance_to(now_ms_);
+  tick_controller();
+}
+
+void Daemon::tick_controller() {
+  buttons_->poll(now_ms_);
   controller_->tick(now_ms_);
 }
 

@@ -6,6 +6,7 @@
 #include "avahi_publisher.hpp"
 #include "care/odometer_saver.hpp"
 #include "clock_control.hpp"
+#include "command/buttons.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
 #include "loop/tick_scheduler.hpp"
@@ -160,6 +161,11 @@ class Daemon final : private web::RebootHook {
   int exit_code_ = 0;
   Millis network_skip_ms_ = 0;  ///< see network_ms()
   std::unique_ptr<Controller> controller_;
+  /// The manual buttons (gpiod.btn_*), a front end of the command layer:
+  /// polled just before each controller tick (tick_controller).
+  std::unique_ptr<command::Buttons> buttons_;
+  /// One control tick: the buttons, then the controller.
+  void tick_controller();
   AxisEvents axis_events_;                // faults and slips, for the log
   RecognitionEvents recognition_events_;  // recognised passes, for the log
   std::unique_ptr<web::Api> api_;

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "care/odometer_saver.hpp"
+#include "command/buttons.hpp"
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
 #include "json/settings_json.hpp"
@@ -429,6 +430,9 @@ const char* restart_reason() {
   const AxisIo az_io = fit_inputs(settings, kAxisPins[0], az);
   const AxisIo el_io = has_el ? fit_inputs(settings, kAxisPins[1], el) : AxisIo{};
   static Controller controller(settings, az_io, el_io);
+  // The manual buttons (pins.btn_*): a front end of the command layer,
+  // polled just before each tick.
+  static command::Buttons buttons(controller, az_io, el_io);
   if (PicoSwitch* estop = fit_switch(g_estop, p(Id::kPinEstop))) {
     controller.attach_estop(estop);
     std::printf("rotord: emergency stop on GPIO %d (%s contact)\n", p(Id::kPinEstop),
@@ -535,6 +539,7 @@ const char* restart_reason() {
 #endif
     if (ticks.poll(static_cast<std::int64_t>(time_us_64()))) {
       const Millis now = now_ms();
+      buttons.poll(now);
       controller.tick(now);
       {
         char event[160];

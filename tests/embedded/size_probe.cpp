@@ -9,6 +9,7 @@
 
 #ifndef ROTORD_SIZE_BASELINE
 #include "axis/axis_io.hpp"
+#include "command/buttons.hpp"
 #include "protocol/wrc_session.hpp"
 #include "rotator/controller.hpp"
 #include "settings/settings.hpp"
@@ -84,6 +85,9 @@ settings::Settings g_settings;
 Controller g_controller{
     g_settings, AxisIo{&g_az_pot, nullptr, &g_az_cw, &g_az_ccw, nullptr, nullptr, &g_az_drive},
     AxisIo{nullptr, &g_el_ma3, &g_el_up, &g_el_down, nullptr, nullptr, &g_el_drive}};
+// The manual buttons' front end, polled before each tick as the Pico W
+// port does (no buttons wired here, as before the command layer had them).
+command::Buttons g_buttons{g_controller, AxisIo{}, AxisIo{}};
 protocol::WrcSession g_wrc{g_controller, ROTORD_VERSION};
 // Tracking: a target from TLE lines as if uploaded, its look angles every
 // loop, a pass search a few evaluations per loop, a bearing to a locator.
@@ -120,6 +124,7 @@ namespace {
     const char c = g_rx;
 #ifndef ROTORD_SIZE_BASELINE
     g_wrc.receive(std::string_view(&c, 1), g_uart);
+    g_buttons.poll(g_millis);
     g_controller.tick(g_millis);
     g_wrc.poll(g_millis, g_uart);
     tracking::LookAngles look;

@@ -1,8 +1,9 @@
 // "No heap in the control tick" (docs/architecture.md), checked rather than promised: this
 // binary replaces the global allocator with one that counts, and the count is
-// taken only inside Controller::tick while the controller runs every kind of
-// work on the simulator: go-tos through the overlap, reversals, jogs, stops,
-// stalls, sensor loss, resets and settings changes (which the tick applies).
+// taken only inside the control tick (the manual buttons' poll and
+// Controller::tick) while the controller runs every kind of work on the
+// simulator: go-tos through the overlap, reversals, jogs, stops, stalls,
+// sensor loss, resets and settings changes (which the tick applies).
 // Its own executable, because the counting allocator is global.
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 #include <memory>
 #include <new>
 
+#include "command/buttons.hpp"
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
@@ -52,6 +54,8 @@ class TickHeap : public ::testing::TestWithParam<const char*> {
     sim_->set_theta_deg(AxisId::kAz, 100);
     controller_ =
         std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
+    buttons_ = std::make_unique<command::Buttons>(*controller_, sim_->io(AxisId::kAz),
+                                                  sim_->io(AxisId::kEl));
     controller_->begin(now_);
     g_tick_allocations = 0;
   }
@@ -61,6 +65,7 @@ class TickHeap : public ::testing::TestWithParam<const char*> {
       now_ += 10;
       sim_->advance_to(now_);
       g_counting = true;
+      buttons_->poll(now_);  // the manual buttons' front end, polled before each tick
       controller_->tick(now_);
       g_counting = false;
       ++ticks_;
@@ -71,6 +76,7 @@ class TickHeap : public ::testing::TestWithParam<const char*> {
   settings::Settings settings_;
   std::unique_ptr<sim::SimRotator> sim_;
   std::unique_ptr<Controller> controller_;
+  std::unique_ptr<command::Buttons> buttons_;
   Millis now_ = 0;
   long ticks_ = 0;
   /// 2019-12-09T17:00:00Z + controller time.

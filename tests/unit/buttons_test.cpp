@@ -164,6 +164,31 @@ TEST_F(ButtonController, DisabledInSettingsMeansIgnored) {
   EXPECT_FALSE(az().jogging);
 }
 
+// The buttons are a front end of the command layer (command/buttons.hpp)
+// with no access rule: a control lock taken through the web holds back the
+// network's clients, not a hand on the box.
+TEST_F(ButtonController, TheControlLockDoesNotHoldBackAHandOnTheBox) {
+  r.controller->control_lock().take(access::LockHolder{}, r.now + 60'000);
+  r.az.button_fwd.on = true;
+  r.run_ms(200);
+  EXPECT_TRUE(r.az.drive.cw());
+  r.az.button_fwd.on = false;
+  r.run_ms(100);
+  EXPECT_FALSE(r.az.drive.cw());
+  EXPECT_TRUE(r.controller->control_lock().held());
+}
+
+// Settings changed at run time reach the buttons before the next poll, as
+// when the controller polled them in its tick: enabled again, they move.
+TEST_F(ButtonController, EnablingAgainInSettingsTakesEffectAtOnce) {
+  r.settings.set(Id::kButtonsEnabled, 0);
+  r.run_ms(100);
+  r.settings.set(Id::kButtonsEnabled, 1);
+  r.az.button_fwd.on = true;
+  r.run_ms(200);
+  EXPECT_TRUE(r.az.drive.cw());
+}
+
 TEST(ButtonSettings, EnablingNeedsBothAzimuthPinsOfEitherPort) {
   settings::Settings s;
   ASSERT_EQ(s.set(Id::kButtonsEnabled, 1).error, Error::kOk);

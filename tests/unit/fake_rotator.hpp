@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "axis/axis_io.hpp"
+#include "command/buttons.hpp"
 #include "rotator/controller.hpp"
 #include "settings/settings.hpp"
 
@@ -66,6 +67,10 @@ struct FakeRotator {
   settings::Settings settings;
   FakeAxisHardware az, el;
   std::unique_ptr<Controller> controller;
+  /// The manual buttons' front end, polled before each tick as a port does
+  /// (made again for a controller a test replaced).
+  std::unique_ptr<command::Buttons> buttons;
+  const Controller* buttons_for = nullptr;
   Millis now = 0;
 
   explicit FakeRotator(bool with_el = true) {
@@ -92,6 +97,11 @@ struct FakeRotator {
   void run_ms(Millis ms) {
     for (Millis t = 0; t < ms; t += 10) {
       now += 10;
+      if (buttons_for != controller.get()) {
+        buttons = std::make_unique<command::Buttons>(*controller, az.io(), el.io());
+        buttons_for = controller.get();
+      }
+      buttons->poll(now);
       controller->tick(now);
     }
   }

@@ -326,3 +326,70 @@ TEST_F(MqttBridge, StationListsTheRotordsSeen) {
 
 }  // namespace
 }  // namespace rotord::mqtt
+
+namespace rotord::mqtt {
+namespace {
+
+// The rotator's own entities, byte for byte as Home Assistant receives them
+// (publish_discovery split into functions of at most 60 lines, issue 25:
+// the payloads are the ones the single function published). The device
+// head every entity shares is written once here.
+TEST_F(MqttBridge, TheRotatorsEntitiesAreByteForByteAsBefore) {
+  bridge.poll(0);
+  const std::string device =
+      R"("availability_topic":"rotord/test/availability","payload_available":"online",)"
+      R"("payload_not_available":"offline","device":{"identifiers":["rotord_test"],)"
+      R"("name":"rotord test","manufacturer":"rotord",)"
+      R"("model":"rotord antenna rotator controller","sw_version":""},)";
+  struct Expected {
+    const char* topic;
+    const char* head;  // name and unique_id
+    const char* body;  // after the device
+  };
+  const Expected expected[] = {
+      {"sensor/rotord_test/azimuth", R"({"name":"Azimuth","unique_id":"rotord_test_azimuth",)",
+       R"("state_topic":"rotord/test/state","value_template":"{{ value_json.beam.az_deg | round(1) }}","unit_of_measurement":"°","state_class":"measurement","icon":"mdi:compass"})"},
+      {"sensor/rotord_test/elevation",
+       R"({"name":"Elevation","unique_id":"rotord_test_elevation",)",
+       R"("state_topic":"rotord/test/state","value_template":"{{ value_json.beam.el_deg | round(1) }}","unit_of_measurement":"°","state_class":"measurement","icon":"mdi:compass"})"},
+      {"number/rotord_test/target_azimuth",
+       R"({"name":"Target azimuth","unique_id":"rotord_test_target_azimuth",)",
+       R"("command_topic":"rotord/test/cmd/goto","command_template":"{\"az\": {{ value }}}","state_topic":"rotord/test/state","value_template":"{{ value_json.az.target_deg if value_json.az.target_deg is not none else value_json.az.position_deg }}","min":0,"max":450,"step":1,"mode":"box","unit_of_measurement":"°"})"},
+      {"button/rotord_test/stop", R"({"name":"Stop","unique_id":"rotord_test_stop",)",
+       R"("command_topic":"rotord/test/cmd/stop","payload_press":"{}"})"},
+      {"button/rotord_test/park", R"({"name":"Park","unique_id":"rotord_test_park",)",
+       R"("command_topic":"rotord/test/cmd/park","payload_press":"{}"})"},
+      {"binary_sensor/rotord_test/fault", R"({"name":"Fault","unique_id":"rotord_test_fault",)",
+       R"("state_topic":"rotord/test/state","value_template":"{{ 'ON' if value_json.fault else 'OFF' }}","device_class":"problem"})"},
+      {"sensor/rotord_test/mechanical_azimuth",
+       R"({"name":"Mechanical azimuth","unique_id":"rotord_test_mechanical_azimuth",)",
+       R"("state_topic":"rotord/test/state","value_template":"{{ value_json.az.position_deg | round(1) }}","unit_of_measurement":"°","state_class":"measurement","icon":"mdi:compass"})"},
+  };
+  for (const Expected& e : expected) {
+    const auto sent = transport.on(std::string("homeassistant/") + e.topic + "/config");
+    ASSERT_EQ(sent.size(), 1u) << e.topic;
+    EXPECT_EQ(sent[0].payload, std::string(e.head) + device + e.body) << e.topic;
+  }
+}
+
+// An azimuth-only rotator removes the elevation sensor (an empty retained
+// config) and announces the others as before.
+TEST(MqttBridgeAzOnly, TheElevationSensorIsRemoved) {
+  rotord::testing::FakeRotator r{false};
+  r.run_ms(50);
+  web::Api api{web::ApiContext{*r.controller, nullptr, nullptr, nullptr, "9.9.9"}};
+  RecordingTransport transport;
+  Bridge bridge{api, transport, "rotord/test", "rotord_test", "rotord test"};
+  bridge.poll(0);
+  const auto el = transport.on("homeassistant/sensor/rotord_test/elevation/config");
+  ASSERT_EQ(el.size(), 1u);
+  EXPECT_TRUE(el[0].retain);
+  EXPECT_EQ(el[0].payload, "");
+  const auto az = transport.on("homeassistant/sensor/rotord_test/azimuth/config");
+  ASSERT_EQ(az.size(), 1u);
+  EXPECT_NE(az[0].payload.find(R"("value_template":"{{ value_json.beam.az_deg | round(1) }}")"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace rotord::mqtt

@@ -54,6 +54,21 @@ TEST(ProtocolRegistry, OneRowPerPersonalityWithDistinctKeysAndPorts) {
 
 /// Each row's session factory builds that protocol: garbage gets its error,
 /// and a refused connection its own refusal.
+// usb.personality's choices are checked against the rows at compile time
+// (protocol_registry.cpp); the check refuses each way they could drift.
+TEST(ProtocolRegistry, TheUsbChoicesCheckRefusesADriftedList) {
+  EXPECT_TRUE(offers_off_and_rows("off|gs232|easycomm|seed|wrc|rotctld|console"));
+  EXPECT_TRUE(offers_off_and_rows("off|wrc|rotctld|gs232|easycomm|seed|console"));
+  // A row need not be offered on USB.
+  EXPECT_TRUE(offers_off_and_rows("off|gs232|easycomm|seed|wrc|rotctld"));
+  // A choice that is no row's key (a typo, a key renamed), one twice, no
+  // "off" first, nothing at all.
+  EXPECT_FALSE(offers_off_and_rows("off|gs232|easycomm|seed|wrc|rotctl|console"));
+  EXPECT_FALSE(offers_off_and_rows("off|gs232|easycomm|seed|wrc|rotctld|console|wrc"));
+  EXPECT_FALSE(offers_off_and_rows("gs232|off|easycomm|seed|wrc|rotctld|console"));
+  EXPECT_FALSE(offers_off_and_rows(""));
+}
+
 TEST(ProtocolRegistry, EachRowBuildsItsOwnSession) {
   struct Case {
     Personality personality;
