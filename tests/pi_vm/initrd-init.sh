@@ -1,4 +1,5 @@
 #!/bin/busybox sh
+# shellcheck shell=dash
 # /init of the pi_vm machine's initrd (build-image.sh makes it on the host):
 # Debian's arm64 kernel builds the virtio disk and ext4 as modules, so they
 # are loaded here (in the order of the list beside this script), then the
