@@ -88,11 +88,11 @@ deb:
 # The Raspberry Pi path on a booted Debian 12 arm64 machine under
 # qemu-system-aarch64 (tests/pi_vm, docs/raspberry-pi.md): the arm64 build
 # and package (tests/cross), the cached machine image, then the checks.
-# Not in `make test` yet (docs/raspberry-pi.md says why); this registers the
-# tests in $(BUILD_DIR) (ROTORD_PI_VM=ON).
+# Part of `make test`; this runs only it and what it needs (the image is
+# built beside the arm64 package's checks).
 pi-vm: deps
-	@cmake --preset $(PRESET) -DROTORD_PI_VM=ON >/dev/null
-	ctest --preset $(PRESET) -R '^pi_vm$$' --output-on-failure
+	@cmake --preset $(PRESET) >/dev/null
+	ctest --preset $(PRESET) -R '^pi_vm$$' -j $(JOBS) --output-on-failure
 
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

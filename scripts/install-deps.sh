@@ -32,10 +32,11 @@ cross_packages() {
   for lib in "${deb_arch_libs[@]}"; do echo "$lib:$arch"; done
 }
 # The Pi machine under qemu-system (tests/pi_vm): the image (mmdebstrap,
-# e2fsprogs, zstd), running arm64 programs while it is built (qemu-user),
+# e2fsprogs; kmod's depmod and cpio for the kernel's modules and initrd,
+# made on this machine), running arm64 programs while it is built (qemu-user),
 # and the gpio-sim module's build (make, bc; Kbuild's host tools come built
 # in Debian's linux-kbuild package, the compiler from crossbuild-essential-arm64).
-pi_vm_packages=(qemu-system-arm qemu-user-static binfmt-support mmdebstrap arch-test e2fsprogs zstd bc
+pi_vm_packages=(qemu-system-arm qemu-user-static binfmt-support mmdebstrap arch-test e2fsprogs kmod cpio bc
   make)
 packages=(
   "${deb_packages[@]}"

@@ -20,6 +20,13 @@ command -v bc >/dev/null || { echo "gpio-sim: bc missing"; exit 1; }
 start=$(date +%s)
 rm -rf "$out/root" "$out/module" "$out/gpio-sim.ko"
 mkdir -p "$out/root"
+# CPU seconds (user + sys) of the finished child processes so far (times
+# runs in this shell: a subshell would count none).
+cpu_file="$out/cpu.times"
+cpu_now() {
+  times >"$cpu_file"
+  cpu=$(awk 'NR == 2 { split($1, u, "m"); split($2, s, "m"); printf "%.0f", u[1] * 60 + u[2] + s[1] * 60 + s[2] }' "$cpu_file")
+}
 for deb in "$img"/headers-debs/linux-headers-*.deb "$img"/headers-debs/linux-kbuild-*.deb; do
   dpkg-deb -x "$deb" "$out/root"
 done
@@ -28,13 +35,23 @@ done
 if [ "$(cat "$out/src/version" 2>/dev/null)" != "$kpkg" ]; then
   rm -rf "$out/src"
   mkdir -p "$out/src"
-  dpkg-deb --fsys-tarfile "$img"/headers-debs/linux-source-6.1_*.deb |
-    tar -xO --wildcards './usr/src/linux-source-6.1.tar.xz' |
-    tar -xJ -C "$out/src" --strip-components=1 linux-source-6.1/drivers/gpio/gpio-sim.c \
-      linux-source-6.1/drivers/gpio/gpiolib.h linux-source-6.1/kernel/irq/irq_sim.c
+  # --occurrence: tar stops reading once it has the three (kernel/irq is
+  # about half way through the tree), so the rest is never decompressed;
+  # the processes feeding it then end on a broken pipe, hence no pipefail.
+  files=(drivers/gpio/gpio-sim.c drivers/gpio/gpiolib.h kernel/irq/irq_sim.c)
+  set +o pipefail
+  dpkg-deb --fsys-tarfile "$img"/headers-debs/linux-source-6.1_*.deb 2>/dev/null |
+    tar -xO --occurrence ./usr/src/linux-source-6.1.tar.xz 2>/dev/null |
+    tar -xJ --occurrence -C "$out/src" --strip-components=1 "${files[@]/#/linux-source-6.1/}"
+  set -o pipefail
+  for f in "${files[@]}"; do
+    [ -s "$out/src/$f" ] || { echo "gpio-sim: $f not in linux-source-6.1 ($kpkg)"; exit 1; }
+  done
   echo "$kpkg" >"$out/src/version"
 fi
 t_src=$(($(date +%s) - start))
+cpu_now
+c_src=$cpu
 m="$out/module"
 mkdir -p "$m"
 cp "$out/src/drivers/gpio/gpio-sim.c" "$m/gpio-sim-core.c"
@@ -62,4 +79,6 @@ make -s -C "$hdr" M="$m" ARCH=arm64 CROSS_COMPILE=aarch64-linux-gnu- modules >"$
 cp "$m/gpio-sim.ko" "$out/gpio-sim.ko"
 echo "$kpkg" >"$out/kernel-version"
 rm -rf "$out/root"
-echo "gpio-sim: built in $(($(date +%s) - start)) s (source extraction $t_src s) for $kver ($kpkg)"
+cpu_now
+echo "gpio-sim: built in $(($(date +%s) - start)) s, CPU $cpu s (the headers and 3 files of the source extracted" \
+  "in $t_src s, CPU $c_src s) for $kver ($kpkg)"

@@ -11,6 +11,13 @@ set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 deb=$1 work=$2
 fail() { echo "FAIL: pi_vm: $*"; exit 1; }
+# CPU seconds (user + sys) of the finished child processes so far: what a
+# phase costs on a free machine, whatever else loads this one.
+# (times runs in this shell, not in a subshell, which would count none.)
+cpu_now() {
+  times >"$cpu_file"
+  cpu=$(awk 'NR == 2 { split($1, u, "m"); split($2, s, "m"); printf "%.0f", u[1] * 60 + u[2] + s[1] * 60 + s[2] }' "$cpu_file")
+}
 missing=()
 for tool in qemu-system-aarch64 rotctl dpkg-deb; do
   command -v "$tool" >/dev/null || missing+=("$tool")
@@ -19,13 +26,17 @@ done
 [ -d "$deb" ] && deb=$(ls "$deb"/rotord_*_arm64.deb 2>/dev/null | head -1)
 [ -f "$deb" ] || fail "no package $deb (packaging.deb_arm64 makes it)"
 t_all=$(date +%s)
+mkdir -p "$work"
+cpu_file="$work/cpu.times"
 
 t=$(date +%s)
 "$here/build-image.sh" "$work/image" || fail "the image (build-image.sh)"
-echo "pi_vm: image ready in $(($(date +%s) - t)) s"
-t=$(date +%s)
+cpu_now
+echo "pi_vm: image ready in $(($(date +%s) - t)) s (CPU $cpu s)"
+t=$(date +%s) c=$cpu
 "$here/build-gpio-sim.sh" "$work/image" "$work/gpio-sim" || fail "the gpio-sim module (build-gpio-sim.sh)"
-echo "pi_vm: gpio-sim module ready in $(($(date +%s) - t)) s"
+cpu_now
+echo "pi_vm: gpio-sim module ready in $(($(date +%s) - t)) s (CPU $((cpu - c)) s)"
 
 # The share: the package, a newer one for the upgrade (the same files,
 # version +pivm1), the module and the checks.
@@ -45,7 +56,8 @@ cp "$work/gpio-sim/gpio-sim.ko" "$here"/guest*.sh "$here/gpio-chip.sh" "$here/pl
 # The rotctld port, forwarded from a free port of this machine.
 port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 serial="$work/serial.log"
-t=$(date +%s)
+cpu_now
+t=$(date +%s) c=$cpu
 # -snapshot: the cached image stays as built; the guest's reboot keeps the
 # changes (one qemu process). Two CPUs, as a Pi has at least. On a
 # 2-core host busy with other builds the machine ran 20 minutes and was
@@ -79,7 +91,8 @@ while kill -0 $qemu 2>/dev/null; do
 done
 wait $qemu
 qrc=$?
-echo "pi_vm: the machine ran $(($(date +%s) - t)) s (qemu exit $qrc)"
+cpu_now
+echo "pi_vm: the machine ran $(($(date +%s) - t)) s, CPU $((cpu - c)) s (qemu exit $qrc)"
 cat "$share/guest.log" 2>/dev/null
 result=$(cat "$share/result" 2>/dev/null)
 if [ "$result" != 0 ]; then
@@ -88,4 +101,5 @@ if [ "$result" != 0 ]; then
   tail -5 "$work/qemu.log"
   fail "the checks in the machine failed or did not finish (result '${result:-none}', qemu $qrc)"
 fi
-echo "pi_vm: PASS in $(($(date +%s) - t_all)) s"
+cpu_now
+echo "pi_vm: PASS in $(($(date +%s) - t_all)) s, CPU $cpu s"
