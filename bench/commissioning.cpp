@@ -38,7 +38,7 @@ settings::Settings profile_settings(const sim::Profile& p) {
 settings::Settings hand_tuned(const sim::Profile& p) {
   settings::Settings s = profile_settings(p);
   const sim::AxisProfile& a = p.az;
-  if (a.sensor == sim::SensorKind::kPot) {
+  if (a.sensor == SensorType::kPot) {
     s.set(settings::Id::kAzPotCalLoCounts, sim::adc_counts_exact(a.pot.v_at_min_v));
     s.set(settings::Id::kAzPotCalLoDeg, a.min_deg);
     s.set(settings::Id::kAzPotCalHiCounts, sim::adc_counts_exact(a.pot.v_at_max_v));

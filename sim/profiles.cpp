@@ -20,7 +20,7 @@ constexpr double kPotSigma_v = 2.8 * kAdcLsb_v;
 constexpr PotMapping kDividedPot{.v_at_min_v = 0.05, .v_at_max_v = 3.0, .sigma_v = kPotSigma_v};
 
 constexpr AxisProfile make_axis(AxisPlantParams plant, double min_deg, double max_deg,
-                                SensorKind sensor) {
+                                SensorType sensor) {
   AxisProfile a;
   plant.stop_min_deg = min_deg - kEndStopMarginDeg;
   plant.stop_max_deg = max_deg + kEndStopMarginDeg;
@@ -80,13 +80,13 @@ constexpr AxisPlantParams kHam4Plant{.v_max_deg_s = 6.0,
                                      .brake_decel_deg_s2 = 60.0};
 
 constexpr AxisProfile kG5500Az =
-    with_overlap_sensors(make_axis(kG5500AzPlant, 0, 450, SensorKind::kPot));
-constexpr AxisProfile kG5500El = make_axis(kG5500ElPlant, 0, 180, SensorKind::kPot);
+    with_overlap_sensors(make_axis(kG5500AzPlant, 0, 450, SensorType::kPot));
+constexpr AxisProfile kG5500El = make_axis(kG5500ElPlant, 0, 180, SensorType::kPot);
 constexpr AxisProfile kHam4Az =
-    with_overlap_sensors(make_axis(kHam4Plant, 0, 360, SensorKind::kPot));
+    with_overlap_sensors(make_axis(kHam4Plant, 0, 360, SensorType::kPot));
 constexpr AxisProfile kSpidAz =
-    with_overlap_sensors(make_axis(kSpidPlant, -180, 540, SensorKind::kMa3));
-constexpr AxisProfile kSpidEl = make_axis(kSpidPlant, 0, 180, SensorKind::kMa3);
+    with_overlap_sensors(make_axis(kSpidPlant, -180, 540, SensorType::kMa3));
+constexpr AxisProfile kSpidEl = make_axis(kSpidPlant, 0, 180, SensorType::kMa3);
 
 // ---- settings overrides, derived from the axis profiles above ----
 
@@ -125,7 +125,7 @@ struct OverrideList {
     add(keys.drive, static_cast<double>(a.plant.drive));
     if (keys.has_brake != nullptr) add(keys.has_brake, a.plant.has_brake ? 1.0 : 0.0);
     add(keys.sensor, static_cast<double>(a.sensor));
-    if (a.sensor == SensorKind::kPot) {
+    if (a.sensor == SensorType::kPot) {
       // Two-point calibration at the range ends with the unrounded codes, so
       // a noise-free pot reads the true angle to within half a count.
       add(keys.pot_cal_lo_counts, adc_counts_exact(a.pot.v_at_min_v));

@@ -4,11 +4,10 @@
 #include <span>
 #include <string_view>
 
+#include "axis/sensor_registry.hpp"
 #include "sim/plant_params.hpp"
 
 namespace rotord::sim {
-
-enum class SensorKind : std::uint8_t { kPot = 0, kMa3 = 1 };  // = `az.sensor` values
 
 /// Wiper voltage at the two ends of the working range (linear in between).
 struct PotMapping {
@@ -32,7 +31,9 @@ struct AxisProfile {
   AxisPlantParams plant;
   double min_deg = 0.0;
   double max_deg = 360.0;
-  SensorKind sensor = SensorKind::kPot;
+  /// The sensor type the profile's settings choose (its row says which of
+  /// the models below it reads: sim_rotator.cpp fits models by input).
+  SensorType sensor = SensorType::kPot;
   PotMapping pot;
   double ma3_sigma_deg = 0.03;
   bool has_limit_switches = true;

@@ -65,8 +65,20 @@ AxisIo SimRotator::io(AxisId axis) {
   AxisIo io;
   if (!fitted(axis)) return io;
   AxisSim& s = sim(axis);
-  if (s.profile.sensor == SensorKind::kPot) io.pot = &s.pot;
-  if (s.profile.sensor == SensorKind::kMa3) io.ma3 = &s.ma3;
+  // One model an input, fitted for the input the profile's sensor type
+  // reads (its row), never by type: a new type on an input modelled here
+  // runs in the simulator as it is. The azimuth's I2C magnetometer is
+  // always there, so az.sensor = mag works on any profile.
+  switch (sensor_info(s.profile.sensor).input) {
+    case SensorInput::kAnalog:
+      io.pot = &s.pot;
+      break;
+    case SensorInput::kPwm:
+      io.ma3 = &s.ma3;
+      break;
+    case SensorInput::kI2c:
+      break;
+  }
   if (axis == AxisId::kAz) io.i2c = &s.mag;
   if (s.profile.has_limit_switches) {
     io.limit_cw = &s.limit_cw;

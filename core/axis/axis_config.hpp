@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 
+#include "axis/sensor_registry.hpp"
 #include "sensors/magnetometer.hpp"
 #include "sensors/pot_calibration.hpp"
 #include "sensors/pot_filter.hpp"
@@ -10,7 +11,6 @@
 namespace rotord {
 
 enum class DriveType : std::uint8_t { kRelay, kRelayTwoSpeed, kRelayVoltageSelect, kHBridge };
-enum class SensorType : std::uint8_t { kPot, kMa3, kMag };
 
 /// Everything one axis needs, derived from the settings table whenever it
 /// changes. Plain data: the axis never looks settings up by key in the tick.
@@ -33,7 +33,7 @@ struct AxisConfig {
   float pwm_slow_duty = 0.45f;
   float pwm_fast_duty = 1.0f;
 
-  SensorType sensor = SensorType::kPot;
+  SensorType sensor = SensorType::kPot;  ///< its row: axis/sensor_registry.hpp
   PotCalibration pot_cal;
   PotFilterConfig pot_filter;
   float ma3_zero_deg = 0.0f;

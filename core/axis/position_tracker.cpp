@@ -11,21 +11,7 @@ namespace {
 /// then reads as another angle, in one step.
 bool sensor_frame_changed(const AxisConfig& a, const AxisConfig& b) {
   if (a.sensor != b.sensor) return false;  // a new sensor starts afresh anyway
-  switch (b.sensor) {
-    case SensorType::kPot:
-      if (a.pot_cal.count != b.pot_cal.count) return true;
-      for (std::size_t n = 0; n < static_cast<std::size_t>(b.pot_cal.count); ++n)
-        if (a.pot_cal.points[n].counts != b.pot_cal.points[n].counts ||
-            a.pot_cal.points[n].deg != b.pot_cal.points[n].deg)
-          return true;
-      return false;
-    case SensorType::kMa3:
-      return a.ma3_zero_deg != b.ma3_zero_deg || a.ma3_reverse != b.ma3_reverse ||
-             a.ma3_bits != b.ma3_bits;
-    case SensorType::kMag:
-      return !(a.mag_cal == b.mag_cal) || a.mag_chip != b.mag_chip;
-  }
-  return false;
+  return sensor_info(b.sensor).frame_changed(a, b);
 }
 
 bool active(hal::DigitalIn* in) {
@@ -35,9 +21,7 @@ bool active(hal::DigitalIn* in) {
 }  // namespace
 
 PositionTracker::PositionTracker(const AxisIo& io, const AxisConfig& cfg) : io_(io), cfg_(cfg) {
-  if (io_.pot) pot_.emplace(*io_.pot);
-  if (io_.ma3) ma3_.emplace(*io_.ma3);
-  if (io_.i2c) mag_.emplace(*io_.i2c);
+  for (const SensorInfo& type : sensor_types()) type.fit(sensors_, io_);
 }
 
 bool PositionTracker::configure(const AxisConfig& next) {
@@ -46,19 +30,15 @@ bool PositionTracker::configure(const AxisConfig& next) {
   // next reading is taken as it comes, not rejected as an implausible jump:
   // that fault would latch, and no reset could clear it.
   if (sensor_ != nullptr && have_pos_ && sensor_frame_changed(cfg_, next)) recalibrated_ = true;
-  if (pot_) pot_->configure(next.pot_cal, next.pot_filter);
-  if (ma3_) ma3_->configure(next.ma3_bits, next.ma3_zero_deg, next.ma3_reverse);
-  if (mag_) mag_->configure(next.mag_chip, next.mag_cal, next.mag_lowpass_ms);
-  PositionSensor* chosen = nullptr;
-  if (next.sensor == SensorType::kPot && pot_) chosen = &*pot_;
-  if (next.sensor == SensorType::kMa3 && ma3_) chosen = &*ma3_;
-  if (next.sensor == SensorType::kMag && mag_) chosen = &*mag_;
+  for (const SensorInfo& type : sensor_types()) type.configure(sensors_, next);
+  const SensorInfo& type = sensor_info(next.sensor);
+  PositionSensor* chosen = type.get(sensors_);
   if (chosen != sensor_) {  // another sensor: start afresh
     have_pos_ = false;
     if (chosen != nullptr) chosen->restart();
   }
   sensor_ = chosen;
-  resolution_deg_ = resolution_deg(next);
+  resolution_deg_ = type.resolution_deg(next);
   // A new offset moves the reported position; shift the history with it so the
   // plausibility check does not take the change for a jump.
   if (!have_pos_ || offset_change == 0.0f) return false;
@@ -72,22 +52,6 @@ void PositionTracker::clear_errors() {
   bad_since_ = -1;
   rejected_bits_ = 0;
   resync_ = true;
-}
-
-float PositionTracker::resolution_deg(const AxisConfig& c) const {
-  switch (c.sensor) {
-    case SensorType::kPot: {
-      const auto& lo = c.pot_cal.points[0];
-      const auto& hi = c.pot_cal.points[static_cast<std::size_t>(c.pot_cal.count - 1)];
-      const float counts = std::fabs(hi.counts - lo.counts);
-      return counts > 0.0f ? std::fabs(hi.deg - lo.deg) / counts : 0.1f;
-    }
-    case SensorType::kMa3:
-      return 360.0f / static_cast<float>(ma3_timing(c.ma3_bits).counts);
-    case SensorType::kMag:
-      return 0.1f;  // a heading from 12-16 bit field counts
-  }
-  return 0.1f;
 }
 
 void PositionTracker::read_switches() {
@@ -130,9 +94,9 @@ PositionTracker::Update PositionTracker::update(Millis now) {
   const float speed_deg_s = estimate_speed();  // of the readings taken so far
   note_raw(r.raw, now, speed_deg_s);
   raw_ = r.raw;
-  // A weak or distorted field still gives raw samples, which is what the
-  // magnetometer calibration needs; only a silent chip gives none.
-  mag_answered_ = r.ok || r.fault != SensorFault::kNoSignal;
+  // Whether the sensor answered at all: an implausible sample still counts
+  // (the magnetometer's calibration needs those); only silence does not.
+  answered_ = r.ok || r.fault != SensorFault::kNoSignal;
   if (!r.ok) {
     // A reading the sensor itself found implausible (a glitching PWM
     // frame) counts towards a burst like one the gate turned away.
@@ -301,25 +265,8 @@ void PositionTracker::publish(AxisStatus& status) const {
   status.raw_full_scale = 0.0f;
   status.adc_ref_v = 0.0f;
   status.mag_valid = false;
-  if (sensor_ != nullptr) {  // the configured sensor is fitted
-    switch (cfg_.sensor) {
-      case SensorType::kPot:
-        status.raw_full_scale = static_cast<float>(io_.pot->full_scale_counts());
-        status.adc_ref_v = io_.pot->reference_v();
-        break;
-      case SensorType::kMa3:
-        status.raw_full_scale = static_cast<float>(ma3_timing(cfg_.ma3_bits).counts);
-        break;
-      case SensorType::kMag: {
-        const MagSample& m = mag_->last_sample();
-        status.mag_valid = mag_answered_;
-        status.mag_x = m.x;
-        status.mag_y = m.y;
-        status.mag_z = m.z;
-        break;
-      }
-    }
-  }
+  if (sensor_ != nullptr)  // the configured sensor is fitted
+    sensor_info(cfg_.sensor).publish(sensors_, io_, cfg_, answered_, status);
   status.readings_rejected = gated_;
   status.switch_cw = sw_cw_;
   status.switch_ccw = sw_ccw_;

@@ -6,9 +6,7 @@
 #include "axis/axis_config.hpp"
 #include "axis/axis_io.hpp"
 #include "axis/axis_status.hpp"
-#include "sensors/ma3_sensor.hpp"
-#include "sensors/mag_sensor.hpp"
-#include "sensors/pot_sensor.hpp"
+#include "axis/sensor_registry.hpp"
 #include "util/time.hpp"
 
 namespace rotord {
@@ -18,6 +16,9 @@ namespace rotord {
 /// speed estimate and the limit and overlap switches. It knows nothing of
 /// motion: what a fault or a changed frame means for a move is the Axis's
 /// business, so it reports them instead of acting on them.
+///
+/// What differs between sensor types is their row's business
+/// (axis/sensor_registry.hpp), not this class's.
 ///
 /// No heap: the sensors are fixed members, the history a fixed ring.
 class PositionTracker {
@@ -107,8 +108,6 @@ class PositionTracker {
   /// A reading was not taken: carries the position on at the measured speed
   /// (the motor keeps turning while the sensor is unreadable) and counts it.
   AxisFault reject(Millis now, float speed_deg_s);
-  /// The finest step the configured sensor resolves, degrees.
-  float resolution_deg(const AxisConfig& c) const;
   void note_raw(float raw, Millis now, float speed_deg_s);
   /// Counts the time since the last update(): a stall of the loop.
   void note_loop_gap(Millis now);
@@ -116,9 +115,7 @@ class PositionTracker {
 
   const AxisIo& io_;
   const AxisConfig& cfg_;
-  std::optional<PotSensor> pot_;
-  std::optional<Ma3Sensor> ma3_;
-  std::optional<MagSensor> mag_;
+  SensorSlots sensors_;  // every type whose input is wired
   PositionSensor* sensor_ = nullptr;
 
   bool have_pos_ = false;
@@ -128,7 +125,7 @@ class PositionTracker {
   Millis bad_since_ = -1;
   int jump_rejects_ = 0;
   bool recalibrated_ = false;        // the calibration changed: accept the next reading
-  bool mag_answered_ = false;        // the last read got a sample from the chip
+  bool answered_ = false;            // the last read got a sample from the sensor
   Millis pos_t_ = 0;                 // when pos_deg_ was read
   bool read_before_ = false;         // update() ran before ...
   Millis read_t_ = 0;                // ... last at this time

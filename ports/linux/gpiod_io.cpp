@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "axis/axis_config.hpp"
+#include "axis/sensor_registry.hpp"
 #include "gpiod_wiring.hpp"
 #include "log.hpp"
 #include "sensors/magnetometer.hpp"
@@ -126,8 +127,11 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
   std::unique_ptr<GpiodRotator> hw(new GpiodRotator(std::move(chip)));
   LineRequester req(s, *hw->chip_, error);
   hw->summary_ = "GPIO " + hw->chip_->describe();
-  const auto pot_on = [&s](Id sensor) { return s.i(sensor) == static_cast<int>(SensorType::kPot); };
-  if (s.b(Id::kElEnabled) && pot_on(Id::kAzSensor) && pot_on(Id::kElSensor) &&
+  const auto analog = [&s](Id sensor) {
+    const SensorInfo* type = find_sensor(s.i(sensor));
+    return type != nullptr && type->input == SensorInput::kAnalog;
+  };
+  if (s.b(Id::kElEnabled) && analog(Id::kAzSensor) && analog(Id::kElSensor) &&
       s.i(Id::kIioAzDevice) == s.i(Id::kIioElDevice) &&
       s.i(Id::kIioAzChannel) == s.i(Id::kIioElChannel)) {
     error = "iio.az_channel and iio.el_channel both read channel " +
@@ -191,17 +195,20 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
       a.button_fwd = req.input(k->button_fwd, key(Id::kButtonsEnabled));
       a.button_rev = req.input(k->button_rev, key(Id::kButtonsEnabled));
     }
-    const auto sensor = static_cast<SensorType>(s.i(k->sensor));
+    // The input the sensor type reads (its row), opened by this port's
+    // factory for that input: a new type on one of these needs nothing here.
+    const SensorInfo& type = *find_sensor(s.i(k->sensor));  // the table's range: a row
+    const SensorInput input = type.input;
     const std::string sensor_text = choice(s, k->sensor);
-    if (sensor == SensorType::kMa3) {
+    if (input == SensorInput::kPwm) {
       if (auto l = req.line(k->ma3, LineMode::kBothEdges, sensor_text.c_str()))
         a.ma3 = std::make_unique<GpiodMa3Input>(std::move(l), host.clock);
     }
     if (req.failed()) return nullptr;
     std::string sensor_where;
-    if (sensor == SensorType::kMag) {
+    if (input == SensorInput::kI2c) {
       if (!hw->open_magnetometer(s, host, sensor_where, error)) return nullptr;
-    } else if (sensor == SensorType::kPot) {
+    } else if (input == SensorInput::kAnalog) {
       const int device = s.i(k->iio_device);
       if (device < 0) {
         error = sensor_text + " needs " + key(k->iio_device);
@@ -214,10 +221,10 @@ std::unique_ptr<GpiodRotator> GpiodRotator::open(const settings::Settings& s,
         error = std::string(key(k->iio_device)) + ", " + key(k->iio_channel) + ": " + why;
         return nullptr;
       }
-      sensor_where =
-          "pot " + a.pot->raw_path() + " (0.." + std::to_string(a.pot->full_scale_counts()) + ")";
+      sensor_where = std::string(type.name) + " " + a.pot->raw_path() + " (0.." +
+                     std::to_string(a.pot->full_scale_counts()) + ")";
     } else {
-      sensor_where = "MA3 on line " + std::to_string(s.i(k->ma3));
+      sensor_where = std::string(type.name) + " on line " + std::to_string(s.i(k->ma3));
     }
     hw->summary_ += std::string("; ") + k->name + ": " +
                     std::string(settings::choice_name(k->drive, s.i(k->drive))) + " drive on " +

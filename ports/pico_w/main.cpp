@@ -13,6 +13,7 @@
 #include <optional>
 #include <string_view>
 
+#include "axis/sensor_registry.hpp"
 #include "care/odometer_saver.hpp"
 #include "command/buttons.hpp"
 #include "hardware/address_mapped.h"
@@ -365,9 +366,13 @@ AxisIo fit_inputs(const settings::Settings& s, const AxisPins& k, AxisParts& par
   io.t2 = fit_switch(parts.t2, pin(s, k.t2));
   io.limit_ccw = fit_switch(parts.limit_ccw, s.i(k.limit_ccw));
   io.limit_cw = fit_switch(parts.limit_cw, s.i(k.limit_cw));
-  if (s.i(k.sensor) == static_cast<int>(SensorType::kMa3))
+  // The inputs the sensor type reads (its row), fitted by input, never by
+  // type: a new type on one of these needs nothing here. (The ADC above is
+  // fitted whenever its pin is wired, whatever the type.)
+  const SensorInput input = find_sensor(s.i(k.sensor))->input;  // the table's range: a row
+  if (input == SensorInput::kPwm)
     io.ma3 = fit_ma3(parts.ma3_pio, parts.ma3_irq, s.i(k.ma3), k.name);
-  if (k.may_use_magnetometer && s.i(k.sensor) == static_cast<int>(SensorType::kMag)) {
+  if (k.may_use_magnetometer && input == SensorInput::kI2c) {
     if (PicoI2c* bus = fit(g_i2c, s.i(Id::kPinI2cSda), s.i(Id::kPinI2cScl))) {
       bus->begin();
       log_magnetometer(*bus, s);

@@ -131,7 +131,7 @@ void commission_and_check(const char* profile_name, std::uint64_t seed, Millis* 
   const auto& plant = az.plant;
   ASSERT_TRUE(m.ends_known && m.speeds_known);
 
-  const bool pot = az.sensor == sim::SensorKind::kPot;
+  const bool pot = az.sensor == SensorType::kPot;
   const double span_deg = az.limit_cw_deg - az.limit_ccw_deg;
   double end_err_pct = 0.0;
   double cal_err_deg = 0.0;

@@ -184,10 +184,10 @@ void print_settings(const sim::Profile& profile, char* args) {
 }
 
 /// The sensor a --sensor / --el option names; false when it is neither.
-bool parse_sensor(const char* text, sim::SensorKind& kind) {
+bool parse_sensor(const char* text, rotord::SensorType& kind) {
   const std::string_view s = text;
   if (s != "pot" && s != "ma3") return false;
-  kind = s == "ma3" ? sim::SensorKind::kMa3 : sim::SensorKind::kPot;
+  kind = s == "ma3" ? rotord::SensorType::kMa3 : rotord::SensorType::kPot;
   return true;
 }
 
@@ -217,7 +217,7 @@ bool is_sensor_key(std::string_view key, const SensorKeys& k) {
 void add_sensor_overrides(const sim::AxisProfile& a, const SensorKeys& k, sim::SettingOverride* out,
                           std::size_t& n) {
   out[n++] = {k.sensor, static_cast<double>(a.sensor)};
-  if (a.sensor == sim::SensorKind::kPot) {
+  if (a.sensor == rotord::SensorType::kPot) {
     out[n++] = {k.cal_lo_counts, sim::adc_counts_exact(a.pot.v_at_min_v)};
     out[n++] = {k.cal_lo_deg, a.min_deg};
     out[n++] = {k.cal_hi_counts, sim::adc_counts_exact(a.pot.v_at_max_v)};
