@@ -21,7 +21,8 @@ bool active(hal::DigitalIn* in) {
 }  // namespace
 
 PositionTracker::PositionTracker(const AxisIo& io, const AxisConfig& cfg) : io_(io), cfg_(cfg) {
-  for (const SensorInfo& type : sensor_types()) type.fit(sensors_, io_);
+  for (const SensorInfo& type : sensor_types())
+    fitted_[static_cast<std::size_t>(type.type)] = type.fit(sensors_, io_);
 }
 
 bool PositionTracker::configure(const AxisConfig& next) {
@@ -32,7 +33,7 @@ bool PositionTracker::configure(const AxisConfig& next) {
   if (sensor_ != nullptr && have_pos_ && sensor_frame_changed(cfg_, next)) recalibrated_ = true;
   for (const SensorInfo& type : sensor_types()) type.configure(sensors_, next);
   const SensorInfo& type = sensor_info(next.sensor);
-  PositionSensor* chosen = type.get(sensors_);
+  PositionSensor* chosen = fitted_[static_cast<std::size_t>(next.sensor)];
   if (chosen != sensor_) {  // another sensor: start afresh
     have_pos_ = false;
     if (chosen != nullptr) chosen->restart();

@@ -115,7 +115,8 @@ class PositionTracker {
 
   const AxisIo& io_;
   const AxisConfig& cfg_;
-  SensorSlots sensors_;  // every type whose input is wired
+  SensorSlots sensors_;                                     // every type whose input is wired
+  std::array<PositionSensor*, kSensorTypeCount> fitted_{};  // by type; nullptr: not wired
   PositionSensor* sensor_ = nullptr;
 
   bool have_pos_ = false;

@@ -11,11 +11,8 @@ namespace {
 
 // ---- pot: a wiper on an ADC, multi-turn, a calibration table ----
 
-void pot_fit(SensorSlots& s, const AxisIo& io) {
-  if (io.pot) s.pot.emplace(*io.pot);
-}
-PositionSensor* pot_get(SensorSlots& s) {
-  return s.pot ? &*s.pot : nullptr;
+PositionSensor* pot_fit(SensorSlots& s, const AxisIo& io) {
+  return io.pot ? &s.pot.emplace(*io.pot) : nullptr;
 }
 void pot_configure(SensorSlots& s, const AxisConfig& c) {
   if (s.pot) s.pot->configure(c.pot_cal, c.pot_filter);
@@ -41,11 +38,8 @@ void pot_publish(const SensorSlots&, const AxisIo& io, const AxisConfig&, bool, 
 
 // ---- ma3: an absolute encoder's PWM, single-turn ----
 
-void ma3_fit(SensorSlots& s, const AxisIo& io) {
-  if (io.ma3) s.ma3.emplace(*io.ma3);
-}
-PositionSensor* ma3_get(SensorSlots& s) {
-  return s.ma3 ? &*s.ma3 : nullptr;
+PositionSensor* ma3_fit(SensorSlots& s, const AxisIo& io) {
+  return io.ma3 ? &s.ma3.emplace(*io.ma3) : nullptr;
 }
 void ma3_configure(SensorSlots& s, const AxisConfig& c) {
   if (s.ma3) s.ma3->configure(c.ma3_bits, c.ma3_zero_deg, c.ma3_reverse);
@@ -63,11 +57,8 @@ void ma3_publish(const SensorSlots&, const AxisIo&, const AxisConfig& c, bool, A
 
 // ---- mag: a magnetometer's heading on the azimuth's I2C bus ----
 
-void mag_fit(SensorSlots& s, const AxisIo& io) {
-  if (io.i2c) s.mag.emplace(*io.i2c);
-}
-PositionSensor* mag_get(SensorSlots& s) {
-  return s.mag ? &*s.mag : nullptr;
+PositionSensor* mag_fit(SensorSlots& s, const AxisIo& io) {
+  return io.i2c ? &s.mag.emplace(*io.i2c) : nullptr;
 }
 void mag_configure(SensorSlots& s, const AxisConfig& c) {
   if (s.mag) s.mag->configure(c.mag_chip, c.mag_cal, c.mag_lowpass_ms);
@@ -94,12 +85,12 @@ using In = SensorInput;
 
 // One row per type, in the order of SensorType.
 constexpr std::array<SensorInfo, kSensorTypeCount> kSensorTypes = {{
-    {T::kPot, "pot", "pot", In::kAnalog, false, pot_fit, pot_get, pot_configure, pot_frame_changed,
+    {T::kPot, "pot", "pot", In::kAnalog, false, pot_fit, pot_configure, pot_frame_changed,
      pot_resolution_deg, pot_publish},
-    {T::kMa3, "ma3", "MA3", In::kPwm, false, ma3_fit, ma3_get, ma3_configure, ma3_frame_changed,
+    {T::kMa3, "ma3", "MA3", In::kPwm, false, ma3_fit, ma3_configure, ma3_frame_changed,
      ma3_resolution_deg, ma3_publish},
-    {T::kMag, "mag", "magnetometer", In::kI2c, true, mag_fit, mag_get, mag_configure,
-     mag_frame_changed, mag_resolution_deg, mag_publish},
+    {T::kMag, "mag", "magnetometer", In::kI2c, true, mag_fit, mag_configure, mag_frame_changed,
+     mag_resolution_deg, mag_publish},
 }};
 
 constexpr bool rows_in_order() {
@@ -122,13 +113,6 @@ const SensorInfo& sensor_info(SensorType type) {
 const SensorInfo* find_sensor(int stored) {
   if (stored < 0 || static_cast<std::size_t>(stored) >= kSensorTypes.size()) return nullptr;
   return &kSensorTypes[static_cast<std::size_t>(stored)];
-}
-
-const SensorInfo* find_sensor(std::string_view key) {
-  for (const SensorInfo& s : kSensorTypes) {
-    if (s.key == key) return &s;
-  }
-  return nullptr;
 }
 
 }  // namespace rotord

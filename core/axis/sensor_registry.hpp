@@ -55,10 +55,9 @@ struct SensorInfo {
   /// Only the azimuth may use it (the one I2C bus): el.sensor's choices
   /// are the other rows.
   bool azimuth_only;
-  /// Builds the sensor in `slots` when `io` has its input wired.
-  void (*fit)(SensorSlots& slots, const AxisIo& io);
-  /// The sensor built by `fit`, or nullptr.
-  PositionSensor* (*get)(SensorSlots& slots);
+  /// Builds the sensor in `slots` when `io` has its input wired, and
+  /// returns it; nullptr when the input is not wired.
+  PositionSensor* (*fit)(SensorSlots& slots, const AxisIo& io);
   /// Hands the sensor its part of the axis configuration (its settings:
   /// calibration, filters, chip).
   void (*configure)(SensorSlots& slots, const AxisConfig& c);
@@ -77,8 +76,8 @@ struct SensorInfo {
 std::span<const SensorInfo> sensor_types();
 const SensorInfo& sensor_info(SensorType type);
 /// The row of a stored *.sensor value, or nullptr for a value no row has.
+/// (No lookup by key: the settings table turns a key into its value, and
+/// the M0+'s flash budget has no room for an unused one.)
 const SensorInfo* find_sensor(int stored);
-/// The row of `key` (exact, lower case), or nullptr.
-const SensorInfo* find_sensor(std::string_view key);
 
 }  // namespace rotord
