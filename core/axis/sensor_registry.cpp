@@ -85,12 +85,12 @@ using In = SensorInput;
 
 // One row per type, in the order of SensorType.
 constexpr std::array<SensorInfo, kSensorTypeCount> kSensorTypes = {{
-    {T::kPot, "pot", "pot", In::kAnalog, false, pot_fit, pot_configure, pot_frame_changed,
+    {T::kPot, "pot", "pot", "counts", In::kAnalog, false, pot_fit, pot_configure, pot_frame_changed,
      pot_resolution_deg, pot_publish},
-    {T::kMa3, "ma3", "MA3", In::kPwm, false, ma3_fit, ma3_configure, ma3_frame_changed,
+    {T::kMa3, "ma3", "MA3", "code", In::kPwm, false, ma3_fit, ma3_configure, ma3_frame_changed,
      ma3_resolution_deg, ma3_publish},
-    {T::kMag, "mag", "magnetometer", In::kI2c, true, mag_fit, mag_configure, mag_frame_changed,
-     mag_resolution_deg, mag_publish},
+    {T::kMag, "mag", "magnetometer", "deg", In::kI2c, true, mag_fit, mag_configure,
+     mag_frame_changed, mag_resolution_deg, mag_publish},
 }};
 
 constexpr bool rows_in_order() {

@@ -51,6 +51,8 @@ struct SensorInfo {
   /// ("pot|ma3|mag"; tests/unit/sensor_registry_test.cpp checks the two agree).
   std::string_view key;
   std::string_view name;  ///< for logs ("pot /sys/...", "MA3 on line 5")
+  /// What `AxisStatus::raw` counts, as /api/status names it.
+  std::string_view raw_unit;
   SensorInput input;
   /// Only the azimuth may use it (the one I2C bus): el.sensor's choices
   /// are the other rows.

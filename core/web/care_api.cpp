@@ -105,6 +105,28 @@ Api::Outcome post_odometer_reset(Api& api, const Api::Call& call) {
   return get_odometer(api, call);
 }
 
+namespace {
+
+/// The starts ceiling (care.max_starts_h): starts counted, go-tos held.
+void write_starts_ceiling_metrics(metrics::PrometheusWriter& w, const Controller& c,
+                                  std::size_t count) {
+  w.family("rotord_starts_last_hour", "gauge",
+           "Motor starts in the sliding hour the starts ceiling counts (care.max_starts_h).");
+  for (std::size_t n = 0; n < count; ++n)
+    w.integer({{"axis", kAxisLabels[n]}}, c.start_ceiling(kAxes[n]).starts_in_hour());
+  w.family("rotord_starts_ceiling_held_total", "counter",
+           "Go-tos held at rest because another start would pass care.max_starts_h (the "
+           "tolerance widened meanwhile).");
+  for (std::size_t n = 0; n < count; ++n)
+    w.integer({{"axis", kAxisLabels[n]}}, c.starts_held(kAxes[n]));
+  w.family("rotord_starts_ceiling_holding", "gauge", "1 while a go-to waits for the ceiling.");
+  const RotatorStatus s = c.status();
+  for (std::size_t n = 0; n < count; ++n)
+    w.integer({{"axis", kAxisLabels[n]}}, (n == 0 ? s.az : s.el).start_held ? 1 : 0);
+}
+
+}  // namespace
+
 void write_care_metrics(metrics::PrometheusWriter& w, const Controller& c,
                         const metrics::Registry* registry) {
   const std::size_t count = c.has_el() ? 2 : 1;
@@ -144,19 +166,7 @@ void write_care_metrics(metrics::PrometheusWriter& w, const Controller& c,
   w.family("rotord_odometer_reset_timestamp_seconds", "gauge",
            "Unix time of the odometer's last reset; 0: never reset, or the clock was unknown.");
   w.integer({}, static_cast<std::uint64_t>(c.odometer().reset_unix_s()));
-  w.family("rotord_starts_last_hour", "gauge",
-           "Motor starts in the sliding hour the starts ceiling counts (care.max_starts_h).");
-  for (std::size_t n = 0; n < count; ++n)
-    w.integer({{"axis", kAxisLabels[n]}}, c.start_ceiling(kAxes[n]).starts_in_hour());
-  w.family("rotord_starts_ceiling_held_total", "counter",
-           "Go-tos held at rest because another start would pass care.max_starts_h (the "
-           "tolerance widened meanwhile).");
-  for (std::size_t n = 0; n < count; ++n)
-    w.integer({{"axis", kAxisLabels[n]}}, c.starts_held(kAxes[n]));
-  w.family("rotord_starts_ceiling_holding", "gauge", "1 while a go-to waits for the ceiling.");
-  const RotatorStatus s = c.status();
-  for (std::size_t n = 0; n < count; ++n)
-    w.integer({{"axis", kAxisLabels[n]}}, (n == 0 ? s.az : s.el).start_held ? 1 : 0);
+  write_starts_ceiling_metrics(w, c, count);
   if (registry != nullptr && registry->odometer_writes != nullptr &&
       registry->odometer_failures != nullptr) {
     w.family("rotord_odometer_saves_total", "counter",

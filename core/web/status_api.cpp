@@ -2,6 +2,7 @@
 // /api/events, and the MQTT state), the MQTT station, the settings schema.
 #include <cstdio>
 
+#include "axis/sensor_registry.hpp"
 #include "util/utc_time.hpp"
 #include "web/care_api.hpp"
 #include "web/place_api.hpp"
@@ -26,32 +27,22 @@ const char* lower_name(const char* upper, char* buf, std::size_t cap) {
   return buf;
 }
 
-/// `sensor` is the *.sensor choice: 0 pot, 1 MA3, 2 magnetometer.
-void write_axis(JsonWriter& w, const AxisStatus& a, int sensor) {
-  static constexpr const char* kSensors[] = {"pot", "ma3", "mag"};
-  static constexpr const char* kRawUnits[] = {"counts", "code", "deg"};
-  const std::size_t s = sensor >= 0 && sensor <= 2 ? static_cast<std::size_t>(sensor) : 0;
-  char name[24];
-  w.begin_object()
-      .member("position_deg", a.position_deg)
-      .member("valid", a.position_valid)
-      .member("speed_deg_s", a.speed_deg_s)
-      .member("sensor", kSensors[s])
-      .member("raw", a.raw)
-      .member("raw_unit", kRawUnits[s]);
-  // For the calibration page: the pot's wiper voltage and what raw spans.
-  w.key("raw_volts");
-  if (a.raw_full_scale > 0.0f && a.adc_ref_v > 0.0f) {
-    w.number(static_cast<double>(a.raw) * a.adc_ref_v / a.raw_full_scale);
+void number_or_null(JsonWriter& w, const char* key, bool known, double value) {
+  w.key(key);
+  if (known) {
+    w.number(value);
   } else {
     w.null();
   }
-  w.key("raw_full_scale");
-  if (a.raw_full_scale > 0.0f) {
-    w.number(a.raw_full_scale);
-  } else {
-    w.null();
-  }
+}
+
+/// The fields a reading may lack: the pot's wiper voltage and what raw spans
+/// (for the calibration page), the magnetometer's field, the target.
+void write_optional_fields(JsonWriter& w, const AxisStatus& a) {
+  const bool volts_known = a.raw_full_scale > 0.0f && a.adc_ref_v > 0.0f;
+  number_or_null(w, "raw_volts", volts_known,
+                 volts_known ? static_cast<double>(a.raw) * a.adc_ref_v / a.raw_full_scale : 0.0);
+  number_or_null(w, "raw_full_scale", a.raw_full_scale > 0.0f, a.raw_full_scale);
   w.key("mag");
   if (a.mag_valid) {
     w.begin_object()
@@ -62,12 +53,22 @@ void write_axis(JsonWriter& w, const AxisStatus& a, int sensor) {
   } else {
     w.null();
   }
-  w.key("target_deg");
-  if (a.has_target) {
-    w.number(a.target_deg);
-  } else {
-    w.null();
-  }
+  number_or_null(w, "target_deg", a.has_target, a.target_deg);
+}
+
+/// `sensor` is the stored *.sensor value: its row names it and its unit.
+void write_axis(JsonWriter& w, const AxisStatus& a, int sensor) {
+  const SensorInfo* row = find_sensor(sensor);
+  if (row == nullptr) row = &sensor_info(SensorType::kPot);
+  char name[24];
+  w.begin_object()
+      .member("position_deg", a.position_deg)
+      .member("valid", a.position_valid)
+      .member("speed_deg_s", a.speed_deg_s)
+      .member("sensor", row->key)
+      .member("raw", a.raw)
+      .member("raw_unit", row->raw_unit);
+  write_optional_fields(w, a);
   w.member("jogging", a.jogging)
       .member("arrived", a.arrived)
       .member("state", lower_name(axis_state_name(a.state), name, sizeof(name)))
