@@ -3,17 +3,18 @@
 // other loopback addresses (127.0.0.2, ...), as the per-address limit and the
 // allow-list see them.
 //
-// The network's timeouts run on the wall clock even under --clock manual, so
-// eviction is shown with net.idle_evict_s 0 (any idle client may go) instead
-// of waiting 60 s; the 60 s themselves are checked on a virtual clock in
-// tests/unit/admission_test.cpp and tests/lwip. Only the HTTP request deadline
-// (10 s, a constant) is waited for here, bounded, never timed.
+// The network's clock (timeouts, idle stamps, admission) is the wall clock
+// plus every ms the manual clock was advanced, so the tests run it forward
+// with advance_ms instead of waiting. Eviction is shown with
+// net.idle_evict_s 0 (any idle client may go); the 60 s themselves are
+// checked on a virtual clock in tests/unit/admission_test.cpp and tests/lwip.
+// The HTTP request deadline (10 s, a constant) is advanced through, bounded,
+// never timed.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "daemon_process.hpp"
@@ -78,7 +79,7 @@ TEST_F(Availability, EightTricklingClientsFromOneHostLeaveRoomForStop) {
     for (auto& t : tricklers) t->send("a");  // still "doing something"
     const HttpResponse stop = http_from(host(2), web, "POST", "/api/stop");
     EXPECT_EQ(stop.status, 200) << "round " << round << ": " << stop.body;
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // their pace, not a timing
+    daemon->advance_ms(1500);  // their pace, on the network's clock; not a timing
   }
 }
 
@@ -108,9 +109,22 @@ TEST_F(Availability, TricklersFromEightHostsAreCutOffAtTheirDeadlineAndStopGetsI
       got[i] += tricklers[i]->recv_once(0);
     }
     stop_status = http_from(host(9), web, "POST", "/api/stop").status;
-    if (stop_status != 200) std::this_thread::sleep_for(std::chrono::seconds(1));
+    if (stop_status != 200) daemon->advance_ms(1000);  // the next second, on the network's clock
   }
   EXPECT_EQ(stop_status, 200);
+  // They go on trickling, a byte a second of the network's clock, until the
+  // deadline cuts each off (15 s at most; nobody sends to one that answered).
+  const auto all_answered = [&] {
+    for (const std::string& g : got)
+      if (g.empty()) return false;
+    return true;
+  };
+  for (int second = 0; second < 15 && !all_answered(); ++second) {
+    for (std::size_t i = 0; i < tricklers.size(); ++i)
+      if (got[i].empty()) tricklers[i]->send("a");
+    daemon->advance_ms(1000);
+    for (std::size_t i = 0; i < tricklers.size(); ++i) got[i] += tricklers[i]->recv_once(0);
+  }
   for (std::size_t i = 0; i < tricklers.size(); ++i) {
     tricklers[i]->wait_closed(15000);
     got[i] += tricklers[i]->recv_once(0);
@@ -164,7 +178,7 @@ TEST_F(Availability, EightIdleClientsOnEveryLineProtocolAndANewcomerIsServed) {
       ASSERT_FALSE(reply.empty());
       ASSERT_NE(reply, proto.busy);
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // a few ticks: stamped idle
+    daemon->advance_ms(50);  // a few ticks of the network's clock: stamped idle
     TcpClient newcomer(proto.port, host(9));
     const std::string reply = newcomer.ask(proto.query);
     EXPECT_FALSE(reply.empty());

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "poll.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
@@ -246,9 +247,9 @@ class NullModem {
                ("pty,raw,echo=0,link=" + b).c_str(), static_cast<char*>(nullptr));
       ::_exit(127);
     }
-    // Wall time on purpose: socat, a real process, creates the links.
-    for (int n = 0; n < 100 && !(std::filesystem::exists(a) && std::filesystem::exists(b)); ++n)
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    // socat, a real process, creates the links on its own time.
+    poll_until([&] { return std::filesystem::exists(a) && std::filesystem::exists(b); },
+               std::chrono::seconds(5), std::chrono::milliseconds(50));
   }
   ~NullModem() {
     if (pid_ > 0) {

@@ -21,6 +21,7 @@
 #include "daemon_process.hpp"
 #include "http_client.hpp"
 #include "mosquitto_broker.hpp"
+#include "poll.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
@@ -574,11 +575,12 @@ class MqttWind : public Mqtt {
   /// liveness only, wide for a loaded 2-core machine).
   std::string status_with(const std::string& text) {
     std::string body;
-    for (int n = 0; n < 400; ++n) {
-      body = http(daemon->ports().web, "GET", "/api/status").body;
-      if (body.find(text) != std::string::npos) return body;
-      usleep(50000);
-    }
+    poll_until(
+        [&] {
+          body = http(daemon->ports().web, "GET", "/api/status").body;
+          return body.find(text) != std::string::npos;
+        },
+        std::chrono::seconds(20), std::chrono::milliseconds(50));
     return body;
   }
   void wind(const std::string& payload, const std::string& topic = "weather/wind_kmh") {

@@ -13,14 +13,11 @@
 
 #include "daemon_process.hpp"
 #include "http_client.hpp"
+#include "poll.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
 namespace {
-
-void sleep_ms(int ms) {
-  std::this_thread::sleep_for(std::chrono::milliseconds(ms));
-}
 
 /// rotctld's `p`: two lines, azimuth and elevation.
 bool read_position(TcpClient& rotctld, double& az, double& el) {
@@ -101,11 +98,12 @@ TEST(OutsideTesting, RotctldPauseLastsItsSecondsOfWallTimeUnderSpeedup) {
   ASSERT_TRUE(daemon.ready()) << daemon.output();
   // Let controller time run well ahead of the wall clock (100 s simulated,
   // 2 s of wall time): the old pause compared the two and lasted ~100 s.
-  for (int n = 0; n < 200; ++n) {
-    const HttpResponse status = http(daemon.ports().web, "GET", "/api/status");
-    if (json_number(status.body, "time_ms") >= 100000) break;
-    sleep_ms(100);
-  }
+  poll_until(
+      [&] {
+        return json_number(http(daemon.ports().web, "GET", "/api/status").body, "time_ms") >=
+               100000;
+      },
+      std::chrono::seconds(20));
   TcpClient rotctld(daemon.ports().rotctld);
   ASSERT_TRUE(rotctld.send("\\pause 1\np\n"));
   std::string line;

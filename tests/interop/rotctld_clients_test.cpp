@@ -36,11 +36,12 @@ TEST(RotctldClients, PauseOnAFreshConnectionWaitsItsSeconds) {
   // transport time not yet read (0), so after a few seconds of uptime it
   // answered at once. Only a lower bound is checked: load can make the reply
   // late, never early.
-  DaemonProcess daemon({"--sim", "g5500"});
+  DaemonProcess daemon({"--sim", "g5500", "--clock", "manual"});
   ASSERT_TRUE(daemon.ready()) << daemon.output();
-  // Wall time on purpose: the daemon's transport clock must run past the
-  // pause's length before the connection opens.
-  std::this_thread::sleep_for(std::chrono::seconds(3));
+  // The daemon's network clock must run past the pause's length before the
+  // connection opens: the manual clock moves it 3 s at once. The pause
+  // itself then runs on the wall clock (nothing advances it below).
+  ASSERT_GE(daemon.advance_ms(3000), 3000);
   for (int seconds : {1, 2}) {
     TcpClient rotctld(daemon.ports().rotctld);
     const Clock::time_point sent = Clock::now();

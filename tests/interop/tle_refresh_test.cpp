@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "daemon_process.hpp"
+#include "poll.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
@@ -47,13 +48,10 @@ class TleRefresh : public ::testing::Test {
                (dir + "/www").c_str(), std::to_string(http_port).c_str(), nullptr);
       ::_exit(127);
     }
-    // The server is ready when it answers.
-    for (int n = 0; n < 100; ++n) {
-      if (run_command("curl -s -o /dev/null http://127.0.0.1:" + std::to_string(http_port) + "/")
-              .rc == 0)
-        break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
+    // The server (another process) is ready when it answers.
+    const std::string server_url = "http://127.0.0.1:" + std::to_string(http_port) + "/";
+    poll_until([&] { return run_command("curl -s -o /dev/null " + server_url).rc == 0; },
+               std::chrono::seconds(10));
     daemon = std::make_unique<DaemonProcess>(
         std::vector<std::string>{"--sim", "g5500", "--clock", "manual", "--utc-start",
                                  "2019-12-09T19:00:00Z", "--config", dir + "/conf/settings.json"});
@@ -74,11 +72,8 @@ class TleRefresh : public ::testing::Test {
   /// GET /api/tle until it holds `text` (bounded: the download runs on the
   /// wall clock).
   bool tles_show(const std::string& text) {
-    for (int n = 0; n < 100; ++n) {
-      if (curl(base + "/api/tle").find(text) != std::string::npos) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    return false;
+    return poll_until([&] { return curl(base + "/api/tle").find(text) != std::string::npos; },
+                      std::chrono::seconds(10));
   }
 
   std::string dir;

@@ -21,6 +21,7 @@
 
 #include "daemon_process.hpp"
 #include "http_client.hpp"
+#include "poll.hpp"
 
 namespace rotord::testing {
 namespace {
@@ -116,11 +117,12 @@ TEST_F(WebApi, HoldToMoveStopsWhenRenewalsStop) {
   }
   EXPECT_NE(status().find("\"jogging\":true"), std::string::npos);
   ASSERT_EQ(http(port, "POST", "/api/move", R"({"dir":"ccw","hold_ms":300})").status, 200);
-  // Wall time on purpose: the dead-man after the last renewal is the thing
-  // under test. A bounded poll, not a timing assertion.
+  // The dead-man after the last renewal is the thing under test. It runs on
+  // the network's clock, which the manual clock moves too: run it out without
+  // waiting (a bounded walk, 10 s of controller time at most, never timed).
   std::string s = status();
   for (int n = 0; n < 100 && s.find("\"jogging\":true") != std::string::npos; ++n) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    advance(100);
     s = status();
   }
   EXPECT_EQ(s.find("\"jogging\":true"), std::string::npos) << s;
@@ -201,9 +203,17 @@ TEST_F(WebApi, TooManyConnectionsGetA503AndOthersKeepWorking) {
     held.push_back(std::make_unique<TcpClient>(port, "127.0.0." + std::to_string(n)));
     held.back()->send("GET /api/sta");  // slow clients: half a request each
   }
-  // Wall time on purpose: the daemon accepts the eight on its own loop.
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  // The daemon takes the eight in on its own loop: ask until it answers that
+  // the port is full (each answer comes at once and closes; a bounded poll
+  // for the condition, no wait).
+  int full_status = 0;
+  for (int n = 0; n < 100 && full_status != 503; ++n)
+    full_status = http(port, "GET", "/api/status").status;
+  EXPECT_EQ(full_status, 503);
+  // A newcomer to a full port may still say STOP for 2 s (issue 29), then
+  // gets the 503: run those 2 s on the network's clock.
   TcpClient extra(port, "127.0.0.9");
+  daemon->advance_ms(2100);
   extra.wait_closed(3000);
   EXPECT_EQ(extra.recv_once(0).rfind("HTTP/1.1 503", 0), 0u);
   held.clear();
@@ -329,14 +339,21 @@ TEST_F(WebApi, AKillDuringSavingNeverLeavesABrokenFile) {
   for (int round = 0; round < 4; ++round) {
     start();
     std::atomic<bool> run{true};
+    std::atomic<int> answered{0};
     std::thread writer([&] {
-      for (int n = 0; run; ++n)
+      for (int n = 0; run; ++n) {
         http(port, "POST", "/api/settings",
              "{\"park.az_deg\": " + std::to_string(n % 300) +
                  ", \"az.offset_deg\": " + std::to_string((n % 7) - 3) + "}");
+        answered.fetch_add(1);
+        answered.notify_all();
+      }
     });
-    // Wall time on purpose: a kill at a different moment of the writes each round.
-    std::this_thread::sleep_for(std::chrono::milliseconds(150 + 70 * round));
+    // A kill at a different moment of the writes each round: after another
+    // number of answered saves, while the writer sends the next one (waits
+    // on the writer's count, not on the clock).
+    const int kill_after = 3 + 5 * round;
+    for (int seen = answered.load(); seen < kill_after; seen = answered.load()) answered.wait(seen);
     ::kill(daemon->pid(), SIGKILL);
     run = false;
     writer.join();
@@ -360,14 +377,16 @@ TEST_F(WebApi, RebootRestartsTheControllerWithRestartOnlySettings) {
   EXPECT_NE(status().find("\"has_el\":true"), std::string::npos);
   r = http(port, "POST", "/api/reboot", "{}");
   EXPECT_EQ(r.status, 202);
+  // The reboot is scheduled on the wall clock (200 ms after the reply has
+  // gone out, whatever the manual clock does): poll until it happened; the
+  // 20 s bound is for a loaded 2-core machine (5 s failed 1 run in 5 there).
   std::string s;
-  for (int n = 0; n < 200 && s.find("\"has_el\":false") == std::string::npos; ++n) {
-    // Wall time on purpose: the reboot is scheduled on the transport's clock,
-    // after the reply has gone out. A bounded poll that ends on its condition;
-    // the 20 s bound is for a loaded 2-core machine (5 s failed 1 run in 5 there).
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    s = status();
-  }
+  poll_until(
+      [&] {
+        s = status();
+        return s.find("\"has_el\":false") != std::string::npos;
+      },
+      std::chrono::seconds(20));
   EXPECT_NE(s.find("\"has_el\":false"), std::string::npos) << s;
   EXPECT_NE(s.find("\"el\":null"), std::string::npos);
 }

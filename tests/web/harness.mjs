@@ -74,6 +74,8 @@ export class Rotord {
       this.proc.stdout.on('data', onData);
       this.proc.stderr.on('data', onData);
       this.proc.on('exit', (code) => reject(new Error(`rotord exited (${code}): ${this.output}`)));
+      // A bound for liveness only (the daemon, another process, starts on the
+      // wall clock); 'ready' ends the wait as soon as it is printed.
       setTimeout(() => reject(new Error(`rotord not ready: ${this.output}`)), 15000);
     });
     await ready;
@@ -161,7 +163,14 @@ export async function screenshot(page, name) {
   await page.screenshot({ path: path.join(ARTIFACTS, name), fullPage: true });
 }
 
-/** Polls fn() until it returns a truthy value or the time runs out. */
+/**
+ * Polls fn() until it returns a truthy value or the time runs out: the one
+ * wall-clock poll of the browser tests. For what runs on the wall clock and
+ * no daemon clock moves (the browser's own timers and rendering, another
+ * process, the login budget of a rotord without a manual clock); what runs on
+ * the controller's or the network's clock is advanced instead
+ * (untilAdvancing). `timeout` is for liveness only, never a timing.
+ */
 export async function until(fn, { timeout = 15000, interval = 100, what = 'condition' } = {}) {
   const end = Date.now() + timeout;
   let last;

@@ -39,23 +39,22 @@ async function logIn(page, password) {
 // checked guesses (10 a minute, docs/security.md): the tests before this one
 // may have spent it, so the owner waits as a person would and tries again.
 async function logInAsOwner(page) {
-  for (let attempt = 0; attempt < 30; attempt++) {
+  // The guess budget refills on the daemon's wall clock (this rotord has no
+  // manual clock): until() retries a second apart, as a person would, until
+  // the login succeeds; the pace never decides the result.
+  await until(async () => {
     await logIn(page, PASSWORD);
     await until(async () => new URL(page.url()).pathname !== '/login.html' ||
       /too many|wrong|error/.test(await page.textContent('#msg')), { what: 'login answered' });
-    if (new URL(page.url()).pathname !== '/login.html') {
-      // The refused tries' 429s are the budget at work, not errors of the page.
-      const others = page.errors.filter((e) => !e.includes('status of 429'));
-      page.errors.splice(0, page.errors.length, ...others);
-      return;
+    if (new URL(page.url()).pathname === '/login.html') {
+      assert.match(await page.textContent('#msg'), /too many/);
+      return false;
     }
-    assert.match(await page.textContent('#msg'), /too many/);
-    // The guess budget refills on the daemon's wall clock (this rotord has
-    // no manual clock); the loop retries until the login succeeds, so the
-    // wait's length only paces it and never decides the result.
-    await new Promise((resolve) => setTimeout(resolve, 1000));
-  }
-  assert.fail('the owner never got in');
+    // The refused tries' 429s are the budget at work, not errors of the page.
+    const others = page.errors.filter((e) => !e.includes('status of 429'));
+    page.errors.splice(0, page.errors.length, ...others);
+    return true;
+  }, { timeout: 60000, interval: 1000, what: 'the owner got in' });
 }
 
 test('a page asked for without a login goes to the login page; STOP works there', async () => {

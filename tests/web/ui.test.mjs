@@ -120,15 +120,16 @@ test('holding CW moves, releasing stops', async () => {
   const start = (await rotord.status()).az.position_deg;
   await holdCw(page);
   await until(async () => (await rotord.status()).az.jogging, { what: 'jogging' });
-  // The G-5500 turns about 6 deg/s. Advanced in steps with wall time
-  // between them: the dead-man runs on the network's clock, which the manual
-  // clock moves too, and the page renews it on the wall clock.
-  // The wait is the page's own renewal timing (a real browser's setInterval,
-  // which no daemon clock drives); each step only needs a renewal to land
-  // within the 700 ms hold, and the assertions below check the outcome.
+  // The G-5500 turns about 6 deg/s. Advanced in steps, one per renewal of
+  // the page: the dead-man runs on the network's clock, which the manual
+  // clock moves too, and the page renews it on its own timer (a real
+  // browser's setInterval, which no daemon clock drives). Each step waits for
+  // the next renewal's answer, so a renewal lands within every 700 ms hold
+  // whatever the machine's pace; the assertions below check the outcome.
+  const renewal = (r) => r.url().endsWith('/api/move') && r.request().method() === 'POST';
   for (let step = 0; step < 30; step++) {
     await rotord.advance(100);
-    await new Promise((resolve) => setTimeout(resolve, 150));
+    await page.waitForResponse(renewal, { timeout: 15000 });
   }
   const held = await rotord.status();
   assert.equal(held.az.jogging, true, 'jogging while held');
