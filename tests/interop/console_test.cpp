@@ -12,6 +12,7 @@
 #include <string>
 
 #include "daemon_process.hpp"
+#include "file_text.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
@@ -56,12 +57,7 @@ class ConsoleInterop : public ::testing::Test {
     }
     return out;
   }
-  std::string file_text() const {
-    std::ifstream in(config);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
+  std::string file_text() const { return read_file(config); }
 
   std::string dir, config, link;
   std::unique_ptr<DaemonProcess> daemon;

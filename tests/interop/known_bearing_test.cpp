@@ -15,6 +15,7 @@
 #include <string>
 
 #include "daemon_process.hpp"
+#include "file_text.hpp"
 #include "http_client.hpp"
 #include "shell.hpp"
 
@@ -56,12 +57,7 @@ class KnownBearing : public ::testing::Test {
                        ",raw,echo=0")
         .out;
   }
-  std::string file_text() const {
-    std::ifstream in(config);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
+  std::string file_text() const { return read_file(config); }
 
   std::string dir, config, link;
   std::unique_ptr<DaemonProcess> daemon;

@@ -15,18 +15,12 @@
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "file_text.hpp"
 
 namespace rotord::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// Reads from `c` until `text` has arrived (or 3 s of silence); returns all.
 std::string read_until(TcpClient& c, const std::string& text) {

@@ -13,17 +13,11 @@
 
 #include "../unit/json_members.hpp"
 #include "daemon_process.hpp"
+#include "file_text.hpp"
 #include "shell.hpp"
 
 namespace rotord::testing {
 namespace {
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::string main_capture(const std::string& name) {
   return read_file(std::string(ROTORD_SOURCE_DIR) + "/tests/data/settings/" + name);

@@ -12,19 +12,13 @@
 #include <string>
 
 #include "daemon_process.hpp"
+#include "file_text.hpp"
 #include "http_client.hpp"
 
 namespace rotord::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 class SetupApi : public ::testing::Test {
  protected:

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "daemon_process.hpp"
+#include "file_text.hpp"
 #include "http_client.hpp"
 #include "poll.hpp"
 
@@ -36,13 +37,6 @@ double number(const std::string& json, const std::string& key, std::size_t from 
 
 double az_of(const std::string& status) {
   return number(status, "position_deg", status.find("\"az\":{"));
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 class WebApi : public ::testing::Test {
