@@ -47,9 +47,11 @@ int main(int argc, char** argv) {
   app.add_option("--web-port", o.web_port, "Web UI and REST API port (0 disables)")
       ->check(port)
       ->capture_default_str();
-  // --wrc-port, --rotctld-port, --gs232-port, --easycomm-port, --seed-port,
-  // --console-port: one per row of the protocol registry.
+  // --KEY-port: one per row of the protocol registry; --pty and --serial
+  // name the rows' keys (nothing here lists the protocols).
+  std::string keys;
   for (const rotord::protocol::ProtocolInfo& p : rotord::protocol::protocols()) {
+    keys += (keys.empty() ? "" : ", ") + std::string(p.key);
     std::string help = std::string(p.name) + " port (0 disables)";
     if (p.personality == rotord::protocol::Personality::kConsole)
       help += "; off unless given (the console changes settings: prefer --pty console)";
@@ -60,11 +62,9 @@ int main(int argc, char** argv) {
         ->check(port)
         ->capture_default_str();
   }
-  app.add_option(
-         "--pty", o.ptys,
-         "Serve a protocol on a new pseudo-terminal, PERSONALITY[:LINK] (wrc, rotctld, "
-         "gs232, easycomm, seed, console); rotord prints its path and makes LINK a symlink to it. "
-         "Repeatable")
+  app.add_option("--pty", o.ptys,
+                 "Serve a protocol on a new pseudo-terminal, PERSONALITY[:LINK] (" + keys +
+                     "); rotord prints its path and makes LINK a symlink to it. Repeatable")
       ->take_all()
       ->allow_extra_args(false);
   app.add_option("--serial", o.serials,
