@@ -4,7 +4,7 @@
 // Hamlib on a COM port (docs/serial.md, ports/pico_w/README.md "USB").
 //
 // Portable code with no pico-sdk or TinyUSB include: the firmware gives it
-// TinyUSB's CDC interface 1 (usb_cdc_port.cpp) and tests/usb gives it a fake,
+// TinyUSB's CDC interface 1 (usb_cdc_port.hpp) and tests/usb gives it a fake,
 // so the line handling that otherwise only runs on the Pico is tested on the
 // host.
 //

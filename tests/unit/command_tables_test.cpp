@@ -75,7 +75,7 @@ TEST(LineReply, EachProtocolOverflowsIntoItsOwnError) {
   EXPECT_EQ(rotctld::kReplyRules.overflow, "RPRT -10\n");  // RIG_ETRUNC
 }
 
-/// The help pages as the hand-written gs232_help.cpp had them before the
+/// The help pages as the hand-written gs232_help.cpp (removed) had them before the
 /// table (issue 11): generating them from the rows changed no byte.
 TEST(Gs232Table, HelpPagesAreTheRowsByteForByteAsBefore) {
   EXPECT_EQ(Gs232Session::help_page(1),

@@ -1,6 +1,6 @@
 // TinyUSB configuration of the Pico W firmware: two CDC ACM interfaces, the
 // log (pico_stdio_usb, CDC 0) and the protocol port (usb.personality, CDC 1),
-// plus the SDK's reset interface for picotool (usb_descriptors.cpp).
+// plus the SDK's reset interface for picotool (usb_device.c).
 //
 // The firmware links tinyusb_device itself, so pico_stdio_usb leaves TinyUSB
 // to it: tusb_init() before stdio_init_all(), tud_task() from the main loop
