@@ -93,10 +93,10 @@ def documented_stat(source, patch_rel):
 def compile_command(commands, source, rel):
     """The build's command for `rel`, or for a sibling in its directory (a file
     the patch adds is in no build yet), as an argument list."""
-    path = os.path.normpath(os.path.join(source, rel))
+    path = os.path.realpath(os.path.join(source, rel))
     chosen = None
     for entry in commands:
-        file = os.path.normpath(os.path.join(entry['directory'], entry['file']))
+        file = os.path.realpath(os.path.join(entry['directory'], entry['file']))
         if file == path:
             chosen = (entry, file)
             break
@@ -124,7 +124,7 @@ def syntax_only(args, cwd, built_file, copy, overlay, original_dir):
             continue
         if a in ('-c', '-MD', '-MMD') or a.startswith('-o'):
             continue
-        if not a.startswith('-') and os.path.normpath(os.path.join(cwd, a)) == built_file:
+        if not a.startswith('-') and os.path.realpath(os.path.join(cwd, a)) == built_file:
             continue
         out.append(a)
     return out + ['-fsyntax-only', copy]
@@ -139,7 +139,7 @@ def main():
     parser.add_argument('--max-files', type=int, help='all files, tests and pages included')
     parser.add_argument('--compile', action='append', default=[])
     args = parser.parse_args()
-    source = os.path.abspath(args.source)
+    source = os.path.realpath(args.source)
     patch = os.path.join(source, args.patch)
     if not os.path.isfile(patch):
         fail(f'{args.patch} is not in the tree')
