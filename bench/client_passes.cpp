@@ -1,14 +1,17 @@
 // Issue 22: the modelled clients beside on-board tracking of the same pass.
 // Each row follows one real ISS pass (SGP4) on the simulator in virtual
-// time and reports the great-circle pointing error of the antenna (the
-// plant's own angle, flipped back when el > 90; the azimuth judged below
-// 80 deg elevation, as issue 13 decides) every 0.1 s from AOS to LOS, the
+// time and reports the pointing error of the antenna (the angle on the sky
+// between where its axes point, over the top when el > 90, and the
+// satellite: bench/sky_angle.hpp) every 0.1 s from AOS to LOS, the
 // seconds off by more than 5 deg, the unwinds (one azimuth run of more than
 // 200 deg; the tracking mode counts its own), the motor starts of both axes
 // in the pass and the commands the client had refused; on a pass whose
 // 0..360 azimuth crosses north, the largest error within 30 s of that moment
 // beside issue 22's goal for it (the client's threshold + 2 deg; on-board
-// and SatDump have none). Each client runs
+// and SatDump have none). Beside it, the client's own pointing (where it
+// asks the antenna to be, against the satellite: the SatNOGS client's
+// mirrored flip is off the satellite by itself) and the antenna against
+// what the client asks (what rotord adds). Each client runs
 // three times: the lead rule off (`_before`), on (the default), and on with
 // the ISS in the TLE store (`_recognised`: rotord may recognise the pass and
 // follow it between the client's go-tos; how long it took from AOS, how
@@ -198,6 +201,10 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
   // The continuity goal: the error within kNorthWindowMs of the moment the
   // 0..360 azimuth wraps, and when the pass's largest error came.
   double max_north = 0, s_max_error = 0;
+  // The client's own pointing (where it asks the antenna to be, against the
+  // satellite: what obeying it exactly would give) and the antenna against
+  // it (what rotord adds), to tell the client's geometry from rotord's.
+  double own_sum = 0, own_max = 0, own_north = 0, from_client_max = 0, from_client_north = 0;
   long n_recognised = 0;
   long n = 0;
   std::uint32_t starts_at_aos = 0;
@@ -222,16 +229,28 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
     if (now % kSampleMs != 0) continue;
     const double az = sim.plant(AxisId::kAz).theta_deg();
     unwinds.add(az);
-    const double e = pointing_error(az, sim.plant(AxisId::kEl).theta_deg(), sky.az_deg,
-                                    sky.el_deg < 0 ? 0 : sky.el_deg);
+    const double el = sim.plant(AxisId::kEl).theta_deg();
+    const double sky_el = sky.el_deg < 0 ? 0 : sky.el_deg;
+    const double e = pointing_error(az, el, sky.az_deg, sky_el);
+    SkyAzEl w = who.onboard ? SkyAzEl{sky.az_deg, sky_el}
+                            : client.wanted(sky, static_cast<double>(now) / 1000.0);
+    if (w.el_deg < 0) w.el_deg = 0;
+    const double own = pointing_error(w.az_deg, w.el_deg, sky.az_deg, sky_el);
+    const double from_client = pointing_error(az, el, w.az_deg, w.el_deg);
+    own_sum += own * own;
+    own_max = std::fmax(own_max, own);
+    from_client_max = std::fmax(from_client_max, from_client);
     sum += e * e;
     ++n;
     const std::int64_t t_ms = pc.from_ms + now;
     if (e > max_err) s_max_error = static_cast<double>(t_ms - pc.pass.aos_ms) / 1000.0;
     max_err = std::fmax(max_err, e);
     if (pc.crosses_north && t_ms >= pc.north_ms - kNorthWindowMs &&
-        t_ms <= pc.north_ms + kNorthWindowMs)
+        t_ms <= pc.north_ms + kNorthWindowMs) {
       max_north = std::fmax(max_north, e);
+      own_north = std::fmax(own_north, own);
+      from_client_north = std::fmax(from_client_north, from_client);
+    }
     if (e > 5.0) s_over_5 += kSampleMs / 1000.0;
     if (c.recognition().active) {
       if (s_to_recognise < 0)
@@ -271,12 +290,17 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
        {"rms_recognised_deg",
         n_recognised > 0 ? std::sqrt(sum_recognised / static_cast<double>(n_recognised)) : 0.0},
        {"max_recognised_deg", max_recognised},
-       {"recognition_endings", static_cast<double>(c.recognition().endings)}}};
+       {"recognition_endings", static_cast<double>(c.recognition().endings)},
+       {"client_own_rms_deg", n > 0 ? std::sqrt(own_sum / static_cast<double>(n)) : 0.0},
+       {"client_own_max_deg", own_max},
+       {"max_from_client_deg", from_client_max}}};
   // Issue 22's continuity goal, read directly: the largest error within 30 s
   // of the north crossing, against the client's threshold + 2 deg.
   if (pc.crosses_north) {
     row.metrics.push_back({"north_max_error_deg", max_north});
     row.metrics.push_back({"north_goal_deg", row.inputs.back().second + 2.0});
+    row.metrics.push_back({"north_client_own_deg", own_north});
+    row.metrics.push_back({"north_from_client_deg", from_client_north});
   }
   return row;
 }

@@ -10,6 +10,7 @@
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
+#include "sky_angle.hpp"
 
 namespace rotord::bench {
 namespace {
@@ -62,10 +63,7 @@ class Pass {
 };
 
 double great_circle_deg(AzEl a, AzEl b) {
-  const double c = std::sin(a.el_deg * kDeg) * std::sin(b.el_deg * kDeg) +
-                   std::cos(a.el_deg * kDeg) * std::cos(b.el_deg * kDeg) *
-                       std::cos((a.az_deg - b.az_deg) * kDeg);
-  return std::acos(std::clamp(c, -1.0, 1.0)) / kDeg;
+  return sky_angle_deg(a.az_deg, a.el_deg, b.az_deg, b.el_deg);
 }
 
 double wrap180(double d) {
