@@ -118,9 +118,9 @@ class TrackingClient {
 // Gpredict's rotator controller: one cycle per 0.8 s reads the position
 // (`p`) and sends a new `P` only when the rotator is off by more than 5 deg
 // on an axis (its default threshold). Azimuths go out as 0..360, as Gpredict
-// sends them; rotctld takes them as positions (Hamlib's rule), so a pass
-// crossing north makes a 450 deg rotator run the long way round at 360 -> 0:
-// the large maximum errors are that, not noise.
+// sends them; rotctld took them as positions (Hamlib's rule), so a pass
+// crossing north made a 450 deg rotator run the long way round at 360 -> 0,
+// until the continuity rule (issue 22) continued such a stream.
 class GpredictClient final : public TrackingClient {
  public:
   void step(Millis now, AzEl sat, protocol::RotctldSession& session) override {
