@@ -1,20 +1,25 @@
 // Issue 22: the modelled clients beside on-board tracking of the same pass.
 // Each row follows one real ISS pass (SGP4) on the simulator in virtual
-// time and reports the great-circle pointing error of the antenna (the
-// plant's own angle, flipped back when el > 90; the azimuth judged below
-// 80 deg elevation, as issue 13 decides) every 0.1 s from AOS to LOS, the
+// time and reports the pointing error of the antenna (the angle on the sky
+// between where its axes point, over the top when el > 90, and the
+// satellite: bench/sky_angle.hpp) every 0.1 s from AOS to LOS, the
 // seconds off by more than 5 deg, the unwinds (one azimuth run of more than
 // 200 deg; the tracking mode counts its own), the motor starts of both axes
 // in the pass and the commands the client had refused; on a pass whose
 // 0..360 azimuth crosses north, the largest error within 30 s of that moment
 // beside issue 22's goal for it (the client's threshold + 2 deg; on-board
-// and SatDump have none). Each client runs
+// and SatDump have none). Beside it, the client's own pointing (where it
+// asks the antenna to be, against the satellite: the SatNOGS client's
+// mirrored flip is off the satellite by itself) and the antenna against
+// what the client asks (what rotord adds), and the same client obeyed by
+// an ideal follower of its go-tos (ObeyingFloor). Each client runs
 // three times: the lead rule off (`_before`), on (the default), and on with
 // the ISS in the TLE store (`_recognised`: rotord may recognise the pass and
 // follow it between the client's go-tos; how long it took from AOS, how
 // long it lasted and the error once recognised are reported too).
 #include "client_passes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -141,6 +146,43 @@ class UnwindCounter {
   double start_ = 0, last_ = 0;
 };
 
+/// The floor of obeying a client: each axis turned at the profile's top
+/// speed with no acceleration, delay or backlash, straight to where the
+/// client last asked (its azimuth continued to the nearest turn, as the
+/// continuity rule does), the client deciding on its own cycle against
+/// this follower's position (read back 0..360, as rotord reports to it).
+/// What a controller that goes where it is told, without predicting the
+/// satellite, cannot beat by much; rotord's lead rule is such a controller
+/// with a lead of at most the client's threshold.
+class ObeyingFloor {
+ public:
+  ObeyingFloor(double vaz_deg_s, double vel_deg_s) : vaz_(vaz_deg_s), vel_(vel_deg_s) {}
+  void start(SkyAzEl at) {
+    az_ = cmd_az_ = at.az_deg;
+    el_ = cmd_el_ = at.el_deg;
+  }
+  void step(Millis now, double dt_s, SkyAzEl wish, const TrackerClient& client) {
+    if (now >= next_ms_) {
+      next_ms_ = now + client.cycle_ms();
+      const double read_az = std::fmod(std::fmod(az_, 360.0) + 360.0, 360.0);
+      const double w_el = wish.el_deg < 0.0 ? 0.0 : wish.el_deg;
+      if (client.would_send(wish.az_deg - read_az, w_el - el_)) {
+        cmd_az_ = az_ + std::remainder(wish.az_deg - az_, 360.0);
+        cmd_el_ = w_el;
+      }
+    }
+    az_ += std::clamp(cmd_az_ - az_, -vaz_ * dt_s, vaz_ * dt_s);
+    el_ += std::clamp(cmd_el_ - el_, -vel_ * dt_s, vel_ * dt_s);
+  }
+  double az_deg() const { return az_; }
+  double el_deg() const { return el_; }
+
+ private:
+  double vaz_, vel_;
+  double az_ = 0, el_ = 0, cmd_az_ = 0, cmd_el_ = 0;
+  Millis next_ms_ = 0;
+};
+
 struct Who {
   const char* name;
   bool onboard;
@@ -171,6 +213,8 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
                                     : client.wanted({pc.pass.aos_az_deg, 0.0}, 0.0);
   sim.set_theta_deg(AxisId::kAz, start.az_deg);
   sim.set_theta_deg(AxisId::kEl, start.el_deg);
+  ObeyingFloor floor(p.az.plant.v_max_deg_s, p.el.plant.v_max_deg_s);
+  floor.start(start);
   Millis now = 0;
   VirtualUtc utc(pc.from_ms, &now);
   Controller c(settings, sim.io(AxisId::kAz), sim.io(AxisId::kEl));
@@ -198,6 +242,11 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
   // The continuity goal: the error within kNorthWindowMs of the moment the
   // 0..360 azimuth wraps, and when the pass's largest error came.
   double max_north = 0, s_max_error = 0;
+  // The client's own pointing (where it asks the antenna to be, against the
+  // satellite: what obeying it exactly would give) and the antenna against
+  // it (what rotord adds), to tell the client's geometry from rotord's.
+  double own_sum = 0, own_max = 0, own_north = 0, from_client_max = 0, from_client_north = 0;
+  double floor_max = 0, floor_north = 0;
   long n_recognised = 0;
   long n = 0;
   std::uint32_t starts_at_aos = 0;
@@ -213,7 +262,11 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
       sky = {look.az_deg, look.el_deg};
     }
     const bool up = pc.from_ms + now >= pc.pass.aos_ms;
-    if (up && !who.onboard) client.step(now, sky, session);
+    if (up && !who.onboard) {
+      client.step(now, sky, session);
+      const double t_s = static_cast<double>(now) / 1000.0;
+      floor.step(now, static_cast<double>(kTickMs) / 1000.0, client.wanted(sky, t_s), client);
+    }
     c.tick(now);
     if (!up) continue;
     const RotatorStatus s = c.status();
@@ -222,16 +275,32 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
     if (now % kSampleMs != 0) continue;
     const double az = sim.plant(AxisId::kAz).theta_deg();
     unwinds.add(az);
-    const double e = pointing_error(az, sim.plant(AxisId::kEl).theta_deg(), sky.az_deg,
-                                    sky.el_deg < 0 ? 0 : sky.el_deg);
+    const double el = sim.plant(AxisId::kEl).theta_deg();
+    const double sky_el = sky.el_deg < 0 ? 0 : sky.el_deg;
+    const double e = pointing_error(az, el, sky.az_deg, sky_el);
+    SkyAzEl w = who.onboard ? SkyAzEl{sky.az_deg, sky_el}
+                            : client.wanted(sky, static_cast<double>(now) / 1000.0);
+    if (w.el_deg < 0) w.el_deg = 0;
+    const double own = pointing_error(w.az_deg, w.el_deg, sky.az_deg, sky_el);
+    const double from_client = pointing_error(az, el, w.az_deg, w.el_deg);
+    own_sum += own * own;
+    own_max = std::fmax(own_max, own);
+    from_client_max = std::fmax(from_client_max, from_client);
+    const double floor_e =
+        who.onboard ? 0.0 : pointing_error(floor.az_deg(), floor.el_deg(), sky.az_deg, sky_el);
+    floor_max = std::fmax(floor_max, floor_e);
     sum += e * e;
     ++n;
     const std::int64_t t_ms = pc.from_ms + now;
     if (e > max_err) s_max_error = static_cast<double>(t_ms - pc.pass.aos_ms) / 1000.0;
     max_err = std::fmax(max_err, e);
     if (pc.crosses_north && t_ms >= pc.north_ms - kNorthWindowMs &&
-        t_ms <= pc.north_ms + kNorthWindowMs)
+        t_ms <= pc.north_ms + kNorthWindowMs) {
       max_north = std::fmax(max_north, e);
+      own_north = std::fmax(own_north, own);
+      floor_north = std::fmax(floor_north, floor_e);
+      from_client_north = std::fmax(from_client_north, from_client);
+    }
     if (e > 5.0) s_over_5 += kSampleMs / 1000.0;
     if (c.recognition().active) {
       if (s_to_recognise < 0)
@@ -271,12 +340,19 @@ Result run_one(const char* profile_name, const PassCase& pc, const Who& who, boo
        {"rms_recognised_deg",
         n_recognised > 0 ? std::sqrt(sum_recognised / static_cast<double>(n_recognised)) : 0.0},
        {"max_recognised_deg", max_recognised},
-       {"recognition_endings", static_cast<double>(c.recognition().endings)}}};
+       {"recognition_endings", static_cast<double>(c.recognition().endings)},
+       {"client_own_rms_deg", n > 0 ? std::sqrt(own_sum / static_cast<double>(n)) : 0.0},
+       {"client_own_max_deg", own_max},
+       {"max_from_client_deg", from_client_max},
+       {"obeying_floor_max_deg", floor_max}}};
   // Issue 22's continuity goal, read directly: the largest error within 30 s
   // of the north crossing, against the client's threshold + 2 deg.
   if (pc.crosses_north) {
     row.metrics.push_back({"north_max_error_deg", max_north});
     row.metrics.push_back({"north_goal_deg", row.inputs.back().second + 2.0});
+    row.metrics.push_back({"north_client_own_deg", own_north});
+    row.metrics.push_back({"north_from_client_deg", from_client_north});
+    row.metrics.push_back({"north_obeying_floor_deg", floor_north});
   }
   return row;
 }

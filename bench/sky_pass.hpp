@@ -1,12 +1,13 @@
 #pragma once
 // What the bench rows that follow the sky share (bench/tracking_mode.cpp,
 // bench/client_passes.cpp): the ISS's elements of 2019-12-09, a UTC clock
-// in step with virtual time, and the pointing error as issue 13 judges it.
+// in step with virtual time, and the pointing error (the sky angle).
 #include <cmath>
 #include <cstdint>
 #include <optional>
 
 #include "hal/wall_clock.hpp"
+#include "sky_angle.hpp"
 #include "util/time.hpp"
 
 namespace rotord::bench {
@@ -27,20 +28,12 @@ class VirtualUtc final : public hal::WallClock {
   const Millis* now_;
 };
 
-/// The great-circle angle (deg) between the antenna (its axes' angles,
-/// flipped back when el > 90) and a sky direction; above 80 deg elevation
-/// only the elevation counts (the azimuth is ill-conditioned there).
+/// The pointing error: the angle on the sky between the antenna (its
+/// axes' angles, over the top when el > 90) and a sky direction. Near the
+/// zenith too: there the azimuth is ill-conditioned as an axis figure, but
+/// the sky angle already weighs it by how far it moves the beam.
 inline double pointing_error(double ant_az, double ant_el, double az, double el) {
-  constexpr double kPi = 3.14159265358979323846;
-  const auto rad = [](double d) { return d * kPi / 180.0; };
-  if (ant_el > 90.0) {
-    ant_az += 180.0;
-    ant_el = 180.0 - ant_el;
-  }
-  if (el > 80.0) return std::fabs(ant_el - el);
-  const double c = std::sin(rad(ant_el)) * std::sin(rad(el)) +
-                   std::cos(rad(ant_el)) * std::cos(rad(el)) * std::cos(rad(ant_az - az));
-  return std::acos(std::fmin(1.0, std::fmax(-1.0, c))) * 180.0 / kPi;
+  return sky_angle_deg(ant_az, ant_el, az, el);
 }
 
 }  // namespace rotord::bench

@@ -91,6 +91,13 @@ class TrackerClient {
   }
   /// The error it lets stand before sending (0: none, a go-to every cycle).
   double threshold_deg() const { return threshold_deg_; }
+  /// How often it looks.
+  long long cycle_ms() const { return cycle_ms_; }
+  /// Whether it would send, off by `d_az_deg` / `d_el_deg` from its wish.
+  bool would_send(double d_az_deg, double d_el_deg) const {
+    return threshold_deg_ <= 0.0 || std::fabs(d_az_deg) > threshold_deg_ ||
+           std::fabs(d_el_deg) > threshold_deg_;
+  }
   int commands() const { return commands_; }
   int refused() const { return refused_; }
 

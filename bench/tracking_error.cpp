@@ -10,6 +10,7 @@
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
+#include "sky_angle.hpp"
 
 namespace rotord::bench {
 namespace {
@@ -62,10 +63,7 @@ class Pass {
 };
 
 double great_circle_deg(AzEl a, AzEl b) {
-  const double c = std::sin(a.el_deg * kDeg) * std::sin(b.el_deg * kDeg) +
-                   std::cos(a.el_deg * kDeg) * std::cos(b.el_deg * kDeg) *
-                       std::cos((a.az_deg - b.az_deg) * kDeg);
-  return std::acos(std::clamp(c, -1.0, 1.0)) / kDeg;
+  return sky_angle_deg(a.az_deg, a.el_deg, b.az_deg, b.el_deg);
 }
 
 double wrap180(double d) {
@@ -120,9 +118,9 @@ class TrackingClient {
 // Gpredict's rotator controller: one cycle per 0.8 s reads the position
 // (`p`) and sends a new `P` only when the rotator is off by more than 5 deg
 // on an axis (its default threshold). Azimuths go out as 0..360, as Gpredict
-// sends them; rotctld takes them as positions (Hamlib's rule), so a pass
-// crossing north makes a 450 deg rotator run the long way round at 360 -> 0:
-// the large maximum errors are that, not noise.
+// sends them; rotctld took them as positions (Hamlib's rule), so a pass
+// crossing north made a 450 deg rotator run the long way round at 360 -> 0,
+// until the continuity rule (issue 22) continued such a stream.
 class GpredictClient final : public TrackingClient {
  public:
   void step(Millis now, AzEl sat, protocol::RotctldSession& session) override {

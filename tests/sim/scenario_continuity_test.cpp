@@ -12,6 +12,7 @@
 #include <string>
 
 #include "../unit/string_sink.hpp"
+#include "bench/sky_angle.hpp"
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
 #include "protocol/rotctld_session.hpp"
@@ -93,18 +94,15 @@ std::string ask(protocol::Session& session, const std::string& line) {
 
 /// What a Gpredict-style client through rotctld measured over a pass.
 struct PassRun {
-  double max_error_deg = 0;         ///< great circle, az judged below 80 deg el
+  double max_error_deg = 0;         ///< the angle on the sky
   double max_readback_gap_deg = 0;  ///< |read-back az - last sent az|, in the client's frame
   int commands = 0;
   int refused = 0;
 };
 
+/// The pointing error: the angle on the sky (bench/sky_angle.hpp).
 double great_circle_deg(double az1, double el1, double az2, double el2) {
-  const double r = 3.14159265358979323846 / 180.0;
-  if (el2 > 80.0) return std::fabs(el1 - el2);
-  const double c = std::sin(el1 * r) * std::sin(el2 * r) +
-                   std::cos(el1 * r) * std::cos(el2 * r) * std::cos((az1 - az2) * r);
-  return std::acos(c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c)) / r;
+  return bench::sky_angle_deg(az1, el1, az2, el2);
 }
 
 /// Gpredict as its source reads (gtk-rot-ctrl.c): a cycle of 1 s, `p`, then

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "../unit/string_sink.hpp"
+#include "bench/sky_angle.hpp"
 #include "hal/wall_clock.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "rotator/controller.hpp"
@@ -126,7 +127,7 @@ struct ClientRun {
   int recognised_at = -1;           ///< the command that began the recognition
   double max_readback_gap_deg = 0;  ///< |read-back - target|, az in the client's frame
   int far_readings = 0;             ///< read-backs more than 90 deg from the client's target
-  double max_error_deg = 0;         ///< antenna to the ISS, once recognised, el < 80
+  double max_error_deg = 0;         ///< antenna to the ISS on the sky, once recognised
 };
 
 /// The frame a client sends in.
@@ -180,17 +181,10 @@ ClientRun gpredict(Bench& b, protocol::RotctldSession& client, double threshold_
         EXPECT_GT(read_el, 90.0 - 1.0) << "read back out of its flip frame";
       }
     }
-    if (b.recognition().active && look.el_deg < 80.0) {
-      const double r = 3.14159265358979323846 / 180.0;
-      double aa = b.theta(AxisId::kAz), ae = b.theta(AxisId::kEl);
-      if (ae > 90.0) {
-        aa += 180.0;
-        ae = 180.0 - ae;
-      }
-      const double c =
-          std::sin(ae * r) * std::sin(look.el_deg * r) +
-          std::cos(ae * r) * std::cos(look.el_deg * r) * std::cos((aa - look.az_deg) * r);
-      run.max_error_deg = std::fmax(run.max_error_deg, std::acos(std::fmin(1.0, c)) / r);
+    if (b.recognition().active) {
+      const double e = bench::sky_angle_deg(b.theta(AxisId::kAz), b.theta(AxisId::kEl), look.az_deg,
+                                            look.el_deg);
+      run.max_error_deg = std::fmax(run.max_error_deg, e);
     }
     if (std::fabs(az - read_az) > threshold_deg || std::fabs(el - read_el) > threshold_deg) {
       char cmd[64];

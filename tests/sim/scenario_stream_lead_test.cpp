@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "bench/sky_angle.hpp"
 #include "bench/tracker_clients.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "rotator/controller.hpp"
@@ -27,12 +28,12 @@ using bench::ClientPass;
 using bench::SkyAzEl;
 using bench::TrackerClient;
 using settings::Id;
+constexpr double kPi = 3.14159265358979323846;
 
 constexpr const char* kIss1 =
     "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
 constexpr const char* kIss2 =
     "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
-constexpr double kPi = 3.14159265358979323846;
 
 /// A pass: where, and the first ISS pass after `from_utc`.
 struct PassSpec {
@@ -51,32 +52,17 @@ struct PassRun {
   int starts = 0;                   ///< motor starts of both axes, AOS..LOS
   double rms_deg = 0, max_deg = 0;  ///< pointing error against the satellite
   double max_from_wanted_deg = 0;   ///< against where the client wanted the antenna
+  double max_own_deg = 0;           ///< where the client wanted it, against the satellite
   double az_min = 1e9, az_max = -1e9, el_min = 1e9, el_max = -1e9;
   double longest_az_run_deg = 0;  ///< the longest one-way azimuth run (an unwind > 200)
   int limit_ticks = 0;
   int commands = 0, refused = 0;
 };
 
-double rad(double d) {
-  return d * kPi / 180.0;
-}
-
-/// Great-circle angle between where an antenna at (az, el) points (el
-/// beyond 90 looks over the top) and a sky direction; above 80 deg the
-/// azimuth is ill-conditioned, and only the elevation counts.
+/// The pointing error: the angle on the sky (bench/sky_angle.hpp), the
+/// same as the bench rows measure.
 double pointing_error(double ant_az, double ant_el, double az, double el) {
-  if (ant_el > 90.0) {
-    ant_az += 180.0;
-    ant_el = 180.0 - ant_el;
-  }
-  if (el > 90.0) {
-    az += 180.0;
-    el = 180.0 - el;
-  }
-  if (el > 80.0) return std::fabs(ant_el - el);
-  const double c = std::sin(rad(ant_el)) * std::sin(rad(el)) +
-                   std::cos(rad(ant_el)) * std::cos(rad(el)) * std::cos(rad(ant_az - az));
-  return std::acos(std::fmin(1.0, std::fmax(-1.0, c))) * 180.0 / kPi;
+  return bench::sky_angle_deg(ant_az, ant_el, az, el);
 }
 
 class Utc final : public hal::WallClock {
@@ -177,6 +163,8 @@ PassRun follow(const char* profile_name, const PassSpec& spec, ClientKind kind, 
     const SkyAzEl w = client.wanted(sky, static_cast<double>(now) / 1000.0);
     run.max_from_wanted_deg =
         std::fmax(run.max_from_wanted_deg, pointing_error(az, el, w.az_deg, w.el_deg));
+    run.max_own_deg =
+        std::fmax(run.max_own_deg, pointing_error(w.az_deg, w.el_deg, sky.az_deg, sky.el_deg));
   }
   run.rms_deg = n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
   run.commands = client.commands();
@@ -186,10 +174,11 @@ PassRun follow(const char* profile_name, const PassSpec& spec, ClientKind kind, 
 
 void print(const char* what, const PassRun& r) {
   std::printf(
-      "[ lead ] %s: %d starts, RMS %.2f max %.1f deg (from the client's wish at most %.1f), az "
-      "%.0f..%.0f el %.0f..%.0f, longest az run %.0f deg, %d commands, %d refused\n",
-      what, r.starts, r.rms_deg, r.max_deg, r.max_from_wanted_deg, r.az_min, r.az_max, r.el_min,
-      r.el_max, r.longest_az_run_deg, r.commands, r.refused);
+      "[ lead ] %s: %d starts, RMS %.2f max %.1f deg (from the client's wish at most %.1f; its "
+      "wish off the satellite by up to %.1f), az %.0f..%.0f el %.0f..%.0f, longest az run %.0f "
+      "deg, %d commands, %d refused\n",
+      what, r.starts, r.rms_deg, r.max_deg, r.max_from_wanted_deg, r.max_own_deg, r.az_min,
+      r.az_max, r.el_min, r.el_max, r.longest_az_run_deg, r.commands, r.refused);
 }
 
 /// Both runs stay inside the travel, touch no limit, never unwind.
@@ -241,6 +230,9 @@ TEST(FlipScenario, GpredictSendsTheHighPassFlippedAndIsFollowedWithoutALimit) {
   // and so of the satellite (the flip points at the same sky).
   EXPECT_LT(r.max_from_wanted_deg, 5.0 + 4.0);
   EXPECT_LT(r.max_deg, 5.0 + 4.0);
+  // Its flip points at the very sky point it flips: measured as a sky angle
+  // the wish is on the satellite all pass.
+  EXPECT_LT(r.max_own_deg, 0.01);
 }
 
 TEST(FlipScenario, SatnogsMirrorsThePassAtCulminationAndIsFollowedWithoutALimit) {
@@ -254,7 +246,28 @@ TEST(FlipScenario, SatnogsMirrorsThePassAtCulminationAndIsFollowedWithoutALimit)
     EXPECT_GT(r.el_max, 140.0);
     // Followed as sent: within the client's 4 deg threshold plus the lag.
     EXPECT_LT(r.max_from_wanted_deg, 4.0 + 4.0);
+    // The mirror is a reflection in (az, el), not a flip (az + 180,
+    // 180 - el): past culmination it asks for a point up to ~19 deg off
+    // the satellite (16 = 180 - 2 x 82.1 at LOS), so the antenna's error
+    // against the satellite is the client's, not the rotator's, and no
+    // more than the two together.
+    EXPECT_GT(r.max_own_deg, 15.0);
+    EXPECT_LE(r.max_deg, r.max_own_deg + r.max_from_wanted_deg + 0.01);
   }
+}
+
+TEST(SkyAngle, IsTheAngleOnTheSkyOverTheTopAndNearTheZenith) {
+  // What every bench row and these scenarios measure (bench/sky_angle.hpp).
+  // An antenna over the top at az + 180, 180 - el points at az, el.
+  EXPECT_NEAR(bench::sky_angle_deg(30.0 + 180.0, 180.0 - 70.0, 30.0, 70.0), 0.0, 1e-9);
+  EXPECT_NEAR(bench::sky_angle_deg(10.0, 0.0, 20.0, 0.0), 10.0, 1e-9);
+  // Near the zenith an azimuth error counts as the sky it moves the beam:
+  // 90 deg of azimuth at el 85 is 7.07 deg on the sky (not 0, as a figure
+  // of the elevation alone above 80 deg made it, nor 90).
+  EXPECT_NEAR(bench::sky_angle_deg(0.0, 85.0, 90.0, 85.0), 7.0666, 1e-3);
+  EXPECT_NEAR(bench::sky_angle_deg(0.0, 90.0, 123.0, 90.0), 0.0, 1e-9);
+  // Small angles keep their digits (atan2, not acos of a dot near 1).
+  EXPECT_NEAR(bench::sky_angle_deg(0.0, 45.0, 0.001, 45.0), 0.001 * std::cos(kPi / 4.0), 1e-8);
 }
 
 TEST(StreamLeadScenario, NeverPastTheTravelAndASingleGotoIsLiteral) {

@@ -1,13 +1,14 @@
 // The tracking mode on the physics simulator, in virtual time: the
 // controller plans a whole pass (wrap, flip), pre-positions, follows, and
-// each scenario prints its pointing error (great-circle; azimuth judged
-// below 80 deg elevation, as issue 13 decides).
+// each scenario prints its pointing error (the angle on the sky, as the
+// bench measures it: bench/sky_angle.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <memory>
 
+#include "bench/sky_angle.hpp"
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
@@ -42,29 +43,11 @@ class ScenarioClock final : public hal::WallClock {
   const Millis* now_;
 };
 
-double rad(double deg) {
-  return deg * 3.14159265358979323846 / 180.0;
-}
-
-/// Where an antenna at (az, el) points, el over 90 meaning flipped.
-void sky_of(double az, double el, double& sky_az, double& sky_el) {
-  if (el > 90.0) {
-    az += 180.0;
-    el = 180.0 - el;
-  }
-  sky_az = std::fmod(std::fmod(az, 360.0) + 360.0, 360.0);
-  sky_el = el;
-}
-
-/// The pointing error: the great-circle angle, or only the elevation error
-/// above 80 deg (the azimuth is ill-conditioned near the zenith).
+/// The pointing error: the angle on the sky (bench/sky_angle.hpp, as the
+/// bench rows measure it); an azimuth-only rotator is judged at the
+/// target's elevation.
 double pointing_error_deg(double ant_az, double ant_el, double sat_az, double sat_el, bool has_el) {
-  double az = 0, el = 0;
-  sky_of(ant_az, has_el ? ant_el : sat_el, az, el);
-  if (sat_el > 80.0) return std::fabs(el - sat_el);
-  const double c = std::sin(rad(el)) * std::sin(rad(sat_el)) +
-                   std::cos(rad(el)) * std::cos(rad(sat_el)) * std::cos(rad(az - sat_az));
-  return std::acos(c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c)) * 180.0 / 3.14159265358979323846;
+  return bench::sky_angle_deg(ant_az, has_el ? ant_el : sat_el, sat_az, sat_el);
 }
 
 class TrackScenario {
