@@ -1,9 +1,13 @@
 // Live calibration cards of the settings page: raw sensor readings next to
 // the angle, and the buttons that turn "the antenna points at X now" into
 // calibration settings. It names the calibration rows it writes (pot table,
-// MA3 zero, magnetometer extremes); everything else on the page comes from
-// the schema. Every write goes through POST /api/settings, so the server's
-// checks (ranges, a monotonic pot table) decide and a refusal saves nothing.
+// MA3 direction, magnetometer extremes); everything else on the page comes
+// from the schema. Every write goes through the server (POST /api/settings,
+// or the known bearing below), so its checks (ranges, a monotonic pot table)
+// decide and a refusal saves nothing. An absolute sensor's zero (the MA3's, the magnetometer's heading
+// offset) is the controller's known bearing (docs/commissioning.md): the
+// card gives the bearing and accepts the proposal (POST /api/commission,
+// then /api/commission/accept), so the arithmetic lives in one place.
 //
 // Angles: the controller shows sensor angle + <axis>.offset_deg, and the
 // calibration rows are in the sensor's frame. "Antenna now at X" therefore
@@ -42,9 +46,9 @@ const rotordCalibration = (() => {
     const offset = (axis) => Number(v(axis + '.offset_deg')) || 0;
 
     /** POSTs calibration settings; a refusal is shown in `errorBox`, nothing is saved. */
-    async function save(body, errorBox, okText) {
+    async function save(body, errorBox, okText, path = '/api/settings') {
       errorBox.textContent = '';
-      const r = await rotord.post('/api/settings', body);
+      const r = await rotord.post(path, body);
       if (r.status === 200) {
         ctx.report(r, okText);
         await ctx.reload();
@@ -194,6 +198,25 @@ const rotordCalibration = (() => {
       };
     }
 
+    // --- the known bearing: the controller's arithmetic, not the page's
+    async function bearing(axis, angle, errorBox, okText) {
+      // A bearing in 0..360: the controller turns the shortest way from its reading.
+      const body = { axis, step: 'bearing', bearing_deg: round(wrap360(angle), 3) };
+      let r = await rotord.post('/api/commission', body);
+      // Refused until the controller has read the settings saved just now.
+      for (let n = 0; n < 20 && /just changed/.test(r.body.error); ++n) {
+        await new Promise((done) => setTimeout(done, 50));
+        r = await rotord.post('/api/commission', body);
+      }
+      // Proposed (the card's note shows the value in force): accepted at once.
+      if (r.status === 200) return save({}, errorBox, okText, '/api/commission/accept');
+      errorBox.textContent = 'Not saved: ' + r.body.error;
+    }
+    const onBearing = (axis, at, errorBox, what) => () => {
+      const angle = entered(at);
+      if (angle !== null) bearing(axis, angle, errorBox, `${NAMES[axis]}: this ${what} is now ${angle}°`);
+    };
+
     // --- MA3 absolute encoder: zero and direction ---------------------------
     function ma3Card(axis, card) {
       const [rawEl, raw] = liveSpan('code ', `cal-${axis}-raw`);
@@ -214,38 +237,22 @@ const rotordCalibration = (() => {
         el('div', { class: 'buttons' }, el('label', {}, reverse, ' counts down when turning ',
           axis === 'az' ? 'clockwise' : 'up')),
         zeroNow, error);
-
-      /** The encoder's angle before the zero: code in degrees, negated when reversed. */
-      const codeDeg = (a, rev) => {
-        const d = (a.raw * 360) / a.raw_full_scale;
-        return rev ? -d : d;
-      };
-      const zeroFor = (sensorDeg, rev) => {
-        const z = round(wrap360(codeDeg(status[axis], rev) - sensorDeg), 3);
-        return z >= 360 ? 0 : z;
-      };
-      zero.addEventListener('click', async () => {
-        const angle = entered(at);
-        if (angle === null || !status || !status[axis].raw_full_scale) return;
-        const body = {};
-        body[`${axis}.ma3_zero_deg`] = zeroFor(angle - offset(axis), !!v(`${axis}.ma3_reverse`));
-        await save(body, error, `${NAMES[axis]}: this position is now ${angle}°`);
-      });
-      // Flipping the direction keeps the current position's angle: only the
-      // way the angle runs from here changes.
+      zero.addEventListener('click', onBearing(axis, at, error, 'position'));
+      // Flipping the direction keeps the angle here: the reading before is the bearing.
       reverse.addEventListener('change', async () => {
-        if (!status || !status[axis].raw_full_scale) return;
-        const a = status[axis];
+        if (!status || !status[axis].valid) return;
+        const keep = round(status[axis].position_deg, 2);
         const rev = reverse.checked;
-        const sensorDeg = wrap360(codeDeg(a, !rev) - Number(v(`${axis}.ma3_zero_deg`)));
-        const body = {};
-        body[`${axis}.ma3_reverse`] = rev;
-        body[`${axis}.ma3_zero_deg`] = zeroFor(sensorDeg, rev);
-        if (!(await save(body, error, `${NAMES[axis]}: encoder direction ${rev ? 'reversed' : 'normal'}`))) {
+        const turned = `${NAMES[axis]}: encoder direction ${rev ? 'reversed' : 'normal'}`;
+        if (!(await save({ [`${axis}.ma3_reverse`]: rev }, error, turned))) {
           reverse.checked = !rev;
+          return;
         }
+        // The card was drawn again: its new error box.
+        bearing(axis, keep, cards[axis].error, `${turned}, still ${keep}°`);
       });
       return {
+        error,
         update(st) {
           const a = st[axis];
           const full = a.raw_full_scale;
@@ -268,9 +275,7 @@ const rotordCalibration = (() => {
       const done = el('button', { type: 'button', id: `cal-${axis}-spin-save`, hidden: true }, 'Save');
       const cancel = el('button', { type: 'button', id: `cal-${axis}-spin-cancel`, hidden: true }, 'Cancel');
       const range = el('p', { class: 'note', id: `cal-${axis}-spin-range` });
-      // After the spin: where the boom points. The sensor's north is seldom
-      // the boom's, so this turns mag.declination_deg until the reading is
-      // the angle entered (declination and mounting angle in one number).
+      // After the spin: where the boom points (the sensor's north is seldom the boom's).
       const at = angleInput(axis);
       const align = el('button', { type: 'button', id: `cal-${axis}-align` }, 'Set this heading');
       const alignNow = el('p', { class: 'note', id: `cal-${axis}-align-now` });
@@ -280,16 +285,7 @@ const rotordCalibration = (() => {
       at.addEventListener('input', label);
       card.append(el('div', { class: 'buttons' }, start, done, cancel), range,
         el('div', { class: 'buttons' }, el('label', {}, 'antenna now at ', at, ' °'), align), alignNow, error);
-      align.addEventListener('click', async () => {
-        const angle = entered(at);
-        if (angle === null || !status || !status[axis].valid) return;
-        // The reading moves by exactly the change of declination (the axis
-        // unwraps the heading), so the change is the difference, kept in
-        // the setting's -180..180.
-        const turn = angle - status[axis].position_deg;
-        const decl = round(((((Number(v('mag.declination_deg')) || 0) + turn) % 360 + 540) % 360) - 180, 2);
-        await save({ 'mag.declination_deg': decl }, error, `${NAMES[axis]}: this heading is now ${angle}°`);
-      });
+      align.addEventListener('click', onBearing(axis, at, error, 'heading'));
       const current = () => `x ${v('mag.x_min')} … ${v('mag.x_max')}, y ${v('mag.y_min')} … ${v('mag.y_max')}`;
       const show = () => {
         const spin = spins[axis];

@@ -475,6 +475,14 @@ Error Controller::commission(const Commissioning::Request& request, const char**
     *why = "stowed for the wind: wait for calm or override the stow";
     return Error::kStowed;
   }
+  // The known bearing turns the zero from the reading now, which is in the
+  // frame of the settings applied at the last tick: a zero, a direction or
+  // an offset saved since then would be counted twice. The next tick
+  // applies them and reads again.
+  if (request.step == Commissioning::Step::kBearing && settings_.revision() != applied_revision_) {
+    *why = "settings just changed: retry";
+    return Error::kBusy;
+  }
   stop();
   // Settings accepted just now (a swap) are the frame the run starts from.
   if (settings_.revision() != applied_revision_) apply_settings();

@@ -2,7 +2,8 @@
 // The elevation's label of a per-axis row (axis_settings.def), derived from
 // the azimuth's at compile time: "Elevation: " and the label with its first
 // letter lowered and "azimuth" read "elevation" ("Pot point 1: azimuth" ->
-// "Elevation: pot point 1: elevation"); a label that names the elevation
+// "Elevation: pot point 1: elevation"), but an acronym kept as it is ("MA3
+// encoder zero" -> "Elevation: MA3 encoder zero"); a label that names the elevation
 // already is kept as it is (the row gave it with AZ_EL). Each derived label
 // is a constant array of its exact length in the firmware's rodata, as a
 // written-out literal was: no heap, nothing done at run time.
@@ -52,10 +53,13 @@ constexpr void derive_elevation_label(std::string_view label, Put put) {
     return;
   }
   for (char c : kElevationPrefix) put(c);
-  // The label with its first letter lowered, read through `at`.
-  const auto at = [label](std::size_t n) {
+  // The label with its first letter lowered, read through `at`; not when the
+  // first word is an acronym (PWM, MA3, ADC): a second capital or a digit.
+  const bool acronym = label.size() > 1 && ((label[1] >= 'A' && label[1] <= 'Z') ||
+                                            (label[1] >= '0' && label[1] <= '9'));
+  const auto at = [label, acronym](std::size_t n) {
     const char c = label[n];
-    return n == 0 && c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
+    return n == 0 && !acronym && c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
   };
   for (std::size_t n = 0; n < label.size();) {
     std::size_t same = 0;

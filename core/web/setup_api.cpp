@@ -96,6 +96,7 @@ Api::Outcome Api::post_commission(const Call& call) {
   bool el = false;
   bool have_ccw = false;
   bool have_cw = false;
+  bool have_bearing = false;
   JsonObjectReader reader(call.request.body);
   std::string_view key;
   JsonValue value;
@@ -110,6 +111,7 @@ Api::Outcome Api::post_commission(const Call& call) {
           !parse_commissioning_step(value.text.data(), value.text.size(), request.step))
         bad = "step is one of \"all\", \"direction\", \"ends\", \"speeds\", \"bearing\"";
     } else if (key == "bearing_deg") {
+      have_bearing = true;
       // Not a number: refused with the range's reason (NaN is out of it).
       request.bearing_deg =
           value.type == JsonType::kNumber ? static_cast<float>(value.number) : NAN;
@@ -136,8 +138,11 @@ Api::Outcome Api::post_commission(const Call& call) {
   // The ends default to the travel in force (the model's, once chosen).
   if (!have_ccw) request.ccw_stop_deg = s.f(el ? Id::kElMinDeg : Id::kAzMinDeg);
   if (!have_cw) request.cw_stop_deg = s.f(el ? Id::kElMaxDeg : Id::kAzMaxDeg);
-  const char* why = "";
-  const Error e = c.commission(request, &why);
+  // A bearing without "step":"bearing" would start a run that moves: refused.
+  const char* why = "bearing_deg needs \"step\":\"bearing\"";
+  const Error e = have_bearing && request.step != Commissioning::Step::kBearing
+                      ? Error::kInvalidArgument
+                      : c.commission(request, &why);
   if (e != Error::kOk) {
     send_error(call.out, e == Error::kBusy || e == Error::kFaulted ? 409 : 422, why, call.options);
     return Outcome::kDone;

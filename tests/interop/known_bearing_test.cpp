@@ -140,5 +140,59 @@ TEST_F(KnownBearing, ConsoleProposesTheMa3ZeroAndAcceptsIt) {
   EXPECT_NE(file_text().find("\"az.ma3_zero_deg\""), std::string::npos) << file_text();
 }
 
+// A bearing given to another step (or to no step: "all") was ignored, and
+// the run it started turned the rotator to its end stops. It is refused
+// with the reason; nothing moves and nothing is written.
+TEST_F(KnownBearing, ABearingGivenToAnotherStepIsRefusedAndNothingMoves) {
+  const double before = az_deg();
+  for (const char* bad :
+       {R"({"axis":"az","bearing_deg":180})", R"({"axis":"az","step":"ends","bearing_deg":180})",
+        R"({"axis":"az","step":"speeds","bearing_deg":180})"}) {
+    const HttpResponse r = http(port, "POST", "/api/commission", bad);
+    EXPECT_EQ(r.status, 422) << bad;
+    EXPECT_NE(r.body.find(R"(bearing_deg needs \"step\":\"bearing\")"), std::string::npos)
+        << r.body;
+  }
+  // The console takes the bearing as one number after the step: with any
+  // other step one number is refused (the ends are two).
+  const std::string console = type("commission az ends 180\n");
+  EXPECT_EQ(console.rfind("error: ", 0), 0u) << console;
+  ASSERT_GE(daemon->advance_ms(5000), 0);
+  const std::string status = http(port, "GET", "/api/status").body;
+  EXPECT_NE(status.find("\"moving\":false"), std::string::npos) << status;
+  EXPECT_LT(off_deg(az_deg(), before), 0.2) << az_deg();
+  const std::string run = http(port, "GET", "/api/commission").body;
+  EXPECT_EQ(run.find("\"state\":\"running\""), std::string::npos) << run;
+  EXPECT_EQ(file_text().find("az.ma3_zero_deg"), std::string::npos) << file_text();
+  std::printf(
+      "refused: bearing_deg with step all, ends, speeds (REST 422) and 'commission az "
+      "ends 180' (console %s); az %.2f -> %.2f\n",
+      console.substr(0, console.find('\r')).c_str(), before, az_deg());
+}
+
+// The bearing turns the zero from the reading now. A zero saved a moment
+// before (the settings page's direction switch saves one and then asks for
+// the bearing) is read at the next tick: until then the reading is in the
+// old frame and the change would count twice (here 350 instead of 340).
+TEST_F(KnownBearing, ABearingRightAfterASettingsChangeWaitsForTheNextReading) {
+  ASSERT_LT(off_deg(az_deg(), 160.0), 0.2) << az_deg();
+  ASSERT_EQ(http(port, "POST", "/api/settings", R"({"az.ma3_zero_deg":10})").status, 200);
+  const HttpResponse early =
+      http(port, "POST", "/api/commission", R"({"axis":"az","step":"bearing","bearing_deg":180})");
+  EXPECT_EQ(early.status, 409) << early.body;
+  EXPECT_NE(early.body.find("settings just changed: retry"), std::string::npos) << early.body;
+  ASSERT_GE(daemon->advance_ms(100), 0);
+  ASSERT_LT(off_deg(az_deg(), 150.0), 0.2) << az_deg();
+  const HttpResponse proposed =
+      http(port, "POST", "/api/commission", R"({"axis":"az","step":"bearing","bearing_deg":180})");
+  ASSERT_EQ(proposed.status, 200) << proposed.body;
+  const std::size_t row = proposed.body.find("{\"key\":\"az.ma3_zero_deg\"");
+  ASSERT_NE(row, std::string::npos) << proposed.body;
+  const double zero = json_number(proposed.body, "value", row);
+  std::printf("MA3 zero 0 -> 10 saved, bearing 180 at once: %d; after a tick proposes %.3f\n",
+              early.status, zero);
+  EXPECT_NEAR(zero, 340.0, 0.2) << proposed.body;
+}
+
 }  // namespace
 }  // namespace rotord::testing

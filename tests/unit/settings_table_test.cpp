@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "settings/applies.hpp"
@@ -53,6 +55,38 @@ TEST(SettingsTable, EveryRowHasALabelAGroupAndAReadableCondition) {
     const char* error = condition_error(condition(id));
     EXPECT_EQ(error, nullptr) << condition(id) << ": " << (error ? error : "");
   }
+}
+
+// The elevation's labels are derived from the azimuth's (axis_label.hpp),
+// which lowers the first letter after "Elevation: ": never an acronym's
+// ("Elevation: pWM duty ..." and "Elevation: mA3 ..." were shown).
+TEST(SettingsTable, DerivedElevationLabelsKeepTheAcronyms) {
+  const auto acronym = [](const std::string& word) {
+    return word.size() > 1 && std::isupper(static_cast<unsigned char>(word[0])) &&
+           (std::isupper(static_cast<unsigned char>(word[1])) ||
+            std::isdigit(static_cast<unsigned char>(word[1])));
+  };
+  int checked = 0;
+  for (std::size_t n = 0; n < kCount; ++n) {
+    const Def& el = def(static_cast<Id>(n));
+    if (std::strncmp(el.key, "el.", 3) != 0) continue;
+    const std::optional<Id> az_id = find("az." + std::string(el.key + 3));
+    if (!az_id) continue;
+    const std::string az_label = def(*az_id).label;
+    const std::string el_label = el.label;
+    SCOPED_TRACE(el.key);
+    std::size_t at = 0;
+    while (at < az_label.size()) {
+      const std::size_t end = std::min(az_label.find(' ', at), az_label.size());
+      const std::string word = az_label.substr(at, end - at);
+      if (acronym(word)) {
+        EXPECT_NE(el_label.find(word), std::string::npos) << el_label << " lost " << word;
+        ++checked;
+      }
+      at = end + 1;
+    }
+  }
+  EXPECT_GE(checked, 4) << "PWM and MA3 at least";
 }
 
 TEST(SettingsTable, LabelsAreUniqueWhereTheyCanBeSeenTogether) {

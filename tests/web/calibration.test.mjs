@@ -1,7 +1,10 @@
 // The calibration cards of the settings page in Debian's chromium
 // (playwright-core): a pot rotator (`rotord --sim g5500`) for the volts, the
 // offset-consistent two-point calibration and the multi-point table, and an
-// MA3 rotator (`rotord --sim spid`) for the encoder zero and direction.
+// MA3 rotator (`rotord --sim spid`, its encoder mounted 20 deg short of
+// north) for the encoder zero and direction. An absolute sensor's zero is
+// the controller's known-bearing step: the card shows its proposal beside
+// the value in force and writes it only on Accept.
 import assert from 'node:assert/strict';
 import { mkdirSync } from 'node:fs';
 import path from 'node:path';
@@ -20,7 +23,8 @@ before(async () => {
   dir = tempDir();
   [pot, ma3, browser] = await Promise.all([
     new Rotord({ configPath: path.join(dir, 'pot.json') }).start(),
-    new Rotord({ configPath: path.join(dir, 'ma3.json'), profile: 'spid' }).start(),
+    new Rotord({ configPath: path.join(dir, 'ma3.json'), profile: 'spid',
+      extraArgs: ['--sim-sensor-mount', '-20'] }).start(),
     launchBrowser(),
   ]);
 });
@@ -32,6 +36,24 @@ after(async () => {
 });
 
 const settingsOf = async (r) => (await request(r.url + '/api/settings')).body;
+const commissioning = async (r) => (await request(r.url + '/api/commission')).body;
+
+/**
+ * Clicks `button` (the card's bearing button) and waits for `done` in the
+ * message: the controller's known bearing (GET /api/commission) proposed the
+ * setting, and the card accepted that value, not one of its own.
+ */
+async function viaKnownBearing(page, r, button, done) {
+  await page.click(button);
+  await until(async () => (await page.textContent('#msg')).includes(done), { what: done });
+  const c = await commissioning(r);
+  assert.equal(c.state, 'done');
+  assert.equal(c.proposal.length, 1);
+  const [p] = c.proposal;
+  assert.equal((await settingsOf(r))[p.key], p.value, `${p.key} as the controller proposed it`);
+  return p;
+}
+
 // Chromium logs each refused POST (422) as a failed resource: those are expected.
 const unexpected = (errors) => errors.filter((e) => !/status of 422/.test(e));
 
@@ -223,14 +245,13 @@ test('magnetometer: "set this heading as N" turns the declination', async () => 
   const n = Math.round(s0.az.position_deg) + 7;
   await page.fill('#cal-az-deg', String(n));
   assert.equal(await page.textContent('#cal-az-align'), `Set this heading as ${n}°`);
-  await page.click('#cal-az-align');
-  await until(async () => (await page.textContent('#msg')).includes(`this heading is now ${n}°`),
-    { what: 'heading set' });
+  const p = await viaKnownBearing(page, pot, '#cal-az-align', `this heading is now ${n}°`);
+  assert.equal(p.key, 'mag.declination_deg');
   const s = await settled(pot);
   assert.ok(Math.abs(s.az.position_deg - n) < 0.5, `reads ${s.az.position_deg}, wanted ${n}`);
   assert.equal(s.az.fault, 'none');
   const declination = (await settingsOf(pot))['mag.declination_deg'];
-  // The page turns by what its latest live reading lacked; the sensor's noise
+  // The controller turns by what its reading lacked; the sensor's noise
   // moves that reading by a few hundredths between two updates.
   assert.ok(Math.abs(declination - declination0 - (n - s0.az.position_deg)) < 0.5,
     `declination ${declination0} -> ${declination}`);
@@ -240,7 +261,7 @@ test('magnetometer: "set this heading as N" turns the declination', async () => 
   await page.context().close();
 });
 
-test('MA3: code and duty, "set this position as N", direction keeps the angle', async () => {
+test('MA3: code and duty, "set this position as N" through the known bearing, direction keeps the angle', async () => {
   assert.equal((await ma3.post('/api/settings', { 'az.offset_deg': 5 })).status, 200);
   const page = await openSettings(ma3);
   await until(async () => / of 4096$/.test(await page.textContent('#cal-az-raw')), { what: 'code' });
@@ -248,23 +269,39 @@ test('MA3: code and duty, "set this position as N", direction keeps the angle', 
   const s0 = await settled(ma3);
   assert.equal(s0.az.sensor, 'ma3');
   assert.equal(s0.az.raw_volts, null);
-  // A few degrees from where it reads now, so the turn is obvious.
-  const n = Math.round(s0.az.position_deg) + 7;
+  // The antenna stands at 180 (where the simulator starts it); the encoder,
+  // mounted 20 deg short, reads 160, and the offset adds 5.
+  assert.ok(Math.abs(s0.az.position_deg - 165) < 0.5, `reads ${s0.az.position_deg}`);
+  const n = 185;  // the true bearing and the offset
+
   await page.fill('#cal-az-deg', String(n));
   assert.equal(await page.textContent('#cal-az-zero'), `Set this position as ${n}°`);
-  await page.click('#cal-az-zero');
-  await until(async () => (await page.textContent('#msg')).includes(`now ${n}°`), { what: 'zero set' });
+  assert.equal((await settingsOf(ma3))['az.ma3_zero_deg'], 0);
+  const p = await viaKnownBearing(page, ma3, '#cal-az-zero', `this position is now ${n}°`);
+  assert.equal(p.key, 'az.ma3_zero_deg');
+  // The MA3 reads its code less the zero: 160 - 340 = 180 (mod 360).
+  assert.ok(Math.abs(p.value - 340) < 0.5, `proposed ${p.value}`);
   let s = await settled(ma3);
   assert.ok(Math.abs(s.az.position_deg - n) < 0.3, `reads ${s.az.position_deg}, wanted ${n}`);
   await until(async () => Math.abs(parseFloat(await page.textContent('#cal-az-angle')) - n) < 0.3,
     { what: `the page shows ${n}` });
+  console.log(`MA3 read ${s0.az.position_deg.toFixed(2)} at ${n}: zero ${p.value} proposed and ` +
+    `accepted, reads ${s.az.position_deg.toFixed(2)}`);
 
+  // The direction: the controller turns the zero so that the reading stays
+  // (the known bearing again, right after the direction was saved).
   await page.check('#cal-az-reverse');
-  await until(async () => (await settingsOf(ma3))['az.ma3_reverse'] === true, { what: 'reversed' });
+  await until(async () => (await page.textContent('#msg')).includes('reversed, still'), { what: 'reversed' });
+  let v = await settingsOf(ma3);
+  assert.equal(v['az.ma3_reverse'], true);
+  assert.equal((await commissioning(ma3)).proposal[0].value, v['az.ma3_zero_deg']);
   s = await settled(ma3);
   assert.ok(Math.abs(s.az.position_deg - n) < 0.3, `reversing moved the angle to ${s.az.position_deg}`);
   await page.uncheck('#cal-az-reverse');
-  await until(async () => (await settingsOf(ma3))['az.ma3_reverse'] === false, { what: 'normal' });
+  await until(async () => (await page.textContent('#msg')).includes('normal, still'), { what: 'normal' });
+  v = await settingsOf(ma3);
+  assert.equal(v['az.ma3_reverse'], false);
+  assert.ok(Math.abs(v['az.ma3_zero_deg'] - p.value) < 0.3, `zero ${v['az.ma3_zero_deg']}`);
   s = await settled(ma3);
   assert.ok(Math.abs(s.az.position_deg - n) < 0.3);
   await shoot(page, 'calibration-ma3-1280.png');
