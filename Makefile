@@ -77,11 +77,15 @@ endif
 # docs/installation.md, "Install on a Raspberry Pi". ARCH=arm64 or
 # ARCH=armhf cross-builds the Raspberry Pi's package on an amd64 machine
 # (docs/raspberry-pi.md).
+# armhf from another architecture builds in a cached Debian 12 chroot
+# (scripts/deb-chroot.sh; DEB_CHROOT=0 uses this machine's multiarch
+# libraries instead, DEB_CHROOT=1 the chroot for arm64 too).
 ARCH ?= $(shell dpkg --print-architecture 2>/dev/null)
 DEB_BUILD_DIR ?= build-deb$(if $(filter-out $(shell dpkg --print-architecture 2>/dev/null),$(ARCH)),-$(ARCH))
+DEB_CHROOT ?= $(if $(and $(filter armhf,$(ARCH)),$(filter-out armhf,$(shell dpkg --print-architecture 2>/dev/null))),1,0)
 deb:
-	@./scripts/install-deps.sh --deb $(ARCH)
-	@DEB_BUILD_DIR=$(DEB_BUILD_DIR) DEB_JOBS=$(JOBS) DEB_HOST_ARCH=$(ARCH) ./scripts/build-deb.sh
+	@./scripts/install-deps.sh $(if $(filter 1,$(DEB_CHROOT)),--deb-chroot,--deb) $(ARCH)
+	@DEB_BUILD_DIR=$(DEB_BUILD_DIR) DEB_JOBS=$(JOBS) DEB_HOST_ARCH=$(ARCH) DEB_CHROOT=$(DEB_CHROOT) ./scripts/build-deb.sh
 	@cp $(DEB_BUILD_DIR)/rotord_*_$(ARCH).deb .
 	@ls rotord_*_$(ARCH).deb
 

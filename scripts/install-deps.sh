@@ -61,6 +61,13 @@ if [ "${1:-}" = "--deb" ]; then
   cross_arch=${2:-}
   [ "$cross_arch" = "$(dpkg --print-architecture)" ] && cross_arch=""
 fi
+# `--deb-chroot ARCH` (`make deb ARCH=armhf`): the package is built in a
+# Debian 12 chroot that has its own toolchain and libraries
+# (scripts/deb-chroot.sh): here only mmdebstrap to make it, git to copy the
+# tree, and node's npm (below) for the map's data.
+if [ "${1:-}" = "--deb-chroot" ]; then
+  packages=(mmdebstrap git)
+fi
 # node and npm build the map's data (and run the web tests): Debian's, unless
 # the machine already has both (Debian's npm pulls in some 300 packages).
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
@@ -105,7 +112,7 @@ install_cross() {
 install_missing "${packages[@]}"
 if [ -n "$cross_arch" ]; then
   install_cross "$cross_arch"
-elif [ "${1:-}" != "--deb" ]; then
+elif [ "${1:-}" != "--deb" ] && [ "${1:-}" != "--deb-chroot" ]; then
   # The cross suites (tests/cross) and the Pi machine (tests/pi_vm): a
   # failure (a mirror whose foreign-architecture index is mid-sync, so
   # versions differ from this machine's) only warns here; those tests then
@@ -163,7 +170,7 @@ fetch_lwip_source() {
   fi
   tar -xJf "$tarball" -C "$deps" lwip-2.1.3/src/apps/mqtt lwip-2.1.3/COPYING
 }
-if [ "${1:-}" != "--deb" ]; then
+if [ "${1:-}" != "--deb" ] && [ "${1:-}" != "--deb-chroot" ]; then
   fetch_lwip_source || echo "install-deps: WARNING: no lwIP source: the Pico W's MQTT host test (lwip_mqtt_tests) will fail" >&2
 fi
 
