@@ -31,7 +31,7 @@ shift 2
 here=$(cd "$(dirname "$0")/.." && pwd)
 root=$(realpath -m "${BUILD_DIR:-$here/build}")/deb-chroot-$arch
 r="$root/rootfs"
-[ "$(id -u)" -eq 0 ] || { echo "deb-chroot: needs root (mmdebstrap --mode=root, chroot)"; exit 1; }
+[ "$(id -u)" -eq 0 ] || { echo "deb-chroot: needs root (mmdebstrap --mode=root, chroot): sudo make deb ARCH=$arch, or DEB_CHROOT=0"; exit 1; }
 missing=()
 for tool in mmdebstrap unshare chroot; do
   command -v "$tool" >/dev/null || missing+=("$tool")
