@@ -22,6 +22,13 @@ echo "built $deb"
 for f in debian/.debhelper debian/rotord debian/files debian/debhelper-build-stamp obj-*; do
   [ -e "$f" ] && fail "$f left in the source tree"
 done
+x=$(mktemp -d)
+trap 'rm -rf "$x"' EXIT
+# The copy holds what `make deb` needs to compile from source, as
+# dh_auto_configure runs it (here ROTORD_PREBUILT skips that step): the
+# map's data, ignored by git, was once missing from it and stopped the build.
+cmake -S "$out/rotord" -B "$x/configure" -G Ninja -DROTORD_BUILD_TESTS=OFF >"$x/configure.log" 2>&1 ||
+  { tail -8 "$x/configure.log"; fail "the tree build-deb.sh copied does not configure"; }
 
 # 1. Contents.
 contents=$(dpkg-deb -c "$deb") || fail "dpkg-deb -c"
@@ -36,8 +43,6 @@ has '-rw-r--r--' 'usr/share/man/man8/rotord.8.gz'
 has '-rw-r--r--' 'usr/share/doc/rotord/README.md.gz'
 has '-rw-r--r--' 'usr/share/doc/rotord/copyright'
 
-x=$(mktemp -d)
-trap 'rm -rf "$x"' EXIT
 dpkg-deb -x "$deb" "$x/root" && dpkg-deb -e "$deb" "$x/control" || fail "cannot unpack"
 unit=$(ls "$x"/root/{usr/,}lib/systemd/system/rotord.service 2>/dev/null | head -1)
 cmp -s "$unit" debian/rotord.service || fail "the packaged unit is not debian/rotord.service"
