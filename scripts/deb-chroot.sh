@@ -70,7 +70,10 @@ else
   # Each line of mmdebstrap's log with the seconds since the start.
   stamp() { while IFS= read -r line; do echo "$((EPOCHSECONDS - start)) $line"; done; }
   deps=/tmp/rotord-build-deps
-  TMPDIR="$root/tmp" mmdebstrap --verbose --variant=buildd --mode=root \
+  # In a private mount namespace too: the file systems mmdebstrap mounts
+  # in the chroot end with it even if it is killed, and no `rm -rf build`
+  # can reach this machine's /dev through them.
+  TMPDIR="$root/tmp" unshare --mount --propagation private -- mmdebstrap --verbose --variant=buildd --mode=root \
     --architectures="$(dpkg --print-architecture),$arch" \
     --include="crossbuild-essential-$arch,ccache" \
     --dpkgopt='path-exclude=/usr/share/doc/*' --dpkgopt='path-exclude=/usr/share/man/*' \
