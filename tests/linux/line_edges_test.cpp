@@ -6,42 +6,22 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <deque>
 #include <memory>
 #include <vector>
 
+#include "fake_edge_line.hpp"
 #include "gpiod_pulse_counter.hpp"
 
 namespace rotord::linux_port {
 namespace {
 
-/// An edge line whose descriptor is the read end of a pipe a test makes
-/// readable, with the edges it queues.
-class PipeEdgeLine final : public GpioLine {
- public:
-  explicit PipeEdgeLine(int fd) : fd_(fd) {}
-  std::deque<LineEdge> queued;
-  bool set_active(bool) override { return false; }
-  int get_active() override { return -1; }
-  int event_fd() const override { return fd_; }
-  std::size_t read_edges(LineEdge* out, std::size_t capacity) override {
-    std::size_t n = 0;
-    while (n < capacity && !queued.empty()) {
-      out[n++] = queued.front();
-      queued.pop_front();
-    }
-    return n;
-  }
-
- private:
-  int fd_;
-};
+using testing::FakeEdgeLine;
 
 class LineEdgesTest : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_EQ(::pipe(fds_), 0);
-    line_ = std::make_unique<PipeEdgeLine>(fds_[0]);
+    line_ = std::make_unique<FakeEdgeLine>(fds_[0]);
     edges_ = line_.get();
   }
   void TearDown() override {
@@ -51,8 +31,8 @@ class LineEdgesTest : public ::testing::Test {
   void make_readable() { ASSERT_EQ(::write(fds_[1], "e", 1), 1); }
 
   int fds_[2] = {-1, -1};
-  std::unique_ptr<PipeEdgeLine> line_;
-  PipeEdgeLine* edges_ = nullptr;
+  std::unique_ptr<FakeEdgeLine> line_;
+  FakeEdgeLine* edges_ = nullptr;
   asio::io_context io_;
 };
 
