@@ -24,29 +24,55 @@ bool sensor_fault(AxisFault f) {
          f == AxisFault::kSensorJump || f == AxisFault::kSensorStuck || f == AxisFault::kNoSensor;
 }
 
-/// The profile's settings with the wind stow on an anemometer, stowing at
-/// 90 deg (wind.stow_mps 20 for wind.hold_s 10, the defaults).
-settings::Settings stow_settings(const sim::Profile& profile) {
+/// The profile's settings; with `wind_stow`, the wind stow on an anemometer,
+/// stowing at 90 deg (wind.stow_mps 20 for wind.hold_s 10, the defaults).
+settings::Settings profile_settings(const sim::Profile& profile, bool wind_stow) {
   settings::Settings settings;
   for (const auto& o : profile.overrides) settings.set(*settings::find(o.key), o.value);
-  settings.set(settings::Id::kWindSource, 2);
-  settings.set(settings::Id::kWindStowAzDeg, 90);
+  if (wind_stow) {
+    settings.set(settings::Id::kWindSource, 2);
+    settings.set(settings::Id::kWindStowAzDeg, 90);
+  }
   return settings;
 }
 
+/// A profile's simulated rotator at `az_deg` with its settings: built before
+/// the controller (Stand), which reads the sensors as it starts.
+struct Plant {
+  Plant(const char* name, double az_deg, bool wind_stow)
+      : profile(*sim::find_profile(name)),
+        settings(profile_settings(profile, wind_stow)),
+        rotator(profile, 27) {
+    rotator.set_theta_deg(AxisId::kAz, az_deg);
+  }
+  const sim::Profile& profile;
+  settings::Settings settings;
+  sim::Anemometer anemometer{kPulsesPerMps};
+  sim::SimRotator rotator;
+};
+
+/// The plant and its controller, begun at 0 ms; with `wind_stow` the
+/// anemometer feeds the controller's wind input. Each run ticks it its way.
+struct Stand : Plant {
+  Stand(const char* name, double az_deg, bool wind_stow)
+      : Plant(name, az_deg, wind_stow),
+        c(settings, rotator.io(AxisId::kAz), rotator.io(AxisId::kEl)) {
+    if (wind_stow) c.attach_wind_pulses(&anemometer);
+    c.begin(0);
+  }
+  Controller c;
+};
+
 Result run_day(const char* name) {
-  const sim::Profile& profile = *sim::find_profile(name);
   // The day's wind stays below the stow's threshold.
-  settings::Settings settings = stow_settings(profile);
-  sim::Anemometer anemometer(kPulsesPerMps);
-  sim::SimRotator rotator(profile, 27);
-  rotator.set_theta_deg(AxisId::kAz, 180.0);
-  Controller c(settings, rotator.io(AxisId::kAz), rotator.io(AxisId::kEl));
-  c.attach_wind_pulses(&anemometer);
+  Stand stand(name, 180.0, true);
+  const sim::Profile& profile = stand.profile;
+  sim::Anemometer& anemometer = stand.anemometer;
+  sim::SimRotator& rotator = stand.rotator;
+  Controller& c = stand.c;
   double wind_peak_mps = 0.0;
   Millis gust_ends_at = 0;
   Millis now = 0;
-  c.begin(now);
   sim::Rng rng(2027);
   double slips = 0, sensor_faults = 0, faults = 0, gusts = 0, gotos = 0;
   AxisFault seen_az = AxisFault::kNone, seen_el = AxisFault::kNone;
@@ -123,15 +149,11 @@ Result run_day(const char* name) {
 /// torque costs 30 % of the speed). How long after the wind held 20 m/s for
 /// wind.hold_s the stow began (the motor started), and reached the heading.
 Result run_storm(const char* name) {
-  const sim::Profile& profile = *sim::find_profile(name);
-  settings::Settings settings = stow_settings(profile);
-  sim::Anemometer anemometer(kPulsesPerMps);
-  sim::SimRotator rotator(profile, 27);
-  rotator.set_theta_deg(AxisId::kAz, 250.0);
-  Controller c(settings, rotator.io(AxisId::kAz), rotator.io(AxisId::kEl));
-  c.attach_wind_pulses(&anemometer);
+  Stand stand(name, 250.0, true);
+  sim::Anemometer& anemometer = stand.anemometer;
+  sim::SimRotator& rotator = stand.rotator;
+  Controller& c = stand.c;
   Millis now = 0;
-  c.begin(now);
   constexpr Millis kStormAtMs = 60000;
   constexpr Millis kHeldAtMs = kStormAtMs + 10000;  // wind.hold_s after the storm began
   anemometer.set_wind_mps(8.0);
@@ -159,14 +181,10 @@ Result run_storm(const char* name) {
 /// A slip of 2 deg in 0.5 s against the brake (a Ham IV at rest): how long
 /// after it began the slip was flagged.
 Result run_slip() {
-  const sim::Profile& profile = *sim::find_profile("ham4");
-  settings::Settings settings;
-  for (const auto& o : profile.overrides) settings.set(*settings::find(o.key), o.value);
-  sim::SimRotator rotator(profile, 27);
-  rotator.set_theta_deg(AxisId::kAz, 200.0);
-  Controller c(settings, rotator.io(AxisId::kAz), rotator.io(AxisId::kEl));
+  Stand stand("ham4", 200.0, false);
+  sim::SimRotator& rotator = stand.rotator;
+  Controller& c = stand.c;
   Millis now = 0;
-  c.begin(now);
   constexpr Millis kSlipAtMs = 5000;
   Millis flagged_ms = -1;
   for (now = kTickMs; now <= kSlipAtMs + 5000 && flagged_ms < 0; now += kTickMs) {

@@ -143,6 +143,25 @@ foreach(layer IN LISTS ROTORD_LAYERS)
   endforeach()
 endforeach()
 
+# The verdict of the two scanners below (forward declarations, qualified
+# names) on a name of `layer`'s file `source` (shown as `shown`) at the line
+# holding `text`: reported unless one of the layers that own it (ARGN) is
+# within the layer's reach. `named` is what the message calls it ("'Foo', a
+# type"), `how` how the file names it, `advice` ends the message.
+function(check_owners text named how advice)
+  foreach(owner IN LISTS ARGN)
+    if(owner IN_LIST reach_${layer})
+      return()
+    endif()
+  endforeach()
+  line_of(${source} "${text}" line)
+  string(REPLACE ";" " " owners "${ARGN}")
+  report("${shown}:${line}: names ${named} of layer '${owners}'${how}: layer '${layer}' may not "
+         "use layer '${owners}' (${layer} may include only: ${allowed}, per ${LAYERS_FILE})"
+         "${advice}")
+  set(errors ${errors} PARENT_SCOPE)
+endfunction()
+
 # --- every include of every file ---
 set(checked 0)
 foreach(layer IN LISTS ROTORD_LAYERS)
@@ -202,20 +221,9 @@ foreach(layer IN LISTS ROTORD_LAYERS)
       if(NOT DEFINED defined_in_${name} OR layer IN_LIST defined_in_${name})
         continue()  # not a type of the core (std, a template only declared), or its own
       endif()
-      set(reachable FALSE)
-      foreach(owner IN LISTS defined_in_${name})
-        if(owner IN_LIST reach_${layer})
-          set(reachable TRUE)
-        endif()
-      endforeach()
-      if(NOT reachable)
-        line_of(${source} "${found}" line)
-        string(REPLACE ";" " " owners "${defined_in_${name}}")
-        report("${shown}:${line}: names '${name}', a type of layer '${owners}', by a forward "
-               "declaration or pointer: layer '${layer}' may not use layer '${owners}' "
-               "(${layer} may include only: ${allowed}, per ${LAYERS_FILE}): invert the "
-               "dependency (an interface or a callback in '${layer}') or add the edge")
-      endif()
+      check_owners("${found}" "'${name}', a type" ", by a forward declaration or pointer"
+                   ": invert the dependency (an interface or a callback in '${layer}') \
+or add the edge" ${defined_in_${name}})
     endforeach()
 
     # Namespaces named by a qualified name (`web::Api`), once a file: the
@@ -237,19 +245,7 @@ foreach(layer IN LISTS ROTORD_LAYERS)
           continue()  # seen, a class or std, or its own
         endif()
         list(APPEND named_here ${name})
-        set(reachable FALSE)
-        foreach(owner IN LISTS namespace_of_${name})
-          if(owner IN_LIST reach_${layer})
-            set(reachable TRUE)
-          endif()
-        endforeach()
-        if(NOT reachable)
-          line_of(${source} "${line_text}" line)
-          string(REPLACE ";" " " owners "${namespace_of_${name}}")
-          report("${shown}:${line}: names '${name}::', a namespace of layer '${owners}': "
-                 "layer '${layer}' may not use layer '${owners}' (${layer} may include only: "
-                 "${allowed}, per ${LAYERS_FILE})")
-        endif()
+        check_owners("${line_text}" "'${name}::', a namespace" "" "" ${namespace_of_${name}})
       endforeach()
     endforeach()
   endforeach()

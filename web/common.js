@@ -4,15 +4,13 @@
 'use strict';
 
 const rotord = (() => {
-  /** GET (no body) or POST JSON; resolves to {status, body}, never throws. */
-  async function api(path, body) {
-    const init = body === undefined ? {} : {
-      method: 'POST',
-      headers: { 'Content-Type': 'application/json' },
-      body: JSON.stringify(body),
-    };
+  /**
+   * One REST call (a body of `type` when given); resolves to {status, body},
+   * never throws.
+   */
+  async function request(method, path, body, type) {
     try {
-      const r = await fetch(path, init);
+      const r = await fetch(path, { method, headers: type ? { 'Content-Type': type } : {}, body });
       let parsed = null;
       try { parsed = await r.json(); } catch (e) { parsed = null; }
       // Access control is on and the login ran out (or never was).
@@ -22,6 +20,9 @@ const rotord = (() => {
       return { status: 0, body: { error: 'no connection to the controller' } };
     }
   }
+  /** GET (no body) or POST JSON. */
+  const api = (path, body) => (body === undefined ? request('GET', path)
+    : request('POST', path, JSON.stringify(body), 'application/json'));
   const post = (path, body) => api(path, body === undefined ? {} : body);
   const get = (path) => api(path);
 
@@ -86,5 +87,5 @@ const rotord = (() => {
     return [lat + h / 2, lon + w / 2];
   }
 
-  return { api, post, get, live, message, fmt, locator };
+  return { api, request, post, get, live, message, fmt, locator };
 })();

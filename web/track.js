@@ -28,17 +28,7 @@
     c.setAttribute('visibility', 'visible');
   }
 
-  async function send(method, path, body, type) {
-    try {
-      const r = await fetch(path, { method, headers: type ? { 'Content-Type': type } : {}, body });
-      let parsed = null;
-      try { parsed = await r.json(); } catch (e) { parsed = null; }
-      if (r.status === 401) location.replace('/login.html');
-      return { status: r.status, body: parsed };
-    } catch (e) {
-      return { status: 0, body: { error: 'no connection to the controller' } };
-    }
-  }
+  const send = rotord.request;
 
   // --- objects ---------------------------------------------------------------
   let userChose = false;

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "json/json_reader.hpp"
+#include "util/fixed_sink.hpp"
 #include "util/slice.hpp"
 
 namespace rotord::care {
@@ -14,28 +15,6 @@ using web::JsonObjectReader;
 using web::JsonType;
 using web::JsonValue;
 using web::JsonWriter;
-
-/// A ByteSink into the caller's buffer that remembers an overflow.
-class BufferSink final : public ByteSink {
- public:
-  BufferSink(char* buf, std::size_t capacity) : buf_(buf), capacity_(capacity) {}
-  void write(std::string_view bytes) override {
-    if (bytes.size() > capacity_ - length_) {
-      overflow_ = true;
-      return;
-    }
-    std::memcpy(buf_ + length_, bytes.data(), bytes.size());
-    length_ += bytes.size();
-  }
-  std::size_t length() const { return length_; }
-  bool overflow() const { return overflow_; }
-
- private:
-  char* buf_;
-  std::size_t capacity_;
-  std::size_t length_ = 0;
-  bool overflow_ = false;
-};
 
 constexpr const char* kFaultKeys[kAxisFaultKinds] = {
     "none",    "stall",     "sensor_lost",  "sensor_range", "sensor_jump",
@@ -113,7 +92,7 @@ const char* fault_key(AxisFault kind) {
 }
 
 std::size_t encode_record(const Odometer& odometer, char* buf, std::size_t capacity) {
-  BufferSink sink(buf, capacity);
+  FixedSink sink(buf, capacity);
   {
     JsonWriter w(sink);
     w.begin_object()
@@ -123,7 +102,7 @@ std::size_t encode_record(const Odometer& odometer, char* buf, std::size_t capac
     write_axis_flat(w, "el", odometer.axis(AxisId::kEl).wear());
     w.end_object();
   }
-  return sink.overflow() ? 0 : sink.length();
+  return sink.overflowed() ? 0 : sink.view().size();
 }
 
 bool decode_record(std::string_view text, AxisWear& az, AxisWear& el, std::int64_t& reset_unix_s,

@@ -3,34 +3,13 @@
 #include <cstring>
 
 #include "json/settings_member.hpp"
+#include "util/fixed_sink.hpp"
 
 namespace rotord::web {
 namespace {
 
 using settings::Id;
 using settings::Type;
-
-/// A ByteSink into a caller's buffer that remembers an overflow.
-class BufferSink final : public protocol::ByteSink {
- public:
-  BufferSink(char* buf, std::size_t capacity) : buf_(buf), capacity_(capacity) {}
-  void write(std::string_view bytes) override {
-    if (bytes.size() > capacity_ - length_) {
-      overflow_ = true;
-      return;
-    }
-    std::memcpy(buf_ + length_, bytes.data(), bytes.size());
-    length_ += bytes.size();
-  }
-  std::string_view view() const { return {buf_, length_}; }
-  bool overflow() const { return overflow_; }
-
- private:
-  char* buf_;
-  std::size_t capacity_;
-  std::size_t length_ = 0;
-  bool overflow_ = false;
-};
 
 }  // namespace
 
@@ -260,7 +239,7 @@ ApplyOutcome apply_settings_json(std::string_view json, settings::Settings& targ
 
 bool save_settings(hal::Storage& storage, const settings::Settings& values,
                    const settings::Settings& base, char* buf, std::size_t capacity) {
-  BufferSink sink(buf, capacity);
+  FixedSink sink(buf, capacity);
   {
     JsonWriter writer(sink);
     writer.set_pretty(storage.human_readable());
@@ -277,7 +256,7 @@ bool save_settings(hal::Storage& storage, const settings::Settings& values,
     writer.flush();
   }
   sink.write("\n");
-  if (sink.overflow()) return false;
+  if (sink.overflowed()) return false;
   return storage.save(sink.view());
 }
 

@@ -1,37 +1,9 @@
 #pragma once
-#include <cstddef>
-#include <cstring>
-#include <string_view>
-
-#include "util/byte_sink.hpp"
+// The MQTT bridge's name for the core's fixed-buffer sink (util/fixed_sink.hpp).
+#include "util/fixed_sink.hpp"
 
 namespace rotord::mqtt {
 
-/// A ByteSink over a caller's fixed buffer: what does not fit is dropped and
-/// remembered (overflowed), so a too-long message is refused, never cut.
-class FixedSink final : public protocol::ByteSink {
- public:
-  FixedSink(char* buf, std::size_t cap) : buf_(buf), cap_(cap) {}
-  void write(std::string_view bytes) override {
-    if (bytes.size() > cap_ - len_) {
-      overflowed_ = true;
-      return;
-    }
-    std::memcpy(buf_ + len_, bytes.data(), bytes.size());
-    len_ += bytes.size();
-  }
-  std::string_view view() const { return {buf_, len_}; }
-  bool overflowed() const { return overflowed_; }
-  void clear() {
-    len_ = 0;
-    overflowed_ = false;
-  }
-
- private:
-  char* buf_;
-  std::size_t cap_;
-  std::size_t len_ = 0;
-  bool overflowed_ = false;
-};
+using rotord::FixedSink;
 
 }  // namespace rotord::mqtt

@@ -7,6 +7,7 @@
 
 #include "command/typed.hpp"
 #include "motion/angles.hpp"
+#include "protocol/alarm_word.hpp"
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
 #include "util/slice.hpp"
@@ -33,23 +34,9 @@ void alarm(ByteSink& out, const char* reason) {
   send(out, "AL%s", reason);
 }
 
+/// Easycomm adds UNKNOWN for a command it does not know.
 const char* alarm_reason(Error e) {
-  switch (e) {
-    case Error::kOutOfRange:
-      return "RANGE";
-    case Error::kFaulted:
-      return "FAULT";
-    case Error::kLimit:
-      return "LIMIT";
-    case Error::kStowed:
-      return "STOWED";
-    case Error::kNotSupported:
-      return "UNSUPPORTED";
-    case Error::kNotFound:
-      return "UNKNOWN";
-    default:
-      return "SYNTAX";
-  }
+  return e == Error::kNotFound ? "UNKNOWN" : alarm_word(e);
 }
 
 /// Bare words that are commands (the rows that take no value), so an

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "command/typed.hpp"
+#include "protocol/alarm_word.hpp"
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
 #include "util/slice.hpp"
@@ -21,23 +22,6 @@ void send(ByteSink& out, const char* fmt, Args... args) {
 
 void error(ByteSink& out, const char* reason) {
   send(out, "$ERR,%s", reason);
-}
-
-const char* error_reason(Error e) {
-  switch (e) {
-    case Error::kOutOfRange:
-      return "RANGE";
-    case Error::kFaulted:
-      return "FAULT";
-    case Error::kLimit:
-      return "LIMIT";
-    case Error::kStowed:
-      return "STOWED";
-    case Error::kNotSupported:
-      return "UNSUPPORTED";
-    default:
-      return "SYNTAX";
-  }
 }
 
 const char* direction_name(const AxisStatus& a, bool el) {
@@ -128,7 +112,7 @@ void SeedSession::run(std::string_view arg, ByteSink& out) {
   if (dir == Direction::kNone) return error(out, "SYNTAX");
   if (!enabled_) return error(out, "DISABLED");
   const Error e = command::move(controller_, axis, dir);
-  if (e != Error::kOk) return error(out, error_reason(e));
+  if (e != Error::kOk) return error(out, alarm_word(e));
   send(out, "$OK,R,%s", name);
 }
 

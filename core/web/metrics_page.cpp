@@ -35,6 +35,21 @@ bool is_sensor_fault(AxisFault f) {
          f == AxisFault::kSensorJump || f == AxisFault::kNoSensor || f == AxisFault::kSensorStuck;
 }
 
+/// One family with a sample per axis and fault kind (no fault excepted).
+void write_axis_faults(PrometheusWriter& w, const Controller& c, const AxisView* all,
+                       std::size_t count, const char* family, const char* type, const char* help,
+                       std::uint64_t (*read)(const Controller&, const AxisView&, AxisFault)) {
+  char name[24];
+  w.family(family, type, help);
+  for (std::size_t n = 0; n < count; ++n) {
+    for (std::size_t k = 1; k < kAxisFaultKinds; ++k) {
+      const auto kind = static_cast<AxisFault>(k);
+      w.integer({{"axis", all[n].label}, {"kind", lower(axis_fault_name(kind), name, sizeof name)}},
+                read(c, all[n], kind));
+    }
+  }
+}
+
 void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s) {
   const AxisView all[] = {{"az", AxisId::kAz, &s.az}, {"el", AxisId::kEl, &s.el}};
   const std::size_t count = s.el.present ? 2 : 1;
@@ -67,59 +82,70 @@ void write_axes(PrometheusWriter& w, const Controller& c, const RotatorStatus& s
           all[n].status->state == state ? 1 : 0);
     }
   }
-  w.family("rotord_axis_fault", "gauge",
-           "1 for the fault latched on the axis now (until RESET), 0 for the others.");
-  for (std::size_t n = 0; n < count; ++n) {
-    for (std::size_t k = 1; k < kAxisFaultKinds; ++k) {
-      const auto kind = static_cast<AxisFault>(k);
-      w.integer({{"axis", all[n].label}, {"kind", lower(axis_fault_name(kind), name, sizeof name)}},
-                all[n].status->fault == kind ? 1 : 0);
-    }
-  }
-  w.family("rotord_axis_faults_total", "counter",
-           "Faults latched on the axis since the controller started, by kind.");
-  for (std::size_t n = 0; n < count; ++n) {
-    for (std::size_t k = 1; k < kAxisFaultKinds; ++k) {
-      const auto kind = static_cast<AxisFault>(k);
-      w.integer({{"axis", all[n].label}, {"kind", lower(axis_fault_name(kind), name, sizeof name)}},
-                c.faults_latched(all[n].id, kind));
-    }
-  }
+  write_axis_faults(w, c, all, count, "rotord_axis_fault", "gauge",
+                    "1 for the fault latched on the axis now (until RESET), 0 for the others.",
+                    [](const Controller&, const AxisView& a, AxisFault kind) -> std::uint64_t {
+                      return a.status->fault == kind ? 1 : 0;
+                    });
+  write_axis_faults(w, c, all, count, "rotord_axis_faults_total", "counter",
+                    "Faults latched on the axis since the controller started, by kind.",
+                    [](const Controller& ctl, const AxisView& a, AxisFault kind) -> std::uint64_t {
+                      return ctl.faults_latched(a.id, kind);
+                    });
 }
+
+// The counters and flags read straight from the controller or the status,
+// one integer per axis each.
+struct AxisColumn {
+  const char* name;
+  const char* type;
+  const char* help;
+  std::uint64_t (*read)(const Controller&, const AxisView&);
+};
+constexpr AxisColumn kAxisColumns[] = {
+    {"rotord_axis_stalls_total", "counter",
+     "Stalls (driven, not moving) latched since the controller started; the same as "
+     "rotord_axis_faults_total{kind=\"stall\"}.",
+     [](const Controller& ctl, const AxisView& a) -> std::uint64_t {
+       return ctl.faults_latched(a.id, AxisFault::kStall);
+     }},
+    {"rotord_axis_moves_total", "counter",
+     "Motor starts since the controller started (relay wear, hunting).",
+     [](const Controller&, const AxisView& a) -> std::uint64_t { return a.status->moves; }},
+    {"rotord_axis_sensor_readings_rejected_total", "counter",
+     "Position readings the robust filter turned away since the controller started "
+     "(noise bursts, spikes); a sensor going bad shows here before it latches a fault.",
+     [](const Controller&, const AxisView& a) -> std::uint64_t {
+       return a.status->readings_rejected;
+     }},
+    {"rotord_axis_slips_total", "counter",
+     "Slips since the controller started: the position moved slip.deg at rest with the "
+     "outputs off (wind against the brake).",
+     [](const Controller&, const AxisView& a) -> std::uint64_t { return a.status->slips; }},
+    {"rotord_axis_slipping", "gauge", "1 while a slip goes on.",
+     [](const Controller&, const AxisView& a) -> std::uint64_t {
+       return a.status->slipping ? 1 : 0;
+     }},
+    {"rotord_axis_reholds_total", "counter",
+     "Go-tos back to the rest heading after a slip (slip.rehold, an axis without a brake) "
+     "since the controller started.",
+     [](const Controller&, const AxisView& a) -> std::uint64_t { return a.status->reholds; }},
+    {"rotord_axis_reholds_refused_total", "counter",
+     "Slips not re-held because slip.rehold's limit (3 in 10 min) was reached.",
+     [](const Controller&, const AxisView& a) -> std::uint64_t {
+       return a.status->reholds_refused;
+     }},
+};
 
 /// The counters and outputs of each axis (write_axes: its state).
 void write_axis_counters(PrometheusWriter& w, const Controller& c, const RotatorStatus& s) {
   const AxisView all[] = {{"az", AxisId::kAz, &s.az}, {"el", AxisId::kEl, &s.el}};
   const std::size_t count = s.el.present ? 2 : 1;
-  w.family("rotord_axis_stalls_total", "counter",
-           "Stalls (driven, not moving) latched since the controller started; the same as "
-           "rotord_axis_faults_total{kind=\"stall\"}.");
-  for (std::size_t n = 0; n < count; ++n)
-    w.integer({{"axis", all[n].label}}, c.faults_latched(all[n].id, AxisFault::kStall));
-  w.family("rotord_axis_moves_total", "counter",
-           "Motor starts since the controller started (relay wear, hunting).");
-  for (std::size_t n = 0; n < count; ++n) w.integer({{"axis", all[n].label}}, all[n].status->moves);
-  w.family("rotord_axis_sensor_readings_rejected_total", "counter",
-           "Position readings the robust filter turned away since the controller started "
-           "(noise bursts, spikes); a sensor going bad shows here before it latches a fault.");
-  for (std::size_t n = 0; n < count; ++n)
-    w.integer({{"axis", all[n].label}}, all[n].status->readings_rejected);
-  w.family("rotord_axis_slips_total", "counter",
-           "Slips since the controller started: the position moved slip.deg at rest with the "
-           "outputs off (wind against the brake).");
-  for (std::size_t n = 0; n < count; ++n) w.integer({{"axis", all[n].label}}, all[n].status->slips);
-  w.family("rotord_axis_slipping", "gauge", "1 while a slip goes on.");
-  for (std::size_t n = 0; n < count; ++n)
-    w.integer({{"axis", all[n].label}}, all[n].status->slipping ? 1 : 0);
-  w.family("rotord_axis_reholds_total", "counter",
-           "Go-tos back to the rest heading after a slip (slip.rehold, an axis without a brake) "
-           "since the controller started.");
-  for (std::size_t n = 0; n < count; ++n)
-    w.integer({{"axis", all[n].label}}, all[n].status->reholds);
-  w.family("rotord_axis_reholds_refused_total", "counter",
-           "Slips not re-held because slip.rehold's limit (3 in 10 min) was reached.");
-  for (std::size_t n = 0; n < count; ++n)
-    w.integer({{"axis", all[n].label}}, all[n].status->reholds_refused);
+  for (const AxisColumn& col : kAxisColumns) {
+    w.family(col.name, col.type, col.help);
+    for (std::size_t n = 0; n < count; ++n)
+      w.integer({{"axis", all[n].label}}, col.read(c, all[n]));
+  }
   w.family("rotord_goto_continuity_total", "counter",
            "Go-tos of a tracker's stream put on the turn continuous with it instead of the "
            "literal one (track.continuity: a pass through north kept in the overlap).");

@@ -8,6 +8,7 @@
 
 #include "gpio_line.hpp"
 #include "hal/pulse_counter.hpp"
+#include "line_edges.hpp"
 
 namespace rotord::linux_port {
 
@@ -17,21 +18,14 @@ namespace rotord::linux_port {
 class GpiodPulseCounter final : public hal::PulseCounter {
  public:
   explicit GpiodPulseCounter(std::unique_ptr<GpioLine> line);
-  ~GpiodPulseCounter() override;
-  GpiodPulseCounter(const GpiodPulseCounter&) = delete;
-  GpiodPulseCounter& operator=(const GpiodPulseCounter&) = delete;
 
   /// Starts watching the line's descriptor on `io` (no-op without one).
-  void watch(asio::io_context& io);
+  void watch(asio::io_context& io) { edges_.watch(io); }
   std::uint32_t count() override;
 
  private:
-  void drain();
-  void arm();
-
-  std::unique_ptr<GpioLine> line_;
-  std::unique_ptr<asio::posix::stream_descriptor> descriptor_;
   std::uint32_t count_ = 0;
+  LineEdges edges_;  // after count_, which its handler writes
 };
 
 }  // namespace rotord::linux_port

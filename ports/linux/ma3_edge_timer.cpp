@@ -71,45 +71,13 @@ std::uint64_t monotonic_ns() {
 }
 
 GpiodMa3Input::GpiodMa3Input(std::unique_ptr<GpioLine> line, Clock clock)
-    : line_(std::move(line)), clock_(std::move(clock)) {}
-
-GpiodMa3Input::~GpiodMa3Input() {
-  // The descriptor belongs to the line (libgpiod closes it on release).
-  if (descriptor_) {
-    std::error_code ignored;
-    descriptor_->cancel(ignored);
-    descriptor_->release();
-  }
-}
-
-void GpiodMa3Input::watch(asio::io_context& io) {
-  const int fd = line_->event_fd();
-  if (fd < 0) return;
-  descriptor_ = std::make_unique<asio::posix::stream_descriptor>(io, fd);
-  arm();
-}
-
-void GpiodMa3Input::arm() {
-  descriptor_->async_wait(asio::posix::stream_descriptor::wait_read, [this](std::error_code ec) {
-    if (ec) return;  // cancelled: the input is being destroyed
-    drain();
-    arm();
-  });
-}
-
-void GpiodMa3Input::drain() {
-  LineEdge edges[64];
-  for (;;) {
-    const std::size_t n = line_->read_edges(edges, std::size(edges));
-    if (n == 0) return;
-    const std::uint64_t now = clock_();
-    for (std::size_t k = 0; k < n; ++k) timer_.on_edge(edges[k], now);
-    if (n < std::size(edges)) return;
-  }
-}
+    : clock_(std::move(clock)), edges_(std::move(line), [this](std::span<const LineEdge> edges) {
+        const std::uint64_t now = clock_();
+        for (const LineEdge& e : edges) timer_.on_edge(e, now);
+      }) {}
 
 hal::PwmPeriod GpiodMa3Input::read() {
-  drain();
+  edges_.drain();
   return timer_.take(clock_());
 }
 

@@ -11,6 +11,7 @@
 
 #include "gpio_line.hpp"
 #include "hal/pwm_in.hpp"
+#include "line_edges.hpp"
 
 namespace rotord::linux_port {
 
@@ -64,22 +65,15 @@ class GpiodMa3Input final : public hal::PwmIn {
   using Clock = std::function<std::uint64_t()>;  ///< monotonic ns
 
   GpiodMa3Input(std::unique_ptr<GpioLine> line, Clock clock);
-  ~GpiodMa3Input() override;
-  GpiodMa3Input(const GpiodMa3Input&) = delete;
-  GpiodMa3Input& operator=(const GpiodMa3Input&) = delete;
 
   /// Starts watching the line's descriptor on `io` (no-op without one).
-  void watch(asio::io_context& io);
+  void watch(asio::io_context& io) { edges_.watch(io); }
   hal::PwmPeriod read() override;
 
  private:
-  void drain();
-  void arm();
-
-  std::unique_ptr<GpioLine> line_;
   Clock clock_;
   Ma3EdgeTimer timer_;
-  std::unique_ptr<asio::posix::stream_descriptor> descriptor_;
+  LineEdges edges_;  // after the clock and timer, which its handler uses
 };
 
 /// CLOCK_MONOTONIC in ns.

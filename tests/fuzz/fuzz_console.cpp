@@ -8,14 +8,12 @@
 #include <string_view>
 
 #include "fake_rotator.hpp"
+#include "fuzz_session.hpp"
 #include "protocol/console_session.hpp"
 
 namespace {
 
-struct NullSink final : rotord::protocol::ByteSink {
-  std::size_t bytes = 0;
-  void write(std::string_view data) override { bytes += data.size(); }
-};
+using rotord::fuzz::NullSink;
 
 struct NoReboot final : rotord::protocol::SystemHooks {
   const char* reboot() override { return nullptr; }
@@ -45,11 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     rotator.run_ms(50);
   }
-  for (const auto* axis : {&rotator.az, &rotator.el}) {
-    const auto& out = axis->drive.last;
-    if (out.on(rotord::OutputChannel::kRelayCw) && out.on(rotord::OutputChannel::kRelayCcw))
-      std::abort();
-  }
+  rotord::fuzz::abort_on_both_directions(rotator);
   // The console moves nothing by itself: it has no go-to.
   if (rotator.controller->status().az.has_target || rotator.controller->status().el.has_target)
     std::abort();

@@ -7,16 +7,8 @@
 #include <string_view>
 
 #include "fake_rotator.hpp"
+#include "fuzz_session.hpp"
 #include "protocol/gs232_session.hpp"
-
-namespace {
-
-struct NullSink final : rotord::protocol::ByteSink {
-  std::size_t bytes = 0;
-  void write(std::string_view data) override { bytes += data.size(); }
-};
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using rotord::settings::Id;
@@ -26,7 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   rotator.settings.set(Id::kGs232AckWrites, (mode >> 1) & 1);
   rotator.settings.set(Id::kGs232AzRange, (mode >> 2) % 3);
   rotord::protocol::Gs232Session session(*rotator.controller);
-  NullSink sink;
+  rotord::fuzz::NullSink sink;
   // Feed in chunks split at a data-dependent point, ticking in between, so
   // partial lines, commands mid-move and timed-list steps are all exercised.
   const std::size_t split = size > 1 ? data[1] % (size + 1) : 0;
@@ -41,17 +33,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     rotator.run_ms(400);
     session.poll(rotator.now, sink);
   }
-  // Never both directions of one axis at once, whatever was sent.
-  for (const auto* axis : {&rotator.az, &rotator.el}) {
-    const auto& out = axis->drive.last;
-    if (out.on(rotord::OutputChannel::kRelayCw) && out.on(rotord::OutputChannel::kRelayCcw))
-      std::abort();
-  }
+  rotord::fuzz::abort_on_both_directions(rotator);
   // No GS-232 command changes the travel, so targets stay inside it (az
   // 0..450, el 0..180) whatever angles were sent.
-  const rotord::RotatorStatus s = rotator.controller->status();
-  if (s.az.has_target && (s.az.target_deg < 0.0f || s.az.target_deg > 450.0f)) std::abort();
-  if (s.el.has_target && (s.el.target_deg < 0.0f || s.el.target_deg > 180.0f)) std::abort();
+  rotord::fuzz::abort_on_target_outside_travel(rotator);
   if (session.list_size() > rotord::protocol::Gs232Session::kMaxListPoints) std::abort();
   // Replies are bounded per command (the longest is a help page, ~600 bytes
   // for "H" and a line end), so output is bounded by the input size.

@@ -11,13 +11,12 @@
 #include <string_view>
 
 #include "fake_rotator.hpp"
+#include "fuzz_session.hpp"
 #include "web/http_session.hpp"
 
 namespace {
 
-struct NullSink final : rotord::protocol::ByteSink {
-  void write(std::string_view) override {}
-};
+using rotord::fuzz::NullSink;
 
 // Counts saves and keeps the document, so a save that fails is exercised too.
 class FuzzStorage final : public rotord::hal::Storage {
@@ -74,9 +73,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   rotator.run_ms(50);
   session.poll(rotator.now, sink);
 
-  const auto& out = rotator.az.drive.last;
-  if (out.on(rotord::OutputChannel::kRelayCw) && out.on(rotord::OutputChannel::kRelayCcw))
-    std::abort();
+  rotord::fuzz::abort_on_both_directions(rotator);
   // Whatever was posted, the controller never keeps settings that break a rule.
   if (rotator.settings.check_consistency().error != rotord::Error::kOk) std::abort();
   return 0;

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "fake_rotator.hpp"
+#include "fuzz_session.hpp"
 #include "protocol/rotctld_session.hpp"
 
 namespace {
@@ -38,9 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   session.receive(all.substr(split), sink);
   rotator.run_ms(2000);
   session.poll(rotator.now, sink);
-  const auto& out = rotator.az.drive.last;
-  if (out.on(rotord::OutputChannel::kRelayCw) && out.on(rotord::OutputChannel::kRelayCcw))
-    std::abort();
+  rotord::fuzz::abort_on_both_directions(rotator);
   // At most one reply per input byte.
   if (sink.bytes > (size + 1) * rotord::protocol::rotctld::ReplyBuffer::kCapacity) std::abort();
   return 0;

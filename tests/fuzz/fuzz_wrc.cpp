@@ -6,33 +6,15 @@
 #include <string_view>
 
 #include "fake_rotator.hpp"
+#include "fuzz_session.hpp"
 #include "protocol/wrc_session.hpp"
-
-namespace {
-
-struct NullSink final : rotord::protocol::ByteSink {
-  std::size_t bytes = 0;
-  void write(std::string_view data) override { bytes += data.size(); }
-};
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   rotord::testing::FakeRotator rotator;
   rotord::protocol::WrcSession session(*rotator.controller, "fuzz");
-  NullSink sink;
-  // Feed in chunks split at a data-dependent point, ticking in between, so
-  // partial lines and commands mid-move are both exercised.
-  const std::size_t split = size > 0 ? data[0] % (size + 1) : 0;
-  const std::string_view all(reinterpret_cast<const char*>(data), size);
-  session.receive(all.substr(0, split), sink);
-  rotator.run_ms(50);
-  session.receive(all.substr(split), sink);
-  rotator.run_ms(50);
-  session.poll(rotator.now, sink);
-  const auto& out = rotator.az.drive.last;
-  if (out.on(rotord::OutputChannel::kRelayCw) && out.on(rotord::OutputChannel::kRelayCcw))
-    std::abort();
+  rotord::fuzz::NullSink sink;
+  rotord::fuzz::feed_in_two(session, rotator, data, size, sink);
+  rotord::fuzz::abort_on_both_directions(rotator);
   // Every reply line is bounded, so output is bounded by the input size.
   if (sink.bytes > 256 + size * 64) std::abort();
   return 0;

@@ -6,12 +6,7 @@
 // messages ends on the turn continuous with it, 369 on the 450 deg G-5500,
 // not back at 9 (the lead rule, docs/tracking.md "Fewer motor starts", sends
 // the axis of such a steady stream up to 6 deg further: 369..375).
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <poll.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -24,6 +19,7 @@
 #include "http_client.hpp"
 #include "mosquitto_broker.hpp"
 #include "shell.hpp"
+#include "udp_socket.hpp"
 
 namespace rotord::testing {
 namespace {
@@ -90,46 +86,6 @@ TEST(ContinuityPaths, MqttStreamAcrossNorthStaysOnItsTurn) {
   expect_on_the_turn(target);
   run_command("rm -rf " + dir);
 }
-
-/// A UDP socket on 127.0.0.1 (port 0: any).
-class Udp {
- public:
-  explicit Udp(int port = 0) : fd_(::socket(AF_INET, SOCK_DGRAM, 0)) {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    a.sin_port = htons(static_cast<std::uint16_t>(port));
-    bound_ = ::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
-    socklen_t len = sizeof(a);
-    ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len);
-    port_ = ntohs(a.sin_port);
-  }
-  ~Udp() { ::close(fd_); }
-  Udp(const Udp&) = delete;
-  Udp& operator=(const Udp&) = delete;
-  bool bound() const { return bound_; }
-  int port() const { return port_; }
-  void send_to(int port, const std::string& datagram) const {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    a.sin_port = htons(static_cast<std::uint16_t>(port));
-    ::sendto(fd_, datagram.data(), datagram.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof(a));
-  }
-  /// The next datagram, or "" after timeout_ms (liveness only).
-  std::string receive(int timeout_ms = 5000) const {
-    pollfd p{fd_, POLLIN, 0};
-    if (::poll(&p, 1, timeout_ms) != 1) return "";
-    char buf[512];
-    const ssize_t n = ::recv(fd_, buf, sizeof(buf), 0);
-    return n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : "";
-  }
-
- private:
-  int fd_ = -1;
-  int port_ = 0;
-  bool bound_ = false;
-};
 
 TEST(ContinuityPaths, PstRotatorUdpStreamAcrossNorthStaysOnItsTurn) {
   const std::string dir = make_temp_dir("rotord-continuity-udp");

@@ -71,12 +71,6 @@ class FailClosed : public ::testing::Test {
     start();
     daemon->advance_ms(10);  // reads what the daemon printed
   }
-  std::string curl(const std::string& args) {
-    return run_command("timeout 20 curl -s -i " + args + " 2>&1").out;
-  }
-  static int status_of(const std::string& response) {
-    return response.rfind("HTTP/1.1 ", 0) == 0 ? std::stoi(response.substr(9, 3)) : 0;
-  }
   void log_in() {
     ASSERT_EQ(status_of(curl("-c " + jar + " --json '{\"password\":\"" + kPassword + "\"}' " +
                              base + "/api/login")),

@@ -38,12 +38,6 @@ class LoginAttackers : public ::testing::Test {
     daemon.reset();
     std::filesystem::remove_all(dir);
   }
-  std::string curl(const std::string& args) {
-    return run_command("timeout 20 curl -s -i " + args + " 2>&1").out;
-  }
-  static int status_of(const std::string& response) {
-    return response.rfind("HTTP/1.1 ", 0) == 0 ? std::stoi(response.substr(9, 3)) : 0;
-  }
   std::string login_json() { return "--json '{\"password\":\"" + std::string(kPassword) + "\"}' "; }
 
   /// Two attackers, each rotating over 127.0.1.1-16, one guess after another.

@@ -48,17 +48,6 @@ class TrackApi : public ::testing::Test {
     ASSERT_TRUE(daemon->ready()) << daemon->output();
     base = "http://127.0.0.1:" + std::to_string(daemon->ports().web);
   }
-  /// curl -s -i with `args`; the whole response, head included.
-  std::string curl(const std::string& args) {
-    return run_command("timeout 20 curl -s -i " + args + " 2>&1").out;
-  }
-  static int status_of(const std::string& response) {
-    return response.rfind("HTTP/1.1 ", 0) == 0 ? std::stoi(response.substr(9, 3)) : 0;
-  }
-  static std::string body_of(const std::string& response) {
-    const auto at = response.find("\r\n\r\n");
-    return at == std::string::npos ? "" : response.substr(at + 4);
-  }
   void station(double lat, double lon, double alt) {
     const std::string r =
         curl("--json '{\"station.lat_deg\":" + std::to_string(lat) +

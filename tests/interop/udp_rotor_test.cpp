@@ -7,12 +7,7 @@
 // garbage and oversize datagrams ignored without a move. The datagrams are
 // the published ones, byte for byte. Log lines (--log-level debug) and the
 // replies say when the daemon has read a datagram; no sleeps.
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <poll.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -23,50 +18,10 @@
 #include "daemon_process.hpp"
 #include "http_client.hpp"
 #include "shell.hpp"
+#include "udp_socket.hpp"
 
 namespace rotord::testing {
 namespace {
-
-/// A UDP socket on 127.0.0.1 (port 0: any); closes itself.
-class Udp {
- public:
-  explicit Udp(int port = 0) {
-    fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    a.sin_port = htons(static_cast<std::uint16_t>(port));
-    bound_ = ::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
-    socklen_t len = sizeof(a);
-    ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len);
-    port_ = ntohs(a.sin_port);
-  }
-  ~Udp() { ::close(fd_); }
-  Udp(const Udp&) = delete;
-  Udp& operator=(const Udp&) = delete;
-  bool bound() const { return bound_; }
-  int port() const { return port_; }
-  void send_to(int port, const std::string& datagram) const {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    a.sin_port = htons(static_cast<std::uint16_t>(port));
-    ::sendto(fd_, datagram.data(), datagram.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof(a));
-  }
-  /// The next datagram, or "" after timeout_ms (liveness only).
-  std::string receive(int timeout_ms = 5000) const {
-    pollfd p{fd_, POLLIN, 0};
-    if (::poll(&p, 1, timeout_ms) != 1) return "";
-    char buf[1024];
-    const ssize_t n = ::recv(fd_, buf, sizeof(buf), 0);
-    return n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : "";
-  }
-
- private:
-  int fd_ = -1;
-  int port_ = 0;
-  bool bound_ = false;
-};
 
 class UdpRotor : public ::testing::Test {
  protected:

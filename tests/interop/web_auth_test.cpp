@@ -38,13 +38,6 @@ class WebAuth : public ::testing::Test {
     ASSERT_TRUE(daemon->ready()) << daemon->output();
     base = "http://127.0.0.1:" + std::to_string(daemon->ports().web);
   }
-  /// curl -s -i with `args`; the whole response, head included.
-  std::string curl(const std::string& args) {
-    return run_command("timeout 20 curl -s -i " + args + " 2>&1").out;
-  }
-  static int status_of(const std::string& response) {
-    return response.rfind("HTTP/1.1 ", 0) == 0 ? std::stoi(response.substr(9, 3)) : 0;
-  }
   int status(const std::string& args) { return status_of(curl(args)); }
   /// "-H 'Authorization: Bearer rtd_...'" for a new token.
   std::string token(const std::string& name, const std::string& scope) {

@@ -2,8 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <deque>
-
+#include "fake_edge_line.hpp"
 #include "sensors/ma3_sensor.hpp"
 
 namespace rotord::linux_port {
@@ -117,22 +116,7 @@ TEST(Ma3EdgeTimerTest, NoEdgesForTheTimeoutMeansNoSignal) {
   EXPECT_FALSE(e.timer.take(e.t_ns + Ma3EdgeTimer::kTimeoutNs + 1).valid);
 }
 
-/// A both-edges line whose queued edges a test provides.
-class FakeEdgeLine final : public GpioLine {
- public:
-  std::deque<LineEdge> queued;
-  bool set_active(bool) override { return false; }
-  int get_active() override { return -1; }
-  int event_fd() const override { return -1; }
-  std::size_t read_edges(LineEdge* out, std::size_t capacity) override {
-    std::size_t n = 0;
-    while (n < capacity && !queued.empty()) {
-      out[n++] = queued.front();
-      queued.pop_front();
-    }
-    return n;
-  }
-};
+using testing::FakeEdgeLine;
 
 TEST(GpiodMa3InputTest, FeedsTheCoreMa3SensorFromQueuedEdges) {
   auto line = std::make_unique<FakeEdgeLine>();

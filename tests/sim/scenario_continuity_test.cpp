@@ -11,8 +11,10 @@
 #include <memory>
 #include <string>
 
+#include "../unit/iss_elements.hpp"
 #include "../unit/string_sink.hpp"
 #include "bench/sky_angle.hpp"
+#include "pass_bench.hpp"
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
 #include "protocol/rotctld_session.hpp"
@@ -28,69 +30,12 @@ namespace rotord {
 namespace {
 
 using settings::Id;
-using testing::StringSink;
 
-constexpr const char* kIssLine1 =
-    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
-constexpr const char* kIssLine2 =
-    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
-
-/// A rotator on the simulator, its controller and a clock for the sky.
-class Bench {
- public:
-  explicit Bench(const char* profile, double az0, double el0)
-      : profile_(*sim::find_profile(profile)) {
-    for (const auto& o : profile_.overrides) settings_.set(*settings::find(o.key), o.value);
-    // Boulder, as the tracking mode's pass through north.
-    settings_.set(Id::kStationLatDeg, 40.015);
-    settings_.set(Id::kStationLonDeg, -105.27);
-    settings_.set(Id::kStationAltM, 1655.0);
-    sim_ = std::make_unique<sim::SimRotator>(profile_, 11);
-    sim_->set_theta_deg(AxisId::kAz, az0);
-    if (sim_->has_el()) sim_->set_theta_deg(AxisId::kEl, el0);
-  }
-  void power_on() {
-    controller_ =
-        std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
-    controller_->begin(now_);
-  }
-  void run_ms(Millis ms) {
-    for (Millis t = 0; t < ms; t += 10) {
-      now_ += 10;
-      sim_->advance_to(now_);
-      controller_->tick(now_);
-      const RotatorStatus s = controller_->status();
-      if (s.az.switch_cw || s.az.switch_ccw || s.el.switch_cw || s.el.switch_ccw) ++limit_ticks_;
-      const double az = theta(AxisId::kAz);
-      min_az_ = std::fmin(min_az_, az);
-      max_az_ = std::fmax(max_az_, az);
-    }
-  }
-  double theta(AxisId axis) const { return sim_->plant(axis).theta_deg(); }
-  Controller& controller() { return *controller_; }
-  settings::Settings& settings() { return settings_; }
-  Millis now() const { return now_; }
-  int limit_ticks() const { return limit_ticks_; }
-  void reset_extent() { min_az_ = max_az_ = theta(AxisId::kAz); }
-  double min_az() const { return min_az_; }
-  double max_az() const { return max_az_; }
-
- private:
-  const sim::Profile& profile_;
-  settings::Settings settings_;
-  Millis now_ = 0;
-  std::unique_ptr<sim::SimRotator> sim_;
-  std::unique_ptr<Controller> controller_;
-  int limit_ticks_ = 0;
-  double min_az_ = 1e9, max_az_ = -1e9;
-};
-
-/// Sends one line to a session and returns its reply.
-std::string ask(protocol::Session& session, const std::string& line) {
-  StringSink out;
-  session.receive(line, out);
-  return out.data;
-}
+using testing::ask;
+using testing::kIssLine1;
+using testing::kIssLine2;
+/// A rotator on the simulator at Boulder, its controller and a clock for the sky.
+using Bench = testing::PassBench;
 
 /// What a Gpredict-style client through rotctld measured over a pass.
 struct PassRun {

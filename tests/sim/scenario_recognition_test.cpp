@@ -14,9 +14,11 @@
 #include <memory>
 #include <string>
 
+#include "../unit/iss_elements.hpp"
 #include "../unit/string_sink.hpp"
 #include "bench/sky_angle.hpp"
 #include "hal/wall_clock.hpp"
+#include "pass_bench.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
@@ -30,95 +32,29 @@ namespace rotord {
 namespace {
 
 using settings::Id;
-using testing::StringSink;
 
-constexpr const char* kIssLine1 =
-    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
-constexpr const char* kIssLine2 =
-    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
+using testing::ask;
+using testing::kIssLine1;
+using testing::kIssLine2;
 
-/// The ISS's elements under another catalog number (checksums redone): a
-/// second object on the same orbit, as a docked vehicle is.
-std::string twin_line(const char* line) {
-  std::string s(line);
-  s.replace(2, 5, "99999");
-  int sum = 0;
-  for (std::size_t i = 0; i < 68; ++i) {
-    if (s[i] >= '0' && s[i] <= '9') sum += s[i] - '0';
-    if (s[i] == '-') sum += 1;
-  }
-  s[68] = static_cast<char>('0' + sum % 10);
-  return s;
-}
-
-/// A rotator on the simulator, its controller, a UTC clock in step with
-/// virtual time and the TLE store.
-class Bench : public hal::WallClock {
+/// The shared pass bench (pass_bench.hpp) with the elevation kept below the
+/// zenith and a TLE store, whose clock and store the controller is given.
+class Bench : public testing::PassBench {
  public:
-  explicit Bench(const char* profile, double az0, double el0)
-      : profile_(*sim::find_profile(profile)) {
-    for (const auto& o : profile_.overrides) settings_.set(*settings::find(o.key), o.value);
-    settings_.set(Id::kStationLatDeg, 40.015);  // Boulder
-    settings_.set(Id::kStationLonDeg, -105.27);
-    settings_.set(Id::kStationAltM, 1655.0);
-    settings_.set(Id::kElMaxDeg, 90.0);  // the G-5500 without flip
-    sim_ = std::make_unique<sim::SimRotator>(profile_, 11);
-    sim_->set_theta_deg(AxisId::kAz, az0);
-    if (sim_->has_el()) sim_->set_theta_deg(AxisId::kEl, el0);
-    EXPECT_TRUE(tracking::parse_utc("2019-12-09T22:36:00Z", utc0_));
+  Bench(const char* profile, double az0, double el0) : PassBench(profile, az0, el0) {
+    settings().set(Id::kElMaxDeg, 90.0);  // the G-5500 without flip
   }
-  void store_iss() {
-    const std::string text = std::string("ISS (ZARYA)\n") + kIssLine1 + "\n" + kIssLine2 + "\n";
-    ASSERT_TRUE(catalog_.put(text, 0).ok());
-  }
-  void store_twin() {
-    const std::string text = "TWIN\n" + twin_line(kIssLine1) + "\n" + twin_line(kIssLine2) + "\n";
-    ASSERT_TRUE(catalog_.put(text, 0).ok());
-  }
-  void power_on() {
-    controller_ =
-        std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
-    controller_->attach_utc_clock(this);
-    controller_->attach_catalog(&catalog_);
-    controller_->begin(now_);
-  }
-  std::optional<std::int64_t> unix_ms() const override { return utc0_ + now_; }
-  void run_ms(Millis ms) {
-    for (Millis t = 0; t < ms; t += 10) {
-      now_ += 10;
-      sim_->advance_to(now_);
-      controller_->tick(now_);
-      const RotatorStatus s = controller_->status();
-      if (s.az.switch_cw || s.az.switch_ccw || s.el.switch_cw || s.el.switch_ccw) ++limit_ticks_;
-      min_az_ = std::fmin(min_az_, theta(AxisId::kAz));
-      max_az_ = std::fmax(max_az_, theta(AxisId::kAz));
-    }
-  }
-  double theta(AxisId axis) const { return sim_->plant(axis).theta_deg(); }
-  Controller& controller() { return *controller_; }
-  settings::Settings& settings() { return settings_; }
-  const Recognition& recognition() const { return controller_->recognition(); }
-  int limit_ticks() const { return limit_ticks_; }
-  double min_az() const { return min_az_; }
-  double max_az() const { return max_az_; }
+  void store_iss() { ASSERT_TRUE(catalog_.put(testing::iss_tle_text(), 0).ok()); }
+  void store_twin() { ASSERT_TRUE(catalog_.put(testing::twin_tle_text(), 0).ok()); }
+  const Recognition& recognition() { return controller().recognition(); }
 
  private:
-  const sim::Profile& profile_;
-  settings::Settings settings_;
+  void attach(Controller& c) override {
+    c.attach_utc_clock(this);
+    c.attach_catalog(&catalog_);
+  }
   tracking::TleCatalog catalog_;
-  std::int64_t utc0_ = 0;
-  Millis now_ = 0;
-  std::unique_ptr<sim::SimRotator> sim_;
-  std::unique_ptr<Controller> controller_;
-  int limit_ticks_ = 0;
-  double min_az_ = 1e9, max_az_ = -1e9;
 };
-
-std::string ask(protocol::Session& session, const std::string& line) {
-  StringSink out;
-  session.receive(line, out);
-  return out.data;
-}
 
 /// What the client did over a pass.
 struct ClientRun {

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "../unit/iss_elements.hpp"
 #include "bench/sky_angle.hpp"
 #include "bench/tracker_clients.hpp"
 #include "protocol/rotctld_session.hpp"
@@ -30,10 +31,8 @@ using bench::TrackerClient;
 using settings::Id;
 constexpr double kPi = 3.14159265358979323846;
 
-constexpr const char* kIss1 =
-    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
-constexpr const char* kIss2 =
-    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
+constexpr const char* kIss1 = testing::kIssLine1;
+constexpr const char* kIss2 = testing::kIssLine2;
 
 /// A pass: where, and the first ISS pass after `from_utc`.
 struct PassSpec {

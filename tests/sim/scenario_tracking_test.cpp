@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "../unit/iss_elements.hpp"
 #include "bench/sky_angle.hpp"
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
@@ -20,10 +21,8 @@ namespace {
 
 using settings::Id;
 
-constexpr const char* kIssLine1 =
-    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
-constexpr const char* kIssLine2 =
-    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
+using testing::kIssLine1;
+using testing::kIssLine2;
 
 std::int64_t utc(const char* text) {
   std::int64_t ms = 0;

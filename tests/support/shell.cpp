@@ -22,6 +22,19 @@ CommandOutput run_command(const std::string& command) {
   return r;
 }
 
+std::string curl(const std::string& args) {
+  return run_command("timeout 20 curl -s -i " + args + " 2>&1").out;
+}
+
+int status_of(const std::string& response) {
+  return response.rfind("HTTP/1.1 ", 0) == 0 ? std::stoi(response.substr(9, 3)) : 0;
+}
+
+std::string body_of(const std::string& response) {
+  const auto at = response.find("\r\n\r\n");
+  return at == std::string::npos ? "" : response.substr(at + 4);
+}
+
 std::vector<double> numbers_in(const std::string& text) {
   std::vector<double> v;
   std::istringstream in(text);

@@ -16,6 +16,14 @@ CommandOutput run_command(const std::string& command);
 /// The words of `text` that are whole numbers, in order ("42.5\n-3\n" -> 42.5, -3).
 std::vector<double> numbers_in(const std::string& text);
 
+/// curl -s -i with `args`, for at most 20 s: the whole response, head
+/// included (or curl's complaint).
+std::string curl(const std::string& args);
+/// The status of a response as curl -i prints it; 0 when there is none.
+int status_of(const std::string& response);
+/// The body of such a response ("" without one).
+std::string body_of(const std::string& response);
+
 /// A new private directory under /tmp (for pty links and files); the caller removes it.
 std::string make_temp_dir(const std::string& prefix);
 

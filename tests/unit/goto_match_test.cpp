@@ -11,28 +11,14 @@
 #include <cstdio>
 #include <string>
 
+#include "iss_elements.hpp"
 #include "tracking/julian.hpp"
 
 namespace rotord {
 namespace {
 
-constexpr const char* kIssLine1 =
-    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
-constexpr const char* kIssLine2 =
-    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
-
-/// The same elements under catalog number 99999, checksum redone.
-std::string twin_line(const char* line) {
-  std::string s(line);
-  s.replace(2, 5, "99999");
-  int sum = 0;
-  for (std::size_t i = 0; i < 68; ++i) {
-    if (s[i] >= '0' && s[i] <= '9') sum += s[i] - '0';
-    if (s[i] == '-') sum += 1;
-  }
-  s[68] = static_cast<char>('0' + sum % 10);
-  return s;
-}
+using testing::kIssLine1;
+using testing::kIssLine2;
 
 class GotoMatchTest : public ::testing::Test {
  protected:
@@ -46,7 +32,7 @@ class GotoMatchTest : public ::testing::Test {
     ASSERT_TRUE(tracking::parse_utc("2019-12-09T22:40:30Z", t0_));
     // Near its culmination (13.9 deg), where it moves a threshold in 20 s.
     ASSERT_TRUE(tracking::parse_utc("2019-12-09T22:49:00Z", t1_));
-    const std::string iss = std::string("ISS (ZARYA)\n") + kIssLine1 + "\n" + kIssLine2 + "\n";
+    const std::string iss = testing::iss_tle_text();
     ASSERT_TRUE(catalog_.put(iss, 0).ok());
     tracking::Tle tle;
     ASSERT_TRUE(tracking::parse_tle(kIssLine1, kIssLine2, tle).ok());
@@ -205,7 +191,7 @@ TEST_F(GotoMatchTest, AMissIsOutAndTwoObjectsOnOneOrbitAreAmbiguous) {
   EXPECT_FALSE(goto_iss(m, t0_ + 20000, all).recognised);
   EXPECT_TRUE(goto_iss(m, t0_ + 25000, all).recognised);
 
-  const std::string twin = "TWIN\n" + twin_line(kIssLine1) + "\n" + twin_line(kIssLine2) + "\n";
+  const std::string twin = testing::twin_tle_text();
   ASSERT_TRUE(catalog_.put(twin, 0).ok());
   GotoMatcher::Verdict v;
   for (int n = 0; n < 10; ++n) {

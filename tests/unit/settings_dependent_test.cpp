@@ -52,6 +52,30 @@ TEST(SettingsDependent, ParkElevationAndSlowZonesWithinTheirTravel) {
             std::string::npos);
 }
 
+// The whole wording of each travel rule: the park, the wind stow and the
+// slow zones share one sentence per kind (settings_dependent.cpp), which
+// must read for each setting exactly as it did when each had its own.
+TEST(SettingsDependent, EachTravelRuleNamesItsSettingsAxisAndValues) {
+  Settings s;
+  ASSERT_EQ(s.set(Id::kElEnabled, 1).error, Error::kOk);
+  ASSERT_EQ(s.set(Id::kElMaxDeg, 90).error, Error::kOk);
+  EXPECT_EQ(std::string(s.save_from_text(Id::kParkElDeg, "120").reason),
+            "park.el_deg 120 is outside the elevation travel el.min_deg..el.max_deg (0..90): "
+            "PARK could not go there");
+  ASSERT_EQ(s.set(Id::kWindSource, 2).error, Error::kOk);
+  EXPECT_EQ(std::string(s.save_from_text(Id::kWindStowAzDeg, "-10.5").reason),
+            "wind.stow_az_deg -10.5 is outside the azimuth travel az.min_deg..az.max_deg "
+            "(0..450): a wind stow could not go there");
+  ASSERT_EQ(s.set(Id::kAzMaxDeg, 60).error, Error::kOk);
+  EXPECT_EQ(std::string(s.save_from_text(Id::kAzSlowZoneDeg, "80").reason),
+            "az.slow_zone_deg 80 must be shorter than the azimuth travel az.min_deg..az.max_deg "
+            "(60 deg)");
+  ASSERT_EQ(s.set(Id::kElMaxDeg, 4).error, Error::kOk);
+  EXPECT_EQ(std::string(s.save_from_text(Id::kElSlowZoneDeg, "5").reason),
+            "el.slow_zone_deg 5 must be shorter than the elevation travel el.min_deg..el.max_deg "
+            "(4 deg)");
+}
+
 TEST(SettingsDependent, ASaveIsJudgedByWhatItChanges) {
   // A value already out of line (a file written before the rule) does not
   // block an unrelated save; the file loader is not held to the rules.

@@ -17,4 +17,11 @@ struct StringSink final : protocol::ByteSink {
   }
 };
 
+/// Sends `bytes` to a session and returns all it wrote back.
+inline std::string ask(protocol::Session& session, std::string_view bytes) {
+  StringSink out;
+  session.receive(bytes, out);
+  return out.data;
+}
+
 }  // namespace rotord::testing

@@ -4,14 +4,13 @@
 
 #include <string>
 
+#include "iss_elements.hpp"
+
 namespace rotord::tracking {
 namespace {
 
-// ISS (ZARYA), the example of python-sgp4's README.
-constexpr const char* kIss1 =
-    "1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991";
-constexpr const char* kIss2 =
-    "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482";
+constexpr const char* kIss1 = testing::kIssLine1;
+constexpr const char* kIss2 = testing::kIssLine2;
 
 TEST(TleTest, ParsesEveryFieldOfAValidElementSet) {
   Tle t;

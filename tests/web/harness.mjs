@@ -13,6 +13,13 @@ export const ARTIFACTS = process.env.ROTORD_ARTIFACTS ??
   path.resolve(path.dirname(ROTORD), 'test-artifacts');
 const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
 
+/** The ISS's elements of 2019-12-09 as a TLE text (name line and both lines). */
+export const ISS = [
+  'ISS (ZARYA)',
+  '1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991',
+  '2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482',
+].join('\n');
+
 export function freePort() {
   return new Promise((resolve, reject) => {
     const s = net.createServer();

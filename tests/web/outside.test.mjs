@@ -10,14 +10,8 @@ import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import {
-  cleanup, launchBrowser, openPage, request, Rotord, screenshot, tempDir, until,
+  cleanup, ISS, launchBrowser, openPage, request, Rotord, screenshot, tempDir, until,
 } from './harness.mjs';
-
-const ISS = [
-  'ISS (ZARYA)',
-  '1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991',
-  '2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482',
-].join('\n');
 
 let browser;
 let dir;

@@ -11,13 +11,9 @@ import { writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
 
-import { cleanup, launchBrowser, openPage, ROTORD, Rotord, screenshot, tempDir, until } from './harness.mjs';
-
-const ISS = [
-  'ISS (ZARYA)',
-  '1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991',
-  '2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482',
-].join('\n');
+import {
+  cleanup, ISS, launchBrowser, openPage, ROTORD, Rotord, screenshot, tempDir, until,
+} from './harness.mjs';
 
 let browser;
 let dir;
