@@ -5,6 +5,37 @@
 
 namespace rotord::web {
 
+void CountingSink::write(std::string_view bytes) {
+  count_ += bytes.size();
+}
+
+JsonWriter::JsonWriter(protocol::ByteSink& out) : out_(out) {}
+
+JsonWriter& JsonWriter::member(std::string_view name, std::string_view s) {
+  return key(name).string(s);
+}
+JsonWriter& JsonWriter::member(std::string_view name, const char* s) {
+  return key(name).string(s);
+}
+JsonWriter& JsonWriter::member(std::string_view name, double v) {
+  return key(name).number(v);
+}
+JsonWriter& JsonWriter::member(std::string_view name, float v) {
+  return key(name).number(v);
+}
+JsonWriter& JsonWriter::member(std::string_view name, int v) {
+  return key(name).integer(v);
+}
+JsonWriter& JsonWriter::member(std::string_view name, long long v) {
+  return key(name).integer(v);
+}
+JsonWriter& JsonWriter::member(std::string_view name, std::uint32_t v) {
+  return key(name).integer(v);
+}
+JsonWriter& JsonWriter::member(std::string_view name, bool v) {
+  return key(name).boolean(v);
+}
+
 void JsonWriter::put(char c) {
   if (len_ == sizeof(buf_)) flush();
   buf_[len_++] = c;

@@ -10,9 +10,19 @@
 
 namespace rotord::protocol::console {
 
+/// One reply line, printf-style (console_reply.cpp: one copy for every
+/// console file, where each kept its own instances of the template).
+void send_line(ByteSink& out, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/// One reply line; without arguments the text is sent as it is (a '%' in
+/// it stays a '%').
 template <typename... Args>
 void send(ByteSink& out, const char* fmt, Args... args) {
-  ConsoleSession::Reply(ConsoleSession::kReplyRules).line(out, fmt, args...);
+  if constexpr (sizeof...(Args) == 0) {
+    send_line(out, "%s", fmt);
+  } else {
+    send_line(out, fmt, args...);
+  }
 }
 
 inline void error(ByteSink& out, const char* reason) {

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdarg>
 #include <cstddef>
 #include <cstdio>
 #include <string_view>
@@ -52,6 +53,17 @@ class LineReply {
     } else {
       n = std::snprintf(at, room + 1, fmt, args...);
     }
+    if (n < 0 || static_cast<std::size_t>(n) > room) {
+      overflowed_ = true;
+      return;
+    }
+    length_ += static_cast<std::size_t>(n);
+  }
+  /// format() with a printf-style function's own arguments.
+  void vformat(const char* fmt, std::va_list args) {
+    if (overflowed_) return;
+    const std::size_t room = Capacity - length_;
+    const int n = std::vsnprintf(buf_ + length_, room + 1, fmt, args);
     if (n < 0 || static_cast<std::size_t>(n) > room) {
       overflowed_ = true;
       return;

@@ -17,6 +17,9 @@ class ByteSink {
   /// How many bytes write() takes right now without dropping anything: a
   /// transport with a bounded buffer (the Pico's lwIP connection) says so, and
   /// a long reply written through a protocol::WindowSink stops there.
+  // Inline on purpose: with no key function, ByteSink's typeinfo is emitted
+  // wherever needed, and the ports (built with RTTI) derive from it while
+  // the core is built without.
   virtual std::size_t room() const { return static_cast<std::size_t>(-1); }
 };
 
