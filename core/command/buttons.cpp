@@ -6,6 +6,11 @@ namespace rotord::command {
 
 using settings::Id;
 
+namespace {
+/// A hand on the box: no client.
+const Origin kOrigin{"buttons", {}};
+}  // namespace
+
 Buttons::Buttons(Controller& controller, const AxisIo& az_io, const AxisIo& el_io)
     : controller_(controller),
       buttons_({az_io.button_fwd, az_io.button_rev}, {el_io.button_fwd, el_io.button_rev}) {
@@ -27,12 +32,12 @@ void Buttons::poll(Millis now) {
     if (commands[n].dir != Direction::kNone) {
       // Refused moves (fault, limit, no elevation) simply do nothing; the
       // status already shows why.
-      jogging_[n] = move(controller_, axis, commands[n].dir) == Error::kOk;
+      jogging_[n] = move(controller_, kOrigin, axis, commands[n].dir) == Error::kOk;
       continue;
     }
     // Released: end the jog the button started; a go-to a client sent
     // since is left alone (end_jog ends a jog only).
-    if (jogging_[n]) end_jog(controller_, axis);
+    if (jogging_[n]) end_jog(controller_, kOrigin, axis);
     jogging_[n] = false;
   }
 }

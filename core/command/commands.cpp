@@ -47,7 +47,40 @@ Result Commands::locked_refusal() const {
                   static_cast<long long>((left + 999) / 1000));
 }
 
-Result Commands::admit(const Gate& gate, const Authority& who) const {
+namespace {
+
+/// A refusal's word in the log line, as a line protocol's Error would be.
+std::string_view status_word(Status s) {
+  static constexpr std::string_view kWords[] = {"OK",        "BAD REQUEST", "DENIED",
+                                                "NOT FOUND", "CONFLICT",    "UNPROCESSABLE",
+                                                "LOCKED",    "UNAVAILABLE"};
+  return kWords[static_cast<std::size_t>(s)];
+}
+
+}  // namespace
+
+void Commands::told(const Def& command, const Request& r, const Result& result) {
+  const bool at = result.ok() && result.reply == Reply::kGoto;
+  command::told(controller_, {r.front, r.peer}, command.name, status_word(result.status),
+                at && result.has_az_target ? result.az_target_deg : NAN,
+                at && result.has_el_target ? result.el_target_deg : NAN);
+}
+
+Result Commands::execute(Id id, const Request& r) {
+  const Def& d = def(id);
+  Result result = (this->*d.run)(r);
+  told(d, r, result);
+  return result;
+}
+
+Result Commands::admit(const Gate& gate, const Authority& who, const Def* command,
+                       const Request* r) {
+  Result a = admit_only(gate, who);
+  if (!a.ok() && command != nullptr && r != nullptr) told(*command, *r, a);
+  return a;
+}
+
+Result Commands::admit_only(const Gate& gate, const Authority& who) const {
   if (static_cast<int>(who.granted) < static_cast<int>(gate.need))
     return refused(Status::kForbidden, "not allowed for this caller");
   // Failed closed (the access settings could not be read at start-up):
@@ -61,7 +94,7 @@ Result Commands::admit(const Gate& gate, const Authority& who) const {
 }
 
 Result Commands::run(Id id, const Request& r) {
-  Result a = admit(def(id).gate, r.who);
+  Result a = admit(def(id).gate, r.who, &def(id), &r);
   if (!a.ok()) return a;
   return execute(id, r);
 }
@@ -88,7 +121,7 @@ void Commands::arm_dead_man(AxisId axis, Millis hold_ms) {
 
 void Commands::stop_all() {
   dead_man_ = {};
-  command::stop(controller_);
+  command::stop(controller_, {});
 }
 
 Result Commands::stop(const Request&) {
@@ -122,7 +155,7 @@ Result Commands::go_to(const Request& r) {
   const CommandSource source = (CommandSource{1} << 62) |
                                (static_cast<CommandSource>(r.peer.kind) << 32) |
                                r.peer.address_hash();
-  if (const Error e = command::go_to(controller_, az, el, mode, source); e != Error::kOk)
+  if (const Error e = command::go_to(controller_, {}, az, el, mode, source); e != Error::kOk)
     return refused_by(e);
   const RotatorStatus s = controller_.status();
   done.has_az_target = az.has_value();
@@ -185,19 +218,19 @@ Result Commands::move(const Request& r) {
   }
   if (dir == Direction::kNone && !axis) return stop(r);
   const AxisId moved = axis.value_or(AxisId::kAz);
-  if (const Error e = command::move(controller_, moved, dir, speed); e != Error::kOk)
+  if (const Error e = command::move(controller_, {}, moved, dir, speed); e != Error::kOk)
     return refused_by(e);
   arm_dead_man(moved, dir == Direction::kNone ? 0 : hold);
   return ok();
 }
 
 Result Commands::park(const Request&) {
-  if (const Error e = command::park(controller_); e != Error::kOk) return refused_by(e);
+  if (const Error e = command::park(controller_, {}); e != Error::kOk) return refused_by(e);
   return ok();
 }
 
 Result Commands::reset(const Request&) {
-  if (command::reset(controller_) != Error::kOk)
+  if (command::reset(controller_, {}) != Error::kOk)
     return refused(Status::kConflict, "the emergency stop is active: release it, then reset");
   return ok();
 }
@@ -207,7 +240,7 @@ Result Commands::speed(const Request& r) {
   if (Result bad; !read_members(r.body, m, bad)) return bad;
   if (!m[0].present) return refused(Status::kBadRequest, "give speed_pct");
   if (!is_whole(m[0].value.number) ||
-      command::set_speed(controller_, static_cast<int>(m[0].value.number)) != Error::kOk)
+      command::set_speed(controller_, {}, static_cast<int>(m[0].value.number)) != Error::kOk)
     return refused(Status::kUnprocessable, "speed_pct must be a whole number 1..100");
   return ok();
 }
@@ -216,7 +249,7 @@ Result Commands::place(const Request& r) {
   Result done = ok(Reply::kPlace);
   if (Result bad = read_place(r.body, done.place); !bad.ok()) return bad;
   PlaceAim aim;
-  const Error e = turn_to_place(controller_, done.place, aim);
+  const Error e = turn_to_place(controller_, {}, done.place, aim);
   if (!aim.reachable) return refused(Status::kUnprocessable, aim.why);
   if (e != Error::kOk) return refused_by(e);
   done.bearing = aim.bearing;
@@ -227,7 +260,7 @@ Result Commands::preset(const Request& r) {
   PresetBody b;
   if (const char* why = read_preset_body(r.body, b, true)) return refused(Status::kBadRequest, why);
   settings::Preset p;
-  if (const Error e = turn_to_preset(controller_, b.name, p); e == Error::kNotFound) {
+  if (const Error e = turn_to_preset(controller_, {}, b.name, p); e == Error::kNotFound) {
     return refused(Status::kNotFound, "no preset of that name");
   } else if (e != Error::kOk) {
     const Limits l = controller_.limits();

@@ -43,6 +43,9 @@ struct Request {
   access::Peer peer;
   /// The arguments as JSON ({} when empty): the REST body, the MQTT payload.
   std::string_view body;
+  /// The front end, for the log line ("rest", "mqtt"; command_log.hpp);
+  /// empty: none (a test's).
+  std::string_view front = {};
 };
 
 enum class Id : unsigned char { kStop, kGoto, kMove, kPark, kReset, kSpeed, kPlace, kPreset };
@@ -73,12 +76,17 @@ class Commands {
   static const Def* find(std::string_view name);
 
   /// Whether `who` may pass `gate` now: the access level, the failed-closed
-  /// access settings, the control lock. kOk, or the refusal.
-  Result admit(const Gate& gate, const Authority& who) const;
+  /// access settings, the control lock. kOk, or the refusal, which is
+  /// logged when `command` names one (the REST route of a command).
+  Result admit(const Gate& gate, const Authority& who, const Def* command = nullptr,
+               const Request* r = nullptr);
   /// Admits, then runs (MQTT, which has no gate of its own).
   Result run(Id id, const Request& r);
-  /// Runs a command whose gate the front end already passed through admit().
-  Result execute(Id id, const Request& r) { return (this->*def(id).run)(r); }
+  /// Runs a command whose gate the front end already passed through admit(),
+  /// and writes its log line (command_log.hpp).
+  Result execute(Id id, const Request& r);
+  /// The log line of `command` from `r` that ended in `result`.
+  void told(const Def& command, const Request& r, const Result& result);
 
   /// STOP, with nothing to answer (MQTT's refused body still stops).
   void stop_all();
@@ -110,6 +118,7 @@ class Commands {
     Millis until = 0;
   };
   void arm_dead_man(AxisId axis, Millis hold_ms);
+  Result admit_only(const Gate& gate, const Authority& who) const;
 
   Controller& controller_;
   Millis transport_now_ = 0;

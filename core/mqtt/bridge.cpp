@@ -203,11 +203,13 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
     return;
   }
   if (!stop && !api_->settings().b(Id::kMqttControl)) {
+    command::told(commands.controller(), {"mqtt", broker_peer_}, def->name, "DENIED");
     publish_result(cmd, 403,
                    R"({"error":"mqtt.control is off: only stop is obeyed from the broker"})");
     return;
   }
   if (!stop && !access::may_control(api_->settings(), broker_peer_)) {
+    command::told(commands.controller(), {"mqtt", broker_peer_}, def->name, "DENIED");
     // The line protocols' allow-list, applied to the broker's address (the
     // REST API's answer to a read-only caller is a 403 too).
     publish_result(
@@ -218,7 +220,7 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
   // mqtt.control, the broker's ACLs and the allow-list above vouch for the
   // command (no web login); the control lock still refuses it (the broker
   // never holds it).
-  const command::Request request{{command::Need::kControl, false}, broker_peer_, payload};
+  const command::Request request{{command::Need::kControl, false}, broker_peer_, payload, "mqtt"};
   const command::Result r = commands.run(def->id, request);
   FixedSink sink(state_, sizeof state_);  // free between state publishes
   {

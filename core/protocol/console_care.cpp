@@ -20,7 +20,7 @@ void ConsoleSession::odometer(std::string_view args, ByteSink& out) {
     return send(out, "error: odometer takes nothing or 'reset'");
   care::Odometer& o = controller_.odometer();
   if (!args.empty()) {
-    if (!may_control(controller_))
+    if (!may_control(controller_, "odometer reset"))
       return send(out, "error: read-only: this client may not reset the odometer");
     const std::optional<std::int64_t> utc_ms = controller_.utc_ms();
     o.reset(utc_ms ? *utc_ms / 1000 : 0);
@@ -61,7 +61,7 @@ void ConsoleSession::wind(std::string_view args, ByteSink& out) {
         space == std::string_view::npos ? std::string_view{} : text::trim(text::slice(args, space));
     if (!text::iequals(verb, "override") && !(text::iequals(verb, "stow") && rest.empty()))
       return send(out, "error: wind takes nothing, 'override [minutes]' or 'stow'");
-    if (!may_control(controller_))
+    if (!may_control(controller_, "wind"))
       return send(out, "error: read-only: this client may not override the wind stow");
     if (text::iequals(verb, "stow")) {
       if (w.state() != care::WindState::kOverride)

@@ -40,7 +40,7 @@ void ConsoleSession::turn(std::string_view args, ByteSink& out) {
   PlaceQuery q;
   if (const char* why = parse_place(args, q)) return send(out, "error: %s", why);
   PlaceAim aim;
-  const Error e = command::turn_to_place(controller_, q, aim);
+  const Error e = command::turn_to_place(controller_, origin(), q, aim);
   if (!aim.reachable) return send(out, "error: %s", aim.why);
   if (e != Error::kOk) return send(out, "error: %s", move_error(e));
   send(out, "ok turning to %.1f deg (%.0f km, %s path)", aim.bearing.azimuth_deg,
@@ -63,7 +63,7 @@ void ConsoleSession::presets(std::string_view, ByteSink& out) {
 void ConsoleSession::preset(std::string_view args, ByteSink& out) {
   settings::Preset p;
   if (args.empty()) return send(out, "error: give the preset's name (presets lists them)");
-  const Error e = command::turn_to_preset(controller_, args, p);
+  const Error e = command::turn_to_preset(controller_, origin(), args, p);
   if (e == Error::kNotFound) return send(out, "error: no preset of that name (presets lists them)");
   if (e != Error::kOk) return send(out, "error: %s: heading %.1f", move_error(e), p.az_deg);
   send(out, "ok turning to %s, %.1f deg", p.name, p.az_deg);

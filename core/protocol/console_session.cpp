@@ -128,7 +128,8 @@ void ConsoleSession::handle_line(std::string_view line, ByteSink& out) {
   while (!rest.empty() && (rest.front() == ' ' || rest.front() == '\t')) rest.remove_prefix(1);
   for (const Command& c : kCommands) {
     if (!text::iequals(word, c.name)) continue;
-    if (c.changes_state && !may_control(controller_)) return error(out, console::kNotInControl);
+    if (c.changes_state && !may_control(controller_, c.name))
+      return error(out, console::kNotInControl);
     return (this->*c.run)(rest, out);
   }
   const Echo echo(word);
@@ -146,7 +147,7 @@ void ConsoleSession::status(std::string_view, ByteSink& out) {
   const char* board = port_ != nullptr && port_->board[0] != '\0' ? port_->board : "rotord";
   send(out, "rotord %s (%s)", version_, board);
   send(out, "mode=%s speed_pct=%d estop=%s control=%s", mode_name(s.mode), s.speed_pct,
-       flag(controller_.estop_active()), may_control(controller_) ? "yes" : "no");
+       flag(controller_.estop_active()), command::in_control(controller_, peer()) ? "yes" : "no");
   const auto axis = [&](const char* name, const AxisStatus& a) {
     char target[16] = "-";
     if (a.has_target)
@@ -282,12 +283,12 @@ void ConsoleSession::calibrate(std::string_view args, ByteSink& out) {
 }
 
 void ConsoleSession::stop(std::string_view, ByteSink& out) {
-  command::stop(controller_);
+  command::stop(controller_, origin());
   send(out, "ok stopped");
 }
 
 void ConsoleSession::reset(std::string_view, ByteSink& out) {
-  if (command::reset(controller_) != Error::kOk)
+  if (command::reset(controller_, origin()) != Error::kOk)
     return error(out, "the emergency stop is active: release it, then reset");
   send(out, "ok stopped, faults cleared");
 }

@@ -47,6 +47,7 @@ struct ConsolePort {
 /// `error: <reason>`, CR LF ended, so a script reads up to that line.
 class ConsoleSession final : public Session {
  public:
+  std::string_view front() const override { return "console"; }
   /// A command line; a longer one is refused whole (`import` documents
   /// longer than this are split into several imports, docs/protocols/console.md).
   static constexpr std::size_t kMaxLineLength = 512;

@@ -117,7 +117,7 @@ void ConsoleSession::commission(std::string_view args, ByteSink& out) {
     report(controller_, out);
     return send(out, "ok");
   }
-  if (!may_control(controller_)) return error(out, kNotInControl);
+  if (!may_control(controller_, "commission")) return error(out, kNotInControl);
   if (text::iequals(word, "accept") && text::trim(rest).empty()) {
     const settings::Rejection r = controller_.accept_commissioning();
     if (r.error != Error::kOk) return send(out, "error: nothing changed: %s", r.reason);

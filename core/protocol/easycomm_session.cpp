@@ -201,17 +201,17 @@ void EasycommSession::run_token(std::string_view token, std::string_view& rest, 
   }
   // AZ/EL/SA/SE are collected for finish_line, which refuses a position.
   if (c->run == nullptr) return;
-  if (c->changes_state && !may_control(controller_)) return alarm(out, "DENIED");
+  if (c->changes_state && !may_control(controller_, c->name)) return alarm(out, "DENIED");
   (this->*(c->run))(value, out);
 }
 
 void EasycommSession::park(std::string_view, ByteSink& out) {
-  const Error e = command::park(controller_);
+  const Error e = command::park(controller_, origin());
   if (e != Error::kOk) alarm(out, alarm_reason(e));
 }
 
 void EasycommSession::reset(std::string_view, ByteSink& out) {
-  if (command::reset(controller_) != Error::kOk) alarm(out, "ESTOP");
+  if (command::reset(controller_, origin()) != Error::kOk) alarm(out, "ESTOP");
 }
 
 void EasycommSession::move_left(std::string_view velocity, ByteSink& out) {
@@ -253,7 +253,7 @@ void EasycommSession::move(AxisId axis, Direction dir, std::string_view velocity
     text::parse_int(velocity, mdeg_s);  // checked in parse_token
     speed_pct = speed_pct_from_velocity(mdeg_s);
   }
-  const Error e = command::move(controller_, axis, dir, speed_pct);
+  const Error e = command::move(controller_, origin(), axis, dir, speed_pct);
   if (e != Error::kOk) alarm(out, alarm_reason(e));
 }
 
@@ -279,12 +279,12 @@ void EasycommSession::write_config(std::string_view arg, ByteSink& out) {
 
 void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
   if (request.stop_az && request.stop_el) {
-    command::stop(controller_);
+    command::stop(controller_, origin());
   } else if (request.stop_az || request.stop_el) {
     // An elevation stop on an azimuth-only rotator does nothing.
-    command::stop_axis(controller_, request.stop_az ? AxisId::kAz : AxisId::kEl);
+    command::stop_axis(controller_, origin(), request.stop_az ? AxisId::kAz : AxisId::kEl);
   }
-  if ((request.set_az_deg || request.set_el_deg) && !may_control(controller_)) {
+  if ((request.set_az_deg || request.set_el_deg) && !may_control(controller_, "goto")) {
     alarm(out, "DENIED");
   } else if (request.set_az_deg || request.set_el_deg) {
     std::optional<float> el = request.set_el_deg;
@@ -294,8 +294,8 @@ void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {
       // 0..360 is a compass bearing; the controller picks the turn within
       // the overlap. Beyond 0..360 it is an unwrapped position, refused
       // unless inside the travel.
-      const Error e =
-          command::go_to(controller_, request.set_az_deg, el, AzTarget::kCompass, source());
+      const Error e = command::go_to(controller_, origin(), request.set_az_deg, el,
+                                     AzTarget::kCompass, source());
       if (e != Error::kOk) alarm(out, alarm_reason(e));
       if (e == Error::kOk && request.set_az_deg)
         frame_.note_goto(*request.set_az_deg, controller_.az_continuity_shift_deg(),

@@ -21,6 +21,7 @@ namespace rotord::protocol {
 /// report Easycomm defines, and changes nothing.
 class EasycommSession final : public Session {
  public:
+  std::string_view front() const override { return "easycomm"; }
   static constexpr std::size_t kMaxLineLength = 128;
   static constexpr std::size_t kMaxReplyLength = 160;
   static constexpr std::string_view kTooManyConnections = "ALBUSY\n";

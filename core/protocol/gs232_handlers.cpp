@@ -37,7 +37,7 @@ void Gs232Session::report_both(std::string_view, ByteSink& out) {
 
 void Gs232Session::turn(AxisId axis, Direction dir, ByteSink& out) {
   stop_list();
-  reply(command::move(controller_, axis, dir), out);
+  reply(command::move(controller_, origin(), axis, dir), out);
 }
 
 void Gs232Session::turn_cw(std::string_view, ByteSink& out) {
@@ -58,7 +58,7 @@ void Gs232Session::turn_down(std::string_view, ByteSink& out) {
 
 void Gs232Session::stop_axis(AxisId axis, ByteSink& out) {
   stop_list();
-  if (command::stop_axis(controller_, axis) != Error::kOk) return out.write(kError);
+  if (command::stop_axis(controller_, origin(), axis) != Error::kOk) return out.write(kError);
   done(out);
 }
 
@@ -74,14 +74,14 @@ void Gs232Session::stop_all(std::string_view, ByteSink& out) {
   // Cancels the running command and the timed list's stepping; the list
   // stays stored for another T, as on the real controller.
   stop_list();
-  command::stop(controller_);
+  command::stop(controller_, origin());
   done(out);
 }
 
 void Gs232Session::speed(std::string_view arg, ByteSink& out) {
   // Four steps over the speed range: X1 and X2 are the slow half of a
   // two-speed drive, X3 and X4 the fast half. Takes effect while turning.
-  command::set_speed(controller_, (arg[0] - '0') * 25);
+  command::set_speed(controller_, origin(), (arg[0] - '0') * 25);
   done(out);
 }
 
@@ -217,7 +217,7 @@ Error Gs232Session::go(int az_deg, std::optional<int> el_deg) {
   if (el_deg && controller_.has_el()) el = static_cast<float>(*el_deg);
   // go_to checks both axes before it moves either: a target outside the
   // travel moves nothing.
-  const Error e = command::go_to(controller_, goal.az_deg, el, goal.mode, source());
+  const Error e = command::go_to(controller_, origin(), goal.az_deg, el, goal.mode, source());
   if (e == Error::kOk)
     frame_.note_goto(goal.az_deg, controller_.az_continuity_shift_deg(),
                      controller_.last_goto_recognised(), el ? *el : 0.0f);

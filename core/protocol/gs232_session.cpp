@@ -238,7 +238,8 @@ void Gs232Session::handle_line(std::string_view line, ByteSink& out) {
   // refused every letter that can change something, before its argument is
   // looked at: M, W, R, L, U, D, X, T, O, F and P. S, A and E (stop) work.
   for (const Command& c : kCommands) {
-    if (c.letter == letter && c.changes_state && !may_control(controller_))
+    if (c.letter == letter && c.changes_state &&
+        !may_control(controller_, std::string_view(&c.letter, 1)))
       return out.write(kError);
   }
   // Every command but M and W is a letter and at most three characters;

@@ -20,6 +20,7 @@ namespace rotord::protocol {
 /// change on the web page takes effect at once.
 class Gs232Session final : public Session {
  public:
+  std::string_view front() const override { return "gs232"; }
   /// Points of the timed list (long-form M / W). The real controller holds
   /// 3800; 64 keep a session under 1 KB of RAM on the Pico, which is about a
   /// full satellite pass at one point every 15 s.

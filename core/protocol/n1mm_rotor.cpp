@@ -188,15 +188,15 @@ DatagramOutcome N1mmRotor::receive(std::string_view datagram, const access::Peer
 
   DatagramOutcome outcome = DatagramOutcome::kDone;
   if (r.stop) {
-    command::stop(controller_);  // whoever sends it
-  } else if (!command::may_control(controller_, from)) {
+    command::stop(controller_, {"n1mm", from});  // whoever sends it
+  } else if (!command::may_control(controller_, {"n1mm", from}, "goto")) {
     outcome = DatagramOutcome::kRefused;
   } else {
     // The rotor turns so that the antenna, `offset` clockwise of it, points
     // at goazi.
     float bearing_deg = wrap_360(*r.goazi_deg - r.offset_deg);
     if (r.bidirectional) bearing_deg = nearer_end(controller_, bearing_deg);
-    if (command::go_to(controller_, bearing_deg, std::nullopt, AzTarget::kCompass,
+    if (command::go_to(controller_, {"n1mm", from}, bearing_deg, std::nullopt, AzTarget::kCompass,
                        source_of(this)) != Error::kOk)
       outcome = DatagramOutcome::kFailed;
   }

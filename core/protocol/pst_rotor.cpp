@@ -121,19 +121,19 @@ DatagramOutcome PstRotor::receive(std::string_view datagram, const access::Peer&
 
   DatagramOutcome outcome = DatagramOutcome::kDone;
   // In the manual's order: <STOP>1</STOP><AZIMUTH>85</AZIMUTH> stops, then turns.
-  if (r.stop) command::stop(controller_);
+  if (r.stop) command::stop(controller_, {"pst", from});
   const bool moves = r.park || r.az_deg || r.el_deg || r.qra_az_deg;
-  if (moves && !command::may_control(controller_, from)) {
+  if (moves && !command::may_control(controller_, {"pst", from}, "goto")) {
     outcome = DatagramOutcome::kRefused;
   } else if (moves) {
     Error e = Error::kOk;
-    if (r.park) e = command::park(controller_);
+    if (r.park) e = command::park(controller_, {"pst", from});
     std::optional<float> az = r.qra_az_deg ? r.qra_az_deg : r.az_deg;
     std::optional<float> el = r.el_deg;
     // An azimuth-only rotator ignores the elevation (Hamlib sends one).
     if (!controller_.has_el()) el.reset();
     if (e == Error::kOk && (az || el))
-      e = command::go_to(controller_, az, el, AzTarget::kCompass, source_of(this));
+      e = command::go_to(controller_, {"pst", from}, az, el, AzTarget::kCompass, source_of(this));
     if (e != Error::kOk) outcome = DatagramOutcome::kFailed;
   }
   // Answers go to port + 1 of the port this protocol listens on.

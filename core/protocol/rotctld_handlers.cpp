@@ -66,14 +66,15 @@ HamlibError RotctldSession::execute(const Command& command) {
     case Op::kGetPos:
       return get_pos();
     case Op::kPark:
-      return from(command::park(controller_));
+      return from(command::park(controller_, origin()));
     case Op::kStop:
-      command::stop(controller_);
+      command::stop(controller_, origin());
       return HamlibError::kOk;
     case Op::kReset: {
       long what = 0;  // ROT_RESET_ALL is 1; every value resets everything here
       if (!rotctld::scan_whole_int(arg(0), what)) return HamlibError::kInvalid;
-      return from(command::reset(controller_));  // refused while the emergency stop is active
+      return from(
+          command::reset(controller_, origin()));  // refused while the emergency stop is active
     }
     case Op::kMove:
       return move(arg(0), arg(1));
@@ -159,7 +160,8 @@ HamlibError RotctldSession::set_pos() {
   // its turn (Gpredict sends 0.5 after 359.5, meaning 360.5).
   std::optional<float> el_target;
   if (controller_.has_el()) el_target = el_deg;
-  const Error e = command::go_to(controller_, az_deg, el_target, AzTarget::kUnwrapped, source());
+  const Error e =
+      command::go_to(controller_, origin(), az_deg, el_target, AzTarget::kUnwrapped, source());
   if (e == Error::kOk)
     frame_.note_goto(az_deg, controller_.az_continuity_shift_deg(),
                      controller_.last_goto_recognised(), el_deg);
@@ -175,7 +177,7 @@ HamlibError RotctldSession::set_level() {
   long pct = 0;
   if (!rotctld::scan_whole_int(arg(1), pct)) return HamlibError::kInvalid;
   if (pct < 1 || pct > 100) return HamlibError::kInvalid;
-  return from(command::set_speed(controller_, static_cast<int>(pct)));
+  return from(command::set_speed(controller_, origin(), static_cast<int>(pct)));
 }
 
 HamlibError RotctldSession::get_level() {
@@ -225,7 +227,7 @@ HamlibError RotctldSession::move(std::string_view direction, std::string_view sp
     default:
       return HamlibError::kInvalid;
   }
-  return from(command::move(controller_, axis, drive, static_cast<int>(pct)));
+  return from(command::move(controller_, origin(), axis, drive, static_cast<int>(pct)));
 }
 
 void RotctldSession::status_flags() {

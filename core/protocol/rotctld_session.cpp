@@ -261,7 +261,8 @@ void RotctldSession::run(ByteSink& out) {
   }
   // A read-only client (access.control_networks) gets RIG_ERJCTED, which
   // rotctl prints as "Command rejected by the rotator"; "V ?" only lists.
-  const bool refused = command.changes_state && arg(0) != "?" && !may_control(controller_);
+  const bool refused =
+      command.changes_state && arg(0) != "?" && !may_control(controller_, command.name);
   const HamlibError e = arg_too_long_ ? HamlibError::kInvalid
                         : refused     ? HamlibError::kRejected
                                       : execute(command);

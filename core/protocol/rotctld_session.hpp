@@ -26,6 +26,7 @@ namespace rotord::protocol {
 /// client waiting for an answer.
 class RotctldSession final : public Session {
  public:
+  std::string_view front() const override { return "rotctld"; }
   static constexpr std::size_t kMaxNameLength = 32;  ///< Hamlib MAXNAMSIZ
   static constexpr std::size_t kMaxArgLength = 127;  ///< Hamlib MAXARGSZ
   static constexpr std::size_t kMaxArgs = 4;

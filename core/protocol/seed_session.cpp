@@ -75,7 +75,7 @@ void SeedSession::handle_line(std::string_view line, ByteSink& out) {
     known = true;
     if (count != c.args + 1u) continue;
     if (!command_arrives(c.run == &SeedSession::disable)) return;
-    if (c.changes_state && !may_control(controller_)) return error(out, "DENIED");
+    if (c.changes_state && !may_control(controller_, c.name)) return error(out, "DENIED");
     return (this->*c.run)(fields[1], out);
   }
   error(out, known ? "SYNTAX" : "UNKNOWN");
@@ -88,7 +88,7 @@ void SeedSession::enable(std::string_view, ByteSink& out) {
 
 void SeedSession::disable(std::string_view, ByteSink& out) {
   // Disable is also the stop: every motion ends, whoever started it.
-  command::stop(controller_);
+  command::stop(controller_, origin());
   enabled_ = false;
   send(out, "$OK,D");
 }
@@ -97,7 +97,7 @@ void SeedSession::speed(std::string_view arg, ByteSink& out) {
   long pct = 0;
   if (!text::parse_int(arg, pct)) return error(out, "SYNTAX");
   if (pct < 1 || pct > 100) return error(out, "RANGE");
-  command::set_speed(controller_, static_cast<int>(pct));
+  command::set_speed(controller_, origin(), static_cast<int>(pct));
   send(out, "$OK,S,%ld", pct);
 }
 
@@ -111,7 +111,7 @@ void SeedSession::run(std::string_view arg, ByteSink& out) {
   if (text::iequals(arg, "down")) axis = AxisId::kEl, dir = Direction::kCcw, name = "DOWN";
   if (dir == Direction::kNone) return error(out, "SYNTAX");
   if (!enabled_) return error(out, "DISABLED");
-  const Error e = command::move(controller_, axis, dir);
+  const Error e = command::move(controller_, origin(), axis, dir);
   if (e != Error::kOk) return error(out, alarm_word(e));
   send(out, "$OK,R,%s", name);
 }

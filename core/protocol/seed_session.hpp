@@ -17,6 +17,7 @@ namespace rotord::protocol {
 /// disabled, so a reconnecting client cannot restart a motion by accident.
 class SeedSession final : public Session {
  public:
+  std::string_view front() const override { return "seed"; }
   static constexpr std::size_t kMaxLineLength = 64;
   static constexpr std::size_t kMaxReplyLength = 128;
   static constexpr std::string_view kTooManyConnections = "$ERR,BUSY\r\n";

@@ -4,8 +4,8 @@
 
 namespace rotord::protocol {
 
-bool Session::may_control(Controller& controller) const {
-  return command::may_control(controller, peer_);
+bool Session::may_control(Controller& controller, std::string_view what) const {
+  return command::may_control(controller, origin(), what);
 }
 
 void drain_output(Session& session, ByteSink& out) {

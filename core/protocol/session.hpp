@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "access/peer.hpp"
+#include "command/command_log.hpp"
 #include "net/line_access.hpp"
 #include "rotator/goto_stream.hpp"
 #include "util/byte_sink.hpp"
@@ -49,6 +50,13 @@ class Session {
   /// This session as the source of its go-tos: each session is its own
   /// stream for the continuity rule (rotator/goto_stream.hpp).
   CommandSource source() const { return source_of(this); }
+  /// The protocol's key ("rotctld", "wrc"; its row's in protocol_registry):
+  /// the front end named in each command's log line (command/command_log.hpp).
+  /// Empty (no line) for a session that is no line protocol (HTTP, whose
+  /// commands the REST API logs as "rest").
+  virtual std::string_view front() const { return {}; }
+  /// This client as the sender of a command, for the command layer.
+  command::Origin origin() const { return {front(), peer_}; }
 
   /// Over capacity (net::Admission's kStopOnly): the connection is one short
   /// exchange in which only STOP is obeyed. The transport says so before the
@@ -83,8 +91,9 @@ class Session {
   /// (access::may_control) and nobody holds the control lock (a line client
   /// never can: the lock is taken through the web or REST). Line protocols
   /// refuse every other command but STOP in their own way when not. The
-  /// rule is the command layer's (command::may_control), for this peer.
-  bool may_control(Controller& controller) const;
+  /// rule is the command layer's (command::may_control), for this peer; a
+  /// refusal of `what` (the protocol's name of the command) is logged there.
+  bool may_control(Controller& controller, std::string_view what) const;
 
  private:
   access::Peer peer_;

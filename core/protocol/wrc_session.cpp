@@ -159,7 +159,7 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
     if (!command_arrives(c.run == &WrcSession::stop)) return;
     // A read-only client (access.control_networks, the control lock) is
     // refused before its argument is looked at.
-    if (c.changes_state && !may_control(controller_)) return send(out, "ERROR NOT ALLOWED");
+    if (c.changes_state && !may_control(controller_, c.name)) return send(out, "ERROR NOT ALLOWED");
     if (c.arg == Arg::kNone && !arg.empty()) break;
     return (this->*c.run)(arg, out);
   }
@@ -169,7 +169,8 @@ void WrcSession::handle_line(std::string_view line, ByteSink& out) {
 void WrcSession::go_az(std::string_view arg, ByteSink& out) {
   float az = 0;
   if (!parse_float(arg, az)) return send(out, "ERROR INVALID AZIMUTH");
-  const Error e = command::go_to(controller_, az, std::nullopt, AzTarget::kCompass, source());
+  const Error e =
+      command::go_to(controller_, origin(), az, std::nullopt, AzTarget::kCompass, source());
   if (e == Error::kOutOfRange || e == Error::kInvalidArgument)
     return send(out, "ERROR INVALID AZIMUTH");
   if (e == Error::kOk) frame_.note_goto(az, controller_.az_continuity_shift_deg());
@@ -187,7 +188,7 @@ void WrcSession::go_el(std::string_view arg, ByteSink& out) {
   float el = 0;
   if (!controller_.has_el()) return send(out, "ERROR NOT SUPPORTED");
   if (!parse_float(arg, el)) return send(out, "ERROR INVALID ELEVATION");
-  const Error e = command::go_to(controller_, std::nullopt, el);
+  const Error e = command::go_to(controller_, origin(), std::nullopt, el);
   if (e == Error::kOutOfRange || e == Error::kInvalidArgument)
     return send(out, "ERROR INVALID ELEVATION");
   if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
@@ -207,7 +208,7 @@ void WrcSession::move(std::string_view arg, ByteSink& out) {
   if (text::iequals(arg, "UP")) axis = AxisId::kEl, dir = Direction::kCw;
   if (text::iequals(arg, "DOWN")) axis = AxisId::kEl, dir = Direction::kCcw;
   if (dir == Direction::kNone) return send(out, "ERROR INVALID DIRECTION");
-  const Error e = command::move(controller_, axis, dir);
+  const Error e = command::move(controller_, origin(), axis, dir);
   if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
   char upper[8] = {};
   for (std::size_t i = 0; i < arg.size() && i < sizeof(upper) - 1; ++i)
@@ -231,7 +232,7 @@ void WrcSession::set_speed(std::string_view arg, ByteSink& out) {
   long speed = 0;
   if (!text::parse_int(arg, speed) || speed < 1 || speed > 100)
     return send(out, "ERROR INVALID SPEED");
-  command::set_speed(controller_, static_cast<int>(speed));
+  command::set_speed(controller_, origin(), static_cast<int>(speed));
   // The WRC firmware prints the speed as an Arduino double: two decimals.
   send(out, "OK SPEED %.2f", static_cast<double>(speed));
 }
@@ -241,18 +242,18 @@ void WrcSession::get_speed(std::string_view, ByteSink& out) {
 }
 
 void WrcSession::stop(std::string_view, ByteSink& out) {
-  command::stop(controller_);
+  command::stop(controller_, origin());
   send(out, "OK STOP");
 }
 
 void WrcSession::park(std::string_view, ByteSink& out) {
-  const Error e = command::park(controller_);
+  const Error e = command::park(controller_, origin());
   if (e != Error::kOk) return send(out, "ERROR %s", error_reason(e));
   send(out, "OK PARK");
 }
 
 void WrcSession::reset(std::string_view, ByteSink& out) {
-  if (command::reset(controller_) != Error::kOk) return send(out, "ERROR ESTOP");
+  if (command::reset(controller_, origin()) != Error::kOk) return send(out, "ERROR ESTOP");
   send(out, "OK RESET");
 }
 

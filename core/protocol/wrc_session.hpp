@@ -29,6 +29,7 @@ class MonitorTap {
 /// with EL / EL? for az/el rotators and FAULT? for latched faults.
 class WrcSession final : public Session {
  public:
+  std::string_view front() const override { return "wrc"; }
   static constexpr std::size_t kMaxLineLength = 128;
   static constexpr std::size_t kMaxReplyLength = 192;
   static constexpr Millis kMonitorPeriodMs = 100;

@@ -11,6 +11,7 @@
 #include "care/wind_stow.hpp"
 #include "hal/pulse_counter.hpp"
 #include "hal/wall_clock.hpp"
+#include "rotator/command_journal.hpp"
 #include "rotator/commissioning.hpp"
 #include "rotator/goto_match.hpp"
 #include "rotator/goto_stream.hpp"
@@ -91,6 +92,9 @@ class Controller {
   /// The stored TLEs, for recognising what a client's go-to stream follows
   /// (track.recognise), or nullptr (the Sun and the Moon only).
   void attach_catalog(const tracking::TleCatalog* catalog) { catalog_ = catalog; }
+  /// The command layer's log (rotator/command_journal.hpp); nullptr: none.
+  void attach_journal(CommandJournal* journal) { journal_ = journal; }
+  CommandJournal* journal() const { return journal_; }
   /// Candidates (TLE entries, the Sun, the Moon) compared per go-to at most
   /// (rotator/goto_match.hpp says why; Pico W: 3, about 10-30 ms).
   void set_recognise_budget(int candidates_per_goto) {
@@ -284,6 +288,7 @@ class Controller {
   StreamLead lead_;            // the lead rule's view of the same stream
   float az_shift_deg_ = 0.0f;  // what it added to the last go-to
   const tracking::TleCatalog* catalog_ = nullptr;
+  CommandJournal* journal_ = nullptr;
   GotoMatcher matcher_;  // what the stream follows; while recognised, holds the object
   int recognise_budget_ = GotoMatcher::kMaxCandidates;
   Recognition recognition_;

@@ -28,7 +28,7 @@ void send_result(protocol::ByteSink& out, const ResponseOptions& options,
 /// passed in Api::handle).
 template <command::Id kId>
 Api::Outcome run_command(Api& api, const Api::Call& call) {
-  const command::Request request{api.authority(call.caller), call.peer, call.request.body};
+  const command::Request request{api.authority(call.caller), call.peer, call.request.body, "rest"};
   send_result(call.out, call.options, api.commands().execute(kId, request));
   return Api::Outcome::kDone;
 }
@@ -40,6 +40,12 @@ constexpr Api::Route command_route(std::string_view path) {
   const command::Def& d = command::kCommandTable[static_cast<std::size_t>(kId)];
   return {path,  true, d.gate.need, d.gate.locked, kId != command::Id::kStop, run_command<kId>,
           d.help};
+}
+
+/// The command a route runs (POST /api/goto: goto), or nullptr.
+const command::Def* command_of(const Api::Route& route) {
+  if (!route.post || !route.path.starts_with("/api/")) return nullptr;
+  return command::Commands::find(text::slice(route.path, 5));
 }
 
 }  // namespace
@@ -295,6 +301,8 @@ bool Api::authenticate(const Route& route, const Caller& caller, const access::P
     refusal = "tokens cannot do this: it needs the web login";
   }
   if (refusal == nullptr) return true;
+  if (const command::Def* d = command_of(route))
+    command::told(ctx_.controller, {"rest", peer}, d->name, "DENIED");
   count_auth_failure(false);
   send_error(out, status, refusal, status == 401 ? o : options);
   return false;
@@ -326,10 +334,12 @@ bool Api::takes_body(const Route& route, const HttpRequest& request, bool allows
   return true;
 }
 
-bool Api::pass_gate(const Route& route, const Caller& caller, protocol::ByteSink& out,
-                    const ResponseOptions& options) {
-  const command::Result r =
-      commands_.admit({route.need, route.locked, route.post}, authority(caller));
+bool Api::pass_gate(const Route& route, const Caller& caller, const access::Peer& peer,
+                    protocol::ByteSink& out, const ResponseOptions& options) {
+  // A command's route: the command layer logs its refusal.
+  const command::Request request{authority(caller), peer, {}, "rest"};
+  const command::Result r = commands_.admit({route.need, route.locked, route.post}, request.who,
+                                            command_of(route), &request);
   if (r.ok()) return true;
   if (r.status == command::Status::kLocked) count_auth_failure(false);
   send_result(out, options, r);
@@ -347,7 +357,7 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
   if (!authenticate(*route, caller, peer, out, options)) return Outcome::kDone;
   // The unreadable access settings and the control lock: the command
   // layer's gate, the same for every route and every front end.
-  if (!pass_gate(*route, caller, out, options)) return Outcome::kDone;
+  if (!pass_gate(*route, caller, peer, out, options)) return Outcome::kDone;
   if (!takes_body(*route, request, allows_get, out, options)) return Outcome::kDone;
   return route->run(*this, Call{request, out, options, caller, peer});
 }
@@ -360,7 +370,7 @@ Api::Outcome Api::post_mode(const Call& call) {
     return Outcome::kDone;
   }
   const std::string_view mode = m[0].value.text;
-  const command::Request request{authority(call.caller), call.peer, {}};
+  const command::Request request{authority(call.caller), call.peer, {}, "rest"};
   if (!m[0].present) {
     send_error(call.out, 400, "give mode: idle or park", call.options);
   } else if (mode == "idle" || mode == "park") {

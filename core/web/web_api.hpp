@@ -213,7 +213,8 @@ class Api {
   /// The command layer's gate for the route (503, 423). Not inlined: its
   /// Result stays off the stack while the route runs (the Pico W's 4 KB).
   __attribute__((noinline)) bool pass_gate(const Route& route, const Caller& caller,
-                                           protocol::ByteSink& out, const ResponseOptions& options);
+                                           const access::Peer& peer, protocol::ByteSink& out,
+                                           const ResponseOptions& options);
   bool takes_body(const Route& route, const HttpRequest& request, bool allows_get,
                   protocol::ByteSink& out, const ResponseOptions& options);
 

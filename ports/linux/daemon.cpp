@@ -213,6 +213,7 @@ bool Daemon::start_controller() {
   const AxisIo az_io = axis_io(AxisId::kAz);
   const AxisIo el_io = axis_io(AxisId::kEl);
   controller_ = std::make_unique<Controller>(settings_, az_io, el_io);
+  controller_->attach_journal(&command_log_);
   buttons_ = std::make_unique<command::Buttons>(*controller_, az_io, el_io);
   controller_->attach_utc_clock(sim_utc_ ? static_cast<const hal::WallClock*>(sim_utc_.get())
                                          : &wall_clock_);
@@ -481,6 +482,10 @@ void Daemon::StdoutLog::write(std::string_view bytes) {
   std::fflush(stdout);
 }
 
+void Daemon::InfoLog::write(std::string_view bytes) {
+  log::info("%.*s", static_cast<int>(bytes.size()), bytes.data());
+}
+
 void Daemon::stop() {
   stop_motors(controller_.get(), gpio_.get());
   notifier_.stopping();
@@ -569,7 +574,8 @@ void Daemon::on_tick() {
 }
 
 void Daemon::serve(Millis wall_ms) {
-  log::tick(wall_ms);  // the log budget's minutes, and its summaries
+  log::tick(wall_ms);          // the log budget's minutes, and its summaries
+  command_log_.poll(wall_ms);  // commands' repeats summed up
   // Faults latched and slips, named, into the journal.
   char event[192];
   while (axis_events_.next(controller_->status(), event, sizeof event)) log::warn("%s", event);

@@ -7,6 +7,7 @@
 #include "care/odometer_saver.hpp"
 #include "clock_control.hpp"
 #include "command/buttons.hpp"
+#include "command/command_log.hpp"
 #include "file_storage.hpp"
 #include "gpiod_io.hpp"
 #include "loop/tick_scheduler.hpp"
@@ -138,6 +139,13 @@ class Daemon final : private web::RebootHook {
    public:
     void write(std::string_view bytes) override;
   } access_log_;
+  /// The command layer's lines (one per command that changes something),
+  /// as info lines of the journal, within the process's log budget.
+  class InfoLog final : public protocol::ByteSink {
+   public:
+    void write(std::string_view bytes) override;
+  } info_log_;
+  command::CommandLog command_log_{info_log_};
   settings::Settings defaults_;  ///< table defaults + the profile: what a reset restores
   std::unique_ptr<FileStorage> storage_;
   /// What reading the settings file dropped (the log, GET /api/status).

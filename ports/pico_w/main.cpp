@@ -16,6 +16,7 @@
 #include "axis/sensor_registry.hpp"
 #include "care/odometer_saver.hpp"
 #include "command/buttons.hpp"
+#include "command/command_log.hpp"
 #include "hardware/address_mapped.h"
 #include "hardware/watchdog.h"
 #include "json/settings_json.hpp"
@@ -75,6 +76,14 @@ constexpr Millis kOdometerSaveMs = 600000;
 using protocol::Personality;
 using settings::Id;
 using settings::kNoPin;
+
+/// A line of the command layer's log on the USB log port (stdout there).
+class StdoutLine final : public ByteSink {
+ public:
+  void write(std::string_view bytes) override {
+    std::printf("rotord: %.*s\n", static_cast<int>(bytes.size()), bytes.data());
+  }
+};
 
 /// The drive type's second output shares one pin: the fast/slow relay of a
 /// two-speed drive, or the voltage-select relay. Which one the axis writes
@@ -438,6 +447,11 @@ const char* restart_reason() {
   // The manual buttons (pins.btn_*): a front end of the command layer,
   // polled just before each tick.
   static command::Buttons buttons(controller, az_io, el_io);
+  // One line per command that changes something, from every front end
+  // (command/command_log.hpp), on the USB log port like the events below.
+  static StdoutLine command_lines;
+  static command::CommandLog command_log(command_lines);
+  controller.attach_journal(&command_log);
   if (PicoSwitch* estop = fit_switch(g_estop, p(Id::kPinEstop))) {
     controller.attach_estop(estop);
     std::printf("rotord: emergency stop on GPIO %d (%s contact)\n", p(Id::kPinEstop),
@@ -546,6 +560,7 @@ const char* restart_reason() {
       const Millis now = now_ms();
       buttons.poll(now);
       controller.tick(now);
+      command_log.poll(now);  // commands' repeats summed up
       {
         char event[160];
         const RotatorStatus st = controller.status();
