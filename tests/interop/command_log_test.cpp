@@ -1,0 +1,80 @@
+// The command log through the real daemon (issue 25, docs/logging.md): a
+// real Hamlib `rotctl -m 2` go-to and a REST go-to with curl each write
+// their one line into the daemon's log (standard output: the journal under
+// systemd), a refused `P` its refusal, and rotctl's position queries write
+// none.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "daemon_process.hpp"
+#include "http_client.hpp"
+#include "shell.hpp"
+
+namespace rotord::testing {
+namespace {
+
+std::size_t count_of(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+class CommandLog : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    daemon = std::make_unique<DaemonProcess>(
+        std::vector<std::string>{"--sim", "g5500", "--clock", "manual"});
+    ASSERT_TRUE(daemon->ready()) << daemon->output();
+  }
+  CommandOutput rotctl(const std::string& commands) {
+    return run_command("timeout 20 rotctl -m 2 -r 127.0.0.1:" +
+                       std::to_string(daemon->ports().rotctld) + " " + commands + " 2>&1");
+  }
+  std::unique_ptr<DaemonProcess> daemon;
+};
+
+TEST_F(CommandLog, RotctlAndRestGoTosEachWriteTheirLineAndQueriesNone) {
+  const CommandOutput go = rotctl("P 120 30");
+  ASSERT_EQ(go.rc, 0) << go.out;
+  EXPECT_TRUE(
+      daemon->wait_for_output("rotord: command goto az 120.0 el 30.0 from rotctld (127.0.0.1): OK"))
+      << daemon->output();
+
+  const HttpResponse rest = http(daemon->ports().web, "POST", "/api/goto", R"({"az": 200})");
+  ASSERT_EQ(rest.status, 200) << rest.body;
+  EXPECT_TRUE(daemon->wait_for_output("rotord: command goto az 200.0 from rest (127.0.0.1): OK"))
+      << daemon->output();
+  const HttpResponse far = http(daemon->ports().web, "POST", "/api/goto", R"({"az": 999})");
+  EXPECT_EQ(far.status, 422) << far.body;
+  EXPECT_TRUE(daemon->wait_for_output("rotord: command goto from rest (127.0.0.1): UNPROCESSABLE"))
+      << daemon->output();
+
+  // Ten position queries (each rotctl run also asks what it talks to):
+  // not one line.
+  daemon->advance_ms(100);
+  const std::size_t lines = count_of(daemon->output(), "rotord: command ");
+  const CommandOutput queries = rotctl("p p p p p p p p p p");
+  ASSERT_EQ(queries.rc, 0) << queries.out;
+  EXPECT_EQ(http(daemon->ports().web, "GET", "/api/status").status, 200);
+  daemon->advance_ms(100);
+  EXPECT_EQ(count_of(daemon->output(), "rotord: command "), lines) << daemon->output();
+}
+
+TEST_F(CommandLog, ARefusedRotctlGoToIsLoggedWithItsRefusal) {
+  const HttpResponse set = http(daemon->ports().web, "POST", "/api/settings",
+                                R"({"access.control_networks": "10.0.0.0/8"})");
+  ASSERT_EQ(set.status, 200) << set.body;
+  const CommandOutput go = rotctl("P 100 10");
+  EXPECT_NE(go.rc, 0) << go.out;
+  EXPECT_TRUE(daemon->wait_for_output("rotord: command set_pos from rotctld (127.0.0.1): DENIED"))
+      << daemon->output();
+  // STOP is for everyone, and logged as any command.
+  EXPECT_EQ(rotctl("S").rc, 0);
+  EXPECT_TRUE(daemon->wait_for_output("rotord: command stop from rotctld (127.0.0.1): OK"))
+      << daemon->output();
+}
+
+}  // namespace
+}  // namespace rotord::testing
