@@ -88,7 +88,8 @@ class Commands {
   /// The log line of `command` from `r` that ended in `result`.
   void told(const Def& command, const Request& r, const Result& result);
 
-  /// STOP, with nothing to answer (MQTT's refused body still stops).
+  /// STOP's work (the dead-men cleared too), without its log line: the
+  /// stop command's (MQTT's refused body runs that command).
   void stop_all();
   // The commands (commands.cpp), each with its argument checks.
   Result stop(const Request& r);

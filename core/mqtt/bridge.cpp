@@ -198,7 +198,7 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
   const bool stop = def->id == command::Id::kStop;
   if (oversized || payload.size() > kMaxCommandBytes) {
     // STOP needs no body: it is obeyed even when the body is refused.
-    if (stop) commands.stop_all();
+    if (stop) commands.execute(command::Id::kStop, {{}, broker_peer_, {}, "mqtt"});
     publish_result(cmd, 413, R"j({"error":"command body too large (512 bytes at most)"})j");
     return;
   }

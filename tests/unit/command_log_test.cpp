@@ -14,6 +14,7 @@
 #include "command/typed.hpp"
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
+#include "mqtt/bridge.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "web/http_session.hpp"
 
@@ -122,6 +123,76 @@ TEST_F(CommandLogTest, ARestCommandWritesOneLineAndAQueryNone) {
       "command goto from rest (192.168.1.30): UNPROCESSABLE",
   };
   EXPECT_EQ(out.lines, want);
+}
+
+/// The MQTT boundary, which takes every message.
+class AnyBroker final : public mqtt::Transport {
+ public:
+  bool connected() const override { return true; }
+  bool publish(std::string_view, std::string_view, bool) override { return true; }
+};
+
+// REST and MQTT go through the same commands (Commands::execute): each
+// command, done or refused, writes the same line from either, once.
+TEST(CommandLogFrontEnds, RestAndMqttWriteTheSameLineForEachCommand) {
+  rotord::testing::FakeRotator rest_rotator, mqtt_rotator;
+  Lines rest_lines, mqtt_lines;
+  CommandLog rest_log{rest_lines}, mqtt_log{mqtt_lines};
+  for (rotord::testing::FakeRotator* r : {&rest_rotator, &mqtt_rotator}) {
+    r->settings.set(SettingId::kMqttControl, 1);
+    r->settings.set_text(SettingId::kPreset1, "150:EU");
+    r->run_ms(50);
+  }
+  rest_rotator.controller->attach_journal(&rest_log);
+  mqtt_rotator.controller->attach_journal(&mqtt_log);
+  web::Api rest_api{web::ApiContext{*rest_rotator.controller, nullptr, nullptr, nullptr, "1"}};
+  web::Api mqtt_api{web::ApiContext{*mqtt_rotator.controller, nullptr, nullptr, nullptr, "1"}};
+  web::HttpSession session{rest_api};
+  session.set_peer({access::Peer::Kind::kOther, 0, {}});  // the broker's kind, here
+  AnyBroker broker;
+  mqtt::Bridge bridge{mqtt_api, broker, "rotord/t", "rotord_t", "t"};
+  const char* const cases[][2] = {
+      {"goto", R"({"az": 200, "el": 30})"},
+      {"goto", R"({"az": 9999})"},
+      {"goto", "{nope"},
+      {"move", R"({"dir": "cw", "hold_ms": 0})"},
+      {"move", R"({"dir": "sideways"})"},
+      {"stop", ""},
+      {"park", "{}"},
+      {"speed", R"({"speed_pct": 40})"},
+      {"speed", R"({"speed_pct": 400})"},
+      {"reset", "{}"},
+      {"place", R"({"locator": "ZZ99"})"},
+      {"preset", R"({"name": "EU"})"},
+      {"preset", R"({"name": "JA"})"},
+  };
+  Millis now = 0;
+  for (const auto& c : cases) {
+    // A minute apart: no line is a repeat of the one before.
+    now += CommandLog::kWindowMs;
+    rest_log.poll(now);
+    mqtt_log.poll(now);
+    StringSink sink;
+    session.receive(
+        rotord::testing::post_request(std::string("/api/") + c[0], c[1], "application/json"), sink);
+    bridge.on_message(std::string("rotord/t/cmd/") + c[0], c[1]);
+  }
+  ASSERT_EQ(rest_lines.lines.size(), std::size(cases));
+  ASSERT_EQ(mqtt_lines.lines.size(), std::size(cases));
+  for (std::size_t n = 0; n < std::size(cases); ++n) {
+    std::string line = rest_lines.lines[n];
+    line.replace(line.find("from rest"), 9, "from mqtt");
+    EXPECT_EQ(mqtt_lines.lines[n], line);
+  }
+  EXPECT_EQ(rest_lines.lines[0], "command goto az 200.0 el 30.0 from rest (a network client): OK");
+  EXPECT_EQ(rest_lines.lines[1], "command goto from rest (a network client): UNPROCESSABLE");
+  EXPECT_EQ(rest_lines.lines[2], "command goto from rest (a network client): BAD REQUEST");
+  EXPECT_EQ(rest_lines.lines[5], "command stop from rest (a network client): OK");
+
+  // MQTT's own refusals are logged as well: mqtt.control off.
+  mqtt_rotator.settings.set(SettingId::kMqttControl, 0);
+  bridge.on_message("rotord/t/cmd/goto", R"({"az": 100})");
+  EXPECT_EQ(mqtt_lines.lines.back(), "command goto from mqtt (a network client): DENIED");
 }
 
 // A tracker streaming go-tos every 100 ms for a minute: the first line, and
