@@ -51,16 +51,19 @@ void CommandLog::record(const CommandEntry& e) {
   }
   if (slot->used) sum_up(*slot);  // the oldest gives way
   *slot = Repeat{true, e.what, e.front, e.outcome, args, e.peer, now_, 0};
-  char line[160];
-  int n = std::snprintf(line, sizeof line, "command %.*s%s%.*s", static_cast<int>(e.what.size()),
-                        e.what.data(), e.args.empty() ? "" : " ", static_cast<int>(e.args.size()),
-                        e.args.data());
-  const auto room = [&n, &line] { return n < static_cast<int>(sizeof line) ? sizeof line - n : 0; };
-  if (!std::isnan(e.az_deg)) n += std::snprintf(line + n, room(), " az %.1f", double{e.az_deg});
-  if (!std::isnan(e.el_deg)) n += std::snprintf(line + n, room(), " el %.1f", double{e.el_deg});
+  // The numbers and the client first, in small buffers: this runs under
+  // the Pico W's lwIP callbacks, on their 4 KB stack.
+  char numbers[40] = "";
+  int n = 0;
+  if (!std::isnan(e.az_deg))
+    n = std::snprintf(numbers, sizeof numbers, " az %.1f", double{e.az_deg});
+  if (!std::isnan(e.el_deg) && n >= 0 && n < static_cast<int>(sizeof numbers))
+    std::snprintf(numbers + n, sizeof numbers - n, " el %.1f", double{e.el_deg});
   char client[access::kAddressTextBytes + 3];
-  write("%s from %.*s%s: %.*s", line, static_cast<int>(e.front.size()), e.front.data(),
-        client_text(e.peer, client), static_cast<int>(e.outcome.size()), e.outcome.data());
+  write("command %.*s%s%.*s%s from %.*s%s: %.*s", static_cast<int>(e.what.size()), e.what.data(),
+        e.args.empty() ? "" : " ", static_cast<int>(e.args.size()), e.args.data(), numbers,
+        static_cast<int>(e.front.size()), e.front.data(), client_text(e.peer, client),
+        static_cast<int>(e.outcome.size()), e.outcome.data());
 }
 
 void CommandLog::sum_up(Repeat& r) {
@@ -93,7 +96,7 @@ void CommandLog::write(const char* format, ...) {
     return;
   }
   ++lines_;
-  char line[200];
+  char line[176];
   std::va_list args;
   va_start(args, format);
   const int n = std::vsnprintf(line, sizeof line, format, args);
