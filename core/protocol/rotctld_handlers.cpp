@@ -71,10 +71,9 @@ HamlibError RotctldSession::execute(const Command& command) {
       command::stop(controller_, origin());
       return HamlibError::kOk;
     case Op::kReset: {
-      long what = 0;  // ROT_RESET_ALL is 1; every value resets everything here
+      long what = 0;  // ROT_RESET_ALL is 1; any value resets all (refused while e-stopped)
       if (!rotctld::scan_whole_int(arg(0), what)) return HamlibError::kInvalid;
-      return from(
-          command::reset(controller_, origin()));  // refused while the emergency stop is active
+      return from(command::reset(controller_, origin()));
     }
     case Op::kMove:
       return move(arg(0), arg(1));

@@ -1,8 +1,6 @@
 #include "web/web_api.hpp"
 
-#include <cmath>
 #include <cstdio>
-#include <cstring>
 
 #include "command/json_args.hpp"
 #include "json/json_reader.hpp"
