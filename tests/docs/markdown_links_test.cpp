@@ -302,8 +302,8 @@ TEST(MarkdownLinks, RefusesACitedPathThatIsNotInTheRepository) {
   EXPECT_EQ(check_path(kRoot, "core/protocol/example_session.hpp", examples), "");
   EXPECT_NE(check_path(kRoot, "core/protocol/example_session.hpp", {}), "");
   EXPECT_NE(check_path(kRoot, "core/protocol/wrc_session.{hpp,txt}", examples), "");
-  EXPECT_NE(check_path(kRoot, "DESIGN.md", examples), "");
-  EXPECT_NE(check_path(kRoot, "docs/DESIGN.md", examples), "");
+  EXPECT_NE(check_path(kRoot, "PLAN.md", examples), "");
+  EXPECT_NE(check_path(kRoot, "docs/plan.md", examples), "");
 }
 
 TEST(MarkdownLinks, EveryRelativeLinkNamesAFileAndHeadingOfTheRepository) {

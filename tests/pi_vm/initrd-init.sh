@@ -12,10 +12,13 @@
 while read -r module; do
   /bin/busybox insmod "/modules/$module" || echo "initrd: insmod $module failed"
 done </modules/order
+# No udev here to say when the virtio disk appears: poll for it. The wait
+# ends on the condition; its bound (60 s of emulated time) only ends a boot
+# that went wrong, and is wide for a loaded host under plain emulation.
 n=0
 until [ -b /dev/vda ]; do
   n=$((n + 1))
-  [ $n -gt 100 ] && { echo "initrd: no /dev/vda"; exec /bin/busybox sh; }
+  [ $n -gt 600 ] && { echo "initrd: no /dev/vda after 60 s"; exec /bin/busybox sh; }
   /bin/busybox sleep 0.1
 done
 /bin/busybox mount -t ext4 -o rw /dev/vda /root || { echo "initrd: cannot mount /dev/vda"; exec /bin/busybox sh; }
