@@ -1,0 +1,62 @@
+#include "command/care_commands.hpp"
+
+#include <cstdio>
+
+namespace rotord::command {
+
+TrackError track(Controller& controller, const Origin& from, const TrackRequest& request) {
+  const TrackError e = controller.track(request);
+  using tracking::TargetKind;
+  const bool fixed = request.kind == TargetKind::kNone;
+  const char* name = request.kind == TargetKind::kSun    ? "sun"
+                     : request.kind == TargetKind::kMoon ? "moon"
+                                                         : request.tle.name;
+  char words[40];
+  std::snprintf(words, sizeof words, "start%s%s", fixed ? "" : " ", fixed ? "" : name);
+  told(controller, from, "track",
+       e == TrackError::kOk ? std::string_view("OK") : status_word(track_refusal(e)),
+       fixed ? request.az_deg : NAN, fixed ? request.el_deg : NAN, words);
+  return e;
+}
+
+Status track_refusal(TrackError e) {
+  switch (e) {
+    case TrackError::kNoClock:
+    case TrackError::kClockUnsynced:
+    case TrackError::kNoStation:
+    case TrackError::kFaulted:
+    case TrackError::kStowed:
+    case TrackError::kBelowHorizon:
+      return Status::kConflict;
+    default:
+      return Status::kUnprocessable;
+  }
+}
+
+void end_track(Controller& controller, const Origin& from) {
+  controller.stop();
+  told(controller, from, "track", Error::kOk, NAN, NAN, "stop");
+}
+
+void reset_odometer(Controller& controller, const Origin& from) {
+  const std::optional<std::int64_t> utc_ms = controller.utc_ms();
+  controller.odometer().reset(utc_ms ? *utc_ms / 1000 : 0);
+  told(controller, from, "odometer", Error::kOk, NAN, NAN, "reset");
+}
+
+Error wind_override(Controller& controller, const Origin& from, int minutes) {
+  char words[24] = "override";
+  if (minutes > 0) std::snprintf(words, sizeof words, "override %d", minutes);
+  return told(controller, from, "wind", controller.wind_override(minutes), NAN, NAN, words);
+}
+
+Error end_wind_override(Controller& controller, const Origin& from) {
+  Error e = Error::kNotFound;
+  if (controller.wind().state() == care::WindState::kOverride) {
+    controller.end_wind_override();
+    e = Error::kOk;
+  }
+  return told(controller, from, "wind", e, NAN, NAN, "stow");
+}
+
+}  // namespace rotord::command
