@@ -6,13 +6,20 @@ namespace rotord::command {
 
 TrackError track(Controller& controller, const Origin& from, const TrackRequest& request) {
   const TrackError e = controller.track(request);
+  // The words: "start ISS (ZARYA)" (a TLE without a title line: its
+  // catalog number), "start sun", "start moon", or "start" and the az/el.
   using tracking::TargetKind;
   const bool fixed = request.kind == TargetKind::kNone;
-  const char* name = request.kind == TargetKind::kSun    ? "sun"
-                     : request.kind == TargetKind::kMoon ? "moon"
-                                                         : request.tle.name;
-  char words[40];
-  std::snprintf(words, sizeof words, "start%s%s", fixed ? "" : " ", fixed ? "" : name);
+  char words[40] = "start";
+  if (request.kind == TargetKind::kSatellite && request.tle.name[0] == '\0') {
+    std::snprintf(words, sizeof words, "start %lu",
+                  static_cast<unsigned long>(request.tle.catalog));
+  } else if (!fixed) {
+    std::snprintf(words, sizeof words, "start %s",
+                  request.kind == TargetKind::kSun    ? "sun"
+                  : request.kind == TargetKind::kMoon ? "moon"
+                                                      : request.tle.name);
+  }
   told(controller, from, "track",
        e == TrackError::kOk ? std::string_view("OK") : status_word(track_refusal(e)),
        fixed ? request.az_deg : NAN, fixed ? request.el_deg : NAN, words);

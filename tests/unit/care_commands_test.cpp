@@ -7,6 +7,7 @@
 // line each.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -166,6 +167,18 @@ TEST(CareCommands, ATrackStartedAndEndedThroughRestWritesItsLines) {
             TrackError::kNoStation);
   EXPECT_EQ(f.log_lines.lines.back(),
             "command track start moon from console (a serial port): CONFLICT");
+  // A satellite by its name, or its catalog number without a title line.
+  TrackRequest iss;
+  iss.kind = tracking::TargetKind::kSatellite;
+  iss.tle.catalog = 25544;
+  EXPECT_EQ(track(*f.r.controller, {"rest", kClient}, iss), TrackError::kNoStation);
+  EXPECT_EQ(f.log_lines.lines.back(),
+            "command track start 25544 from rest (192.168.1.30): CONFLICT");
+  std::snprintf(iss.tle.name, sizeof iss.tle.name, "ISS (ZARYA)");
+  f.log.poll(CommandLog::kWindowMs);
+  EXPECT_EQ(track(*f.r.controller, {"rest", kClient}, iss), TrackError::kNoStation);
+  EXPECT_EQ(f.log_lines.lines.back(),
+            "command track start ISS (ZARYA) from rest (192.168.1.30): CONFLICT");
 }
 
 /// The MQTT boundary: the last result message.
