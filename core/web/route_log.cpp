@@ -24,8 +24,7 @@ void told_refused(Controller& controller, const Api::Route& route, Method method
     what = "track";
     args = method == Method::kDelete ? "stop" : "start";
   } else if (route.path == "/api/odometer/reset") {
-    what = "odometer";
-    args = "reset";
+    what = "odometer reset";
   } else if (route.path == "/api/wind/override") {
     what = "wind";
   } else {
