@@ -5,6 +5,7 @@
 
 #include "command/json_args.hpp"
 #include "command/typed.hpp"
+#include "net/line_access.hpp"
 
 namespace rotord::command {
 namespace {
@@ -47,18 +48,6 @@ Result Commands::locked_refusal() const {
                   static_cast<long long>((left + 999) / 1000));
 }
 
-namespace {
-
-/// A refusal's word in the log line, as a line protocol's Error would be.
-std::string_view status_word(Status s) {
-  static constexpr std::string_view kWords[] = {"OK",        "BAD REQUEST", "DENIED",
-                                                "NOT FOUND", "CONFLICT",    "UNPROCESSABLE",
-                                                "LOCKED",    "UNAVAILABLE"};
-  return kWords[static_cast<std::size_t>(s)];
-}
-
-}  // namespace
-
 void Commands::told(const Def& command, const Request& r, const Result& result) {
   const bool at = result.ok() && result.reply == Reply::kGoto;
   command::told(controller_, {r.front, r.peer}, command.name, status_word(result.status),
@@ -97,6 +86,24 @@ Result Commands::run(Id id, const Request& r) {
   Result a = admit(def(id).gate, r.who, &def(id), &r);
   if (!a.ok()) return a;
   return execute(id, r);
+}
+
+Result Commands::from_broker(Id id, const access::Peer& broker, std::string_view body) {
+  const Request r{{Need::kControl, false}, broker, body, "mqtt"};
+  const char* why = nullptr;
+  if (def(id).gate.need == Need::kPublic) {
+    // STOP: for anyone.
+  } else if (!controller_.settings().b(settings::Id::kMqttControl)) {
+    why = "mqtt.control is off: only stop is obeyed from the broker";
+  } else if (!access::may_control(controller_.settings(), broker)) {
+    // The line protocols' allow-list, applied to the broker's address (the
+    // REST API's answer to a read-only caller is a 403 too).
+    why = "read-only: the broker's address is not in access.control_networks";
+  }
+  if (why == nullptr) return run(id, r);
+  const Result no = refused(Status::kForbidden, why);
+  told(def(id), r, no);
+  return no;
 }
 
 void Commands::poll(Millis transport_now) {

@@ -80,8 +80,14 @@ class Commands {
   /// logged when `command` names one (the REST route of a command).
   Result admit(const Gate& gate, const Authority& who, const Def* command = nullptr,
                const Request* r = nullptr);
-  /// Admits, then runs (MQTT, which has no gate of its own).
+  /// Admits, then runs.
   Result run(Id id, const Request& r);
+  /// A command from the MQTT broker, whose payload is `body` (docs/mqtt.md):
+  /// STOP always; any other only with mqtt.control on and the broker's
+  /// address `broker` in access.control_networks (failed closed while the
+  /// access settings are unreadable), else 403 and a DENIED line. The broker
+  /// vouches for no login and never holds the control lock.
+  Result from_broker(Id id, const access::Peer& broker, std::string_view body);
   /// Runs a command whose gate the front end already passed through admit(),
   /// and writes its log line (command_log.hpp).
   Result execute(Id id, const Request& r);

@@ -29,6 +29,13 @@ int http_status(Status s) {
   return 500;
 }
 
+std::string_view status_word(Status s) {
+  static constexpr std::string_view kWords[] = {"OK",        "BAD REQUEST", "DENIED",
+                                                "NOT FOUND", "CONFLICT",    "UNPROCESSABLE",
+                                                "LOCKED",    "UNAVAILABLE"};
+  return kWords[static_cast<std::size_t>(s)];
+}
+
 Result refused(Status status, std::string_view message) {
   Result r;
   r.status = status;

@@ -25,6 +25,9 @@ enum class Status : unsigned char {
   kUnavailable,    ///< 503: failed closed (the access settings are unreadable)
 };
 int http_status(Status s);
+/// The status in the command log's words ("DENIED", "UNPROCESSABLE"), as a
+/// line protocol's Error would be.
+std::string_view status_word(Status s);
 
 /// What a successful command's reply carries beyond {"ok": true}.
 enum class Reply : unsigned char { kOk, kGoto, kPlace, kPreset };

@@ -8,7 +8,6 @@
 #include "command/commands.hpp"
 #include "json/json_writer.hpp"
 #include "mqtt/fixed_sink.hpp"
-#include "net/line_access.hpp"
 #include "util/slice.hpp"
 
 namespace rotord::mqtt {
@@ -202,26 +201,9 @@ void Bridge::on_message(std::string_view topic, std::string_view payload, bool o
     publish_result(cmd, 413, R"j({"error":"command body too large (512 bytes at most)"})j");
     return;
   }
-  if (!stop && !api_->settings().b(Id::kMqttControl)) {
-    command::told(commands.controller(), {"mqtt", broker_peer_}, def->name, "DENIED");
-    publish_result(cmd, 403,
-                   R"({"error":"mqtt.control is off: only stop is obeyed from the broker"})");
-    return;
-  }
-  if (!stop && !access::may_control(api_->settings(), broker_peer_)) {
-    command::told(commands.controller(), {"mqtt", broker_peer_}, def->name, "DENIED");
-    // The line protocols' allow-list, applied to the broker's address (the
-    // REST API's answer to a read-only caller is a 403 too).
-    publish_result(
-        cmd, 403,
-        R"({"error":"read-only: the broker's address is not in access.control_networks"})");
-    return;
-  }
-  // mqtt.control, the broker's ACLs and the allow-list above vouch for the
-  // command (no web login); the control lock still refuses it (the broker
-  // never holds it).
-  const command::Request request{{command::Need::kControl, false}, broker_peer_, payload, "mqtt"};
-  const command::Result r = commands.run(def->id, request);
+  // The command layer decides what the broker may do (mqtt.control, its
+  // address in access.control_networks, the control lock).
+  const command::Result r = commands.from_broker(def->id, broker_peer_, payload);
   FixedSink sink(state_, sizeof state_);  // free between state publishes
   {
     web::JsonWriter w(sink);

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "care/odometer_record.hpp"
+#include "command/care_commands.hpp"
 #include "protocol/console_reply.hpp"
 #include "protocol/console_session.hpp"
 #include "rotator/controller.hpp"
@@ -22,8 +23,7 @@ void ConsoleSession::odometer(std::string_view args, ByteSink& out) {
   if (!args.empty()) {
     if (!may_control(controller_, "odometer reset"))
       return send(out, "error: read-only: this client may not reset the odometer");
-    const std::optional<std::int64_t> utc_ms = controller_.utc_ms();
-    o.reset(utc_ms ? *utc_ms / 1000 : 0);
+    command::reset_odometer(controller_, origin());
   }
   char date[40] = "never (or the clock was unknown)";
   if (o.reset_unix_s() > 0) {
@@ -64,14 +64,13 @@ void ConsoleSession::wind(std::string_view args, ByteSink& out) {
     if (!may_control(controller_, "wind"))
       return send(out, "error: read-only: this client may not override the wind stow");
     if (text::iequals(verb, "stow")) {
-      if (w.state() != care::WindState::kOverride)
+      if (command::end_wind_override(controller_, origin()) != Error::kOk)
         return send(out, "error: no override of a wind stow is running");
-      controller_.end_wind_override();
     } else {
       long minutes = 0;
       if (!rest.empty() && (!text::parse_int(rest, minutes) || minutes < 1 || minutes > 1440))
         return send(out, "error: minutes must be a whole number 1..1440");
-      if (controller_.wind_override(static_cast<int>(minutes)) != Error::kOk)
+      if (command::wind_override(controller_, origin(), static_cast<int>(minutes)) != Error::kOk)
         return send(out, "error: nothing to override: the antenna is not stowed for the wind");
     }
   }

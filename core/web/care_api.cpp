@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "care/odometer_record.hpp"
+#include "command/care_commands.hpp"
 #include "util/utc_time.hpp"
 
 namespace rotord::web {
@@ -98,10 +99,8 @@ Api::Outcome get_odometer(Api& api, const Api::Call& call) {
 }
 
 Api::Outcome post_odometer_reset(Api& api, const Api::Call& call) {
-  Controller& c = api.controller();
-  const std::optional<std::int64_t> utc_ms = c.utc_ms();
   // The port's saver writes a reset at once (care::OdometerSaver::poll).
-  c.odometer().reset(utc_ms ? *utc_ms / 1000 : 0);
+  command::reset_odometer(api.controller(), {"rest", call.peer});
   return get_odometer(api, call);
 }
 

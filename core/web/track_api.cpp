@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "command/care_commands.hpp"
 #include "json/json_reader.hpp"
 #include "tracking/julian.hpp"
 #include "util/slice.hpp"
@@ -58,24 +59,10 @@ const char* kind_name(TargetKind kind) {
   return "fixed";
 }
 
-int track_error_status(TrackError e) {
-  switch (e) {
-    case TrackError::kNoClock:
-    case TrackError::kClockUnsynced:
-    case TrackError::kNoStation:
-    case TrackError::kFaulted:
-    case TrackError::kStowed:
-    case TrackError::kBelowHorizon:
-      return 409;
-    default:
-      return 422;
-  }
-}
-
 }  // namespace
 
 void Api::handle_track(const HttpRequest& request, protocol::ByteSink& out,
-                       const ResponseOptions& options) {
+                       const ResponseOptions& options, const access::Peer& peer) {
   const std::string_view path = request.path;
   const Method m = request.method;
   const bool get = m == Method::kGet || m == Method::kHead;
@@ -101,10 +88,9 @@ void Api::handle_track(const HttpRequest& request, protocol::ByteSink& out,
     send_json(out, 200, options, [this](JsonWriter& w) { write_track(w); });
     return;
   }
-  if (m == Method::kPost) return post_track(request, out, options);
+  if (m == Method::kPost) return post_track(request, out, options, peer);
   if (m == Method::kDelete) {
-    // Ends the track; the rotator stops where it is (as STOP).
-    ctx_.controller.stop();
+    command::end_track(ctx_.controller, {"rest", peer});
     send_json(out, 200, options, [this](JsonWriter& w) { write_track(w); });
     return;
   }
@@ -196,7 +182,7 @@ const char* track_request_of(const TrackBody& b, const tracking::TleCatalog* tle
 }  // namespace
 
 void Api::post_track(const HttpRequest& request, protocol::ByteSink& out,
-                     const ResponseOptions& options) {
+                     const ResponseOptions& options, const access::Peer& peer) {
   if (!request.json_body)
     return send_error(out, 415, "send Content-Type: application/json", options);
   TrackBody b;
@@ -206,7 +192,7 @@ void Api::post_track(const HttpRequest& request, protocol::ByteSink& out,
   const char* refusal = read_track_body(request.body, b, status, why, sizeof why);
   if (refusal == nullptr) refusal = track_request_of(b, ctx_.tles, r, status);
   if (refusal != nullptr) return send_error(out, status, refusal, options);
-  const TrackError e = ctx_.controller.track(r);
+  const TrackError e = command::track(ctx_.controller, {"rest", peer}, r);
   if (e != TrackError::kOk) {
     const TrackStatus& t = ctx_.controller.track_status();
     char message[384];
@@ -216,7 +202,7 @@ void Api::post_track(const HttpRequest& request, protocol::ByteSink& out,
     } else {
       std::snprintf(message, sizeof message, "%s", track_error_text(e));
     }
-    return send_error(out, track_error_status(e), message, options);
+    return send_error(out, command::http_status(command::track_refusal(e)), message, options);
   }
   send_json(out, 200, options, [this](JsonWriter& w) { write_track(w); });
 }

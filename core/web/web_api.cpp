@@ -5,9 +5,9 @@
 #include "command/json_args.hpp"
 #include "json/json_reader.hpp"
 #include "util/slice.hpp"
-#include "util/utc_time.hpp"
 #include "web/care_api.hpp"
 #include "web/place_api.hpp"
+#include "web/route_log.hpp"
 #include "web/wind_api.hpp"
 
 namespace rotord::web {
@@ -38,12 +38,6 @@ constexpr Api::Route command_route(std::string_view path) {
   const command::Def& d = command::kCommandTable[static_cast<std::size_t>(kId)];
   return {path,  true, d.gate.need, d.gate.locked, kId != command::Id::kStop, run_command<kId>,
           d.help};
-}
-
-/// The command a route runs (POST /api/goto: goto), or nullptr.
-const command::Def* command_of(const Api::Route& route) {
-  if (!route.post || !route.path.starts_with("/api/")) return nullptr;
-  return command::Commands::find(text::slice(route.path, 5));
 }
 
 }  // namespace
@@ -271,8 +265,9 @@ const Api::Route* Api::find_route(const HttpRequest& request, protocol::ByteSink
   return route;
 }
 
-bool Api::authenticate(const Route& route, const Caller& caller, const access::Peer& peer,
-                       protocol::ByteSink& out, const ResponseOptions& options) {
+bool Api::authenticate(const Route& route, Method method, const Caller& caller,
+                       const access::Peer& peer, protocol::ByteSink& out,
+                       const ResponseOptions& options) {
   if (!WebAuth::enabled(settings()) || route.need == Need::kPublic) return true;
   ResponseOptions o = options;
   o.extra_headers = "WWW-Authenticate: Bearer realm=\"rotord\"\r\n";
@@ -299,8 +294,7 @@ bool Api::authenticate(const Route& route, const Caller& caller, const access::P
     refusal = "tokens cannot do this: it needs the web login";
   }
   if (refusal == nullptr) return true;
-  if (const command::Def* d = command_of(route))
-    command::told(ctx_.controller, {"rest", peer}, d->name, "DENIED");
+  told_refused(ctx_.controller, route, method, peer, "DENIED");
   count_auth_failure(false);
   send_error(out, status, refusal, status == 401 ? o : options);
   return false;
@@ -332,13 +326,13 @@ bool Api::takes_body(const Route& route, const HttpRequest& request, bool allows
   return true;
 }
 
-bool Api::pass_gate(const Route& route, const Caller& caller, const access::Peer& peer,
-                    protocol::ByteSink& out, const ResponseOptions& options) {
-  // A command's route: the command layer logs its refusal.
-  const command::Request request{authority(caller), peer, {}, "rest"};
-  const command::Result r = commands_.admit({route.need, route.locked, route.post}, request.who,
-                                            command_of(route), &request);
+bool Api::pass_gate(const Route& route, Method method, const Caller& caller,
+                    const access::Peer& peer, protocol::ByteSink& out,
+                    const ResponseOptions& options) {
+  const command::Result r =
+      commands_.admit({route.need, route.locked, route.post}, authority(caller));
   if (r.ok()) return true;
+  told_refused(ctx_.controller, route, method, peer, command::status_word(r.status));
   if (r.status == command::Status::kLocked) count_auth_failure(false);
   send_result(out, options, r);
   return false;
@@ -352,10 +346,10 @@ Api::Outcome Api::handle(const HttpRequest& request, protocol::ByteSink& out,
   // Access control (docs/security.md).
   const Caller caller = auth_.identify(request, settings(), transport_now_);
   last_caller_ = caller;
-  if (!authenticate(*route, caller, peer, out, options)) return Outcome::kDone;
+  if (!authenticate(*route, request.method, caller, peer, out, options)) return Outcome::kDone;
   // The unreadable access settings and the control lock: the command
   // layer's gate, the same for every route and every front end.
-  if (!pass_gate(*route, caller, peer, out, options)) return Outcome::kDone;
+  if (!pass_gate(*route, request.method, caller, peer, out, options)) return Outcome::kDone;
   if (!takes_body(*route, request, allows_get, out, options)) return Outcome::kDone;
   return route->run(*this, Call{request, out, options, caller, peer});
 }

@@ -208,11 +208,12 @@ class Api {
   /// token (401, 403), the method and the body's type (405, 415).
   const Route* find_route(const HttpRequest& request, protocol::ByteSink& out,
                           const ResponseOptions& options, bool& allows_get);
-  bool authenticate(const Route& route, const Caller& caller, const access::Peer& peer,
-                    protocol::ByteSink& out, const ResponseOptions& options);
+  bool authenticate(const Route& route, Method method, const Caller& caller,
+                    const access::Peer& peer, protocol::ByteSink& out,
+                    const ResponseOptions& options);
   /// The command layer's gate for the route (503, 423). Not inlined: its
   /// Result stays off the stack while the route runs (the Pico W's 4 KB).
-  __attribute__((noinline)) bool pass_gate(const Route& route, const Caller& caller,
+  __attribute__((noinline)) bool pass_gate(const Route& route, Method method, const Caller& caller,
                                            const access::Peer& peer, protocol::ByteSink& out,
                                            const ResponseOptions& options);
   bool takes_body(const Route& route, const HttpRequest& request, bool allows_get,
@@ -268,9 +269,9 @@ class Api {
   void unlock(const Caller& caller, protocol::ByteSink& out, const ResponseOptions& options);
   // Tracking's endpoints (track_api.cpp, tle_api.cpp, passes_api.cpp).
   void handle_track(const HttpRequest& request, protocol::ByteSink& out,
-                    const ResponseOptions& options);
+                    const ResponseOptions& options, const access::Peer& peer);
   Outcome run_track(const Call& call) {
-    handle_track(call.request, call.out, call.options);
+    handle_track(call.request, call.out, call.options, call.peer);
     return Outcome::kDone;
   }
   void get_tles(protocol::ByteSink& out, const ResponseOptions& options);
@@ -281,7 +282,7 @@ class Api {
   void get_passes(const HttpRequest& request, protocol::ByteSink& out,
                   const ResponseOptions& options);
   void post_track(const HttpRequest& request, protocol::ByteSink& out,
-                  const ResponseOptions& options);
+                  const ResponseOptions& options, const access::Peer& peer);
   void write_track(JsonWriter& w) const;
   /// Starts the search GET /api/passes asks for; false when refused (answered).
   bool start_pass_search(const char* object, int hours, double min_el, std::int64_t utc_ms,

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "command/care_commands.hpp"
 #include "json/json_reader.hpp"
 #include "web/http_response.hpp"
 
@@ -77,13 +78,13 @@ Api::Outcome post_wind_override(Api& api, const Api::Call& call) {
     }
   }
   Controller& c = api.controller();
+  const command::Origin from{"rest", call.peer};
   if (end) {
-    if (c.wind().state() != WindState::kOverride) {
+    if (command::end_wind_override(c, from) != Error::kOk) {
       send_error(call.out, 409, "no override of a wind stow is running", call.options);
       return Api::Outcome::kDone;
     }
-    c.end_wind_override();
-  } else if (c.wind_override(static_cast<int>(minutes)) != Error::kOk) {
+  } else if (command::wind_override(c, from, static_cast<int>(minutes)) != Error::kOk) {
     send_error(call.out, 409, "nothing to override: the antenna is not stowed for the wind",
                call.options);
     return Api::Outcome::kDone;

@@ -2,7 +2,8 @@
 // real Hamlib `rotctl -m 2` go-to and a REST go-to with curl each write
 // their one line into the daemon's log (standard output: the journal under
 // systemd), a refused `P` its refusal, and rotctl's position queries write
-// none.
+// none; the tracking mode's start and end, the odometer's reset and a wind
+// override through REST write theirs.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -74,6 +75,37 @@ TEST_F(CommandLog, ARefusedRotctlGoToIsLoggedWithItsRefusal) {
   EXPECT_EQ(rotctl("S").rc, 0);
   EXPECT_TRUE(daemon->wait_for_output("rotord: command stop from rotctld (127.0.0.1): OK"))
       << daemon->output();
+}
+
+// The tracking and care commands (core/command/care_commands.hpp) through
+// the real daemon's REST API, with the clock known (--utc-start): a track of
+// a fixed direction started and ended, the odometer reset, a wind override
+// refused (nothing is stowed), each with its one line.
+TEST(CommandLogCare, RestTrackOdometerAndWindEachWriteTheirLine) {
+  DaemonProcess daemon(std::vector<std::string>{"--sim", "g5500", "--clock", "manual",
+                                                "--utc-start", "2019-12-09T19:15:00Z"});
+  ASSERT_TRUE(daemon.ready()) << daemon.output();
+  const int port = daemon.ports().web;
+  HttpResponse r = http(port, "POST", "/api/track", R"({"az": 120, "el": 30})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_TRUE(daemon.wait_for_output(
+      "rotord: command track start az 120.0 el 30.0 from rest (127.0.0.1): OK"))
+      << daemon.output();
+  r = http(port, "DELETE", "/api/track");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_TRUE(daemon.wait_for_output("rotord: command track stop from rest (127.0.0.1): OK"))
+      << daemon.output();
+  r = http(port, "POST", "/api/odometer/reset", "{}");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_TRUE(daemon.wait_for_output("rotord: command odometer reset from rest (127.0.0.1): OK"))
+      << daemon.output();
+  r = http(port, "POST", "/api/wind/override", R"({"minutes": 30})");
+  EXPECT_EQ(r.status, 409) << r.body;
+  EXPECT_TRUE(
+      daemon.wait_for_output("rotord: command wind override 30 from rest (127.0.0.1): NOT FOUND"))
+      << daemon.output();
+  daemon.advance_ms(100);
+  EXPECT_EQ(count_of(daemon.output(), "rotord: command track "), 2u) << daemon.output();
 }
 
 }  // namespace
