@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "both_axes.hpp"
 #include "daemon_process.hpp"
 #include "http_client.hpp"
 
@@ -51,24 +52,8 @@ class LineAttackers : public ::testing::Test {
     const HttpResponse r = http(web, "POST", "/api/settings", json);
     ASSERT_EQ(r.status, 200) << r.body;
   }
-  /// Both axes without a target: nothing moves or will.
-  bool stopped() {
-    const std::string s = http(web, "GET", "/api/status").body;
-    std::size_t n = 0;
-    for (auto at = s.find("\"target_deg\":null"); at != std::string::npos;
-         at = s.find("\"target_deg\":null", at + 1))
-      ++n;
-    return n == 2;
-  }
-  /// Through the web (not attacked here): both axes get a target.
-  void start_moving(int round) {
-    const HttpResponse r =
-        http(web, "POST", "/api/goto",
-             round % 2 == 0 ? R"({"az": 300, "el": 40})" : R"({"az": 100, "el": 20})");
-    ASSERT_EQ(r.status, 200) << r.body;
-    daemon->advance_ms(100);
-    ASSERT_FALSE(stopped());
-  }
+  bool stopped() { return both_axes_stopped(web); }
+  void start_moving(int round) { start_moving_both_axes(*daemon, web, round); }
   /// The owner's try: a new connection, STOP, then whether it was obeyed.
   bool owner_stops(const LineProtocol& proto) {
     TcpClient owner(proto.port, host(1));
