@@ -152,43 +152,35 @@ TEST(ContinuityScenario, GpredictPassThroughNorthOnSpidStaysOnOneTurn) {
   EXPECT_LT(run.max_error_deg, 4.0 + 4.0);
 }
 
-/// Runs until both axes stand still (or the time is up).
-void settle(Bench& b) {
-  for (int i = 0; i < 200; ++i) {
-    b.run_ms(500);
-    if (!b.controller().status().moving() && !b.controller().status().az.has_target) return;
-  }
-}
-
 TEST(ContinuityScenario, ASingleGotoAndAZigZagAreLiteral) {
   Bench b("g5500", 400.0, 10.0);
   b.power_on();
   protocol::RotctldSession client(b.controller(), "test");
   // A single go-to means what Hamlib means: 60 is 60, not 420.
   ASSERT_EQ(ask(client, "P 60 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   EXPECT_NEAR(b.theta(AxisId::kAz), 60.0, 2.0);
   // A stream to 355, then a zig-zag across north: 359, 1 (continued: 361),
   // 359, then 1 again is a zig-zag and literal.
   for (const char* cmd : {"P 350 10\n", "P 355 10\n", "P 359 10\n", "P 1 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   EXPECT_NEAR(b.theta(AxisId::kAz), 361.0, 2.0);
   EXPECT_NEAR(std::stod(ask(client, "p\n")), 1.0, 2.0);  // in its frame
   ASSERT_EQ(ask(client, "P 359 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   ASSERT_EQ(ask(client, "P 1 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   EXPECT_NEAR(b.theta(AxisId::kAz), 1.0, 2.0);
   // A pause longer than a stream's: the next go-to is literal again.
   for (const char* cmd : {"P 350 10\n", "P 355 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   b.run_ms(GotoStream::kMaxGapMs + 1000);
   ASSERT_EQ(ask(client, "P 2 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   EXPECT_NEAR(b.theta(AxisId::kAz), 2.0, 2.0);
 }
 
@@ -199,12 +191,12 @@ TEST(ContinuityScenario, StopAnotherSourceAndTheTravelsEndAreObeyed) {
   protocol::RotctldSession other(b.controller(), "test");
   for (const char* cmd : {"P 70 10\n", "P 75 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   EXPECT_NEAR(b.theta(AxisId::kAz), 75.0, 2.0);  // the first was literal
   for (const char* cmd : {"P 350 10\n", "P 355 10\n", "P 359 10\n", "P 3 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   // Jumped: 350 is a new stream; 3 continues it at 363.
   EXPECT_NEAR(b.theta(AxisId::kAz), 363.0, 2.0);
@@ -214,23 +206,23 @@ TEST(ContinuityScenario, StopAnotherSourceAndTheTravelsEndAreObeyed) {
   b.run_ms(2000);
   EXPECT_LT(b.controller().status().az.target_deg, 10.0);
   ASSERT_EQ(ask(client, "S\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   // Near the end stop: the stream continues up to 450, never beyond it.
   for (const char* cmd : {"P 80 10\n", "P 82 10\n", "P 86 10\n", "P 89 10\n", "P 92 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
     EXPECT_LE(b.controller().status().az.target_deg, 450.0f);
   }
   // 80 literal; 82, 86, 89 on the same turn; 92 too (no other turn fits).
   EXPECT_NEAR(b.theta(AxisId::kAz), 92.0, 2.0);
   for (const char* cmd : {"P 350 10\n", "P 355 10\n", "P 2 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   EXPECT_NEAR(b.theta(AxisId::kAz), 362.0, 2.0);
   // Another source's go-to is its own (literal) stream.
   ASSERT_EQ(ask(other, "P 5 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   EXPECT_NEAR(b.theta(AxisId::kAz), 5.0, 2.0);
   EXPECT_EQ(b.limit_ticks(), 0);
 }
@@ -244,7 +236,7 @@ void stream_across_north(protocol::Session& session, Bench& b, const char* forma
     ask(session, cmd);
     b.run_ms(1500);
   }
-  settle(b);
+  b.settle();
 }
 
 TEST(ContinuityScenario, TheSameStreamThroughGs232EasycommAndWrc) {
