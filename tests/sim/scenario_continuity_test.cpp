@@ -227,8 +227,18 @@ TEST(ContinuityScenario, StopAnotherSourceAndTheTravelsEndAreObeyed) {
   EXPECT_EQ(b.limit_ticks(), 0);
 }
 
-/// One stream across north through another protocol's session; `format`
-/// prints one go-to.
+/// A G-5500 at 330 deg, powered on, with the lead rule (which would put the
+/// antenna up to a band past the last go-to) off: the turn each protocol
+/// lands on is the stream's, to the degree.
+std::unique_ptr<Bench> bench_without_lead() {
+  auto b = std::make_unique<Bench>("g5500", 330.0, 10.0);
+  b->settings().set(Id::kTrackStreamLead, 0.0);
+  b->power_on();
+  return b;
+}
+
+/// One stream across north through another protocol's session (`format`
+/// prints one go-to): the antenna ends on the stream's turn, at 369.
 void stream_across_north(protocol::Session& session, Bench& b, const char* format) {
   for (const double az : {340.0, 345.0, 350.0, 355.0, 359.0, 4.0, 9.0}) {
     char cmd[64];
@@ -237,18 +247,14 @@ void stream_across_north(protocol::Session& session, Bench& b, const char* forma
     b.run_ms(1500);
   }
   b.settle();
+  EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0) << format;
 }
 
 TEST(ContinuityScenario, TheSameStreamThroughGs232EasycommAndWrc) {
-  // The turn each protocol lands on, to the degree: the lead rule (which
-  // would put the antenna up to a band past the last go-to) is off here.
   {
-    Bench b("g5500", 330.0, 10.0);
-    b.settings().set(Id::kTrackStreamLead, 0.0);
-    b.power_on();
-    protocol::Gs232Session gs232(b.controller());
-    stream_across_north(gs232, b, "W%03.0f 010\r");
-    EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0);
+    const auto b = bench_without_lead();
+    protocol::Gs232Session gs232(b->controller());
+    stream_across_north(gs232, *b, "W%03.0f 010\r");
     // Read back in its frame: 009, not 369.
     EXPECT_NE(ask(gs232, "C\r").find("009"), std::string::npos) << ask(gs232, "C\r");
   }
@@ -256,20 +262,14 @@ TEST(ContinuityScenario, TheSameStreamThroughGs232EasycommAndWrc) {
     // Easycomm and WRC read 0..360 as a bearing on the turn nearest the
     // antenna, which agrees with the stream while the antenna keeps up; the
     // stream keeps them on its turn either way.
-    Bench b("g5500", 330.0, 10.0);
-    b.settings().set(Id::kTrackStreamLead, 0.0);
-    b.power_on();
-    protocol::EasycommSession easycomm(b.controller(), "test");
-    stream_across_north(easycomm, b, "AZ%.1f EL10.0\n");
-    EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0);
+    const auto b = bench_without_lead();
+    protocol::EasycommSession easycomm(b->controller(), "test");
+    stream_across_north(easycomm, *b, "AZ%.1f EL10.0\n");
   }
   {
-    Bench b("g5500", 330.0, 10.0);
-    b.settings().set(Id::kTrackStreamLead, 0.0);
-    b.power_on();
-    protocol::WrcSession wrc(b.controller(), "test");
-    stream_across_north(wrc, b, "AZ %.1f\n");
-    EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0);
+    const auto b = bench_without_lead();
+    protocol::WrcSession wrc(b->controller(), "test");
+    stream_across_north(wrc, *b, "AZ %.1f\n");
     // WRC reads 0..360 as the bearing on the nearest turn and reports the
     // unwrapped position (docs/protocols): the rule agreed, nothing shifted.
     EXPECT_NE(ask(wrc, "AZ?\n").find("OK AZ 36"), std::string::npos) << ask(wrc, "AZ?\n");
