@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <vector>
 
 #include "sensors/pot_calibration.hpp"
@@ -49,13 +50,17 @@ TEST(PotCalibration, ReversedPotWithFallingCounts) {
   EXPECT_FLOAT_EQ(cal.to_deg(2050.0f), 225.0f);
 }
 
-TEST(PotCalibration, MultiPointInterpolatesEachSegment) {
-  // A pot that is steep at first, then flat: 0 deg at 200, 90 at 1200, 450 at 3600.
+/// A calibration table of `points` ({counts, deg}), in their order.
+PotCalibration table(std::initializer_list<std::array<float, 2>> points) {
   PotCalibration cal;
   cal.count = 0;
-  cal.add(200.0f, 0.0f);
-  cal.add(1200.0f, 90.0f);
-  cal.add(3600.0f, 450.0f);
+  for (const auto& [counts, deg] : points) cal.add(counts, deg);
+  return cal;
+}
+
+TEST(PotCalibration, MultiPointInterpolatesEachSegment) {
+  // A pot that is steep at first, then flat: 0 deg at 200, 90 at 1200, 450 at 3600.
+  const PotCalibration cal = table({{200.0f, 0.0f}, {1200.0f, 90.0f}, {3600.0f, 450.0f}});
   ASSERT_TRUE(cal.valid());
   EXPECT_FLOAT_EQ(cal.to_deg(700.0f), 45.0f);    // first segment: 0.09 deg/count
   EXPECT_FLOAT_EQ(cal.to_deg(1200.0f), 90.0f);   // at the knee
@@ -65,23 +70,16 @@ TEST(PotCalibration, MultiPointInterpolatesEachSegment) {
 }
 
 TEST(PotCalibration, MultiPointWithFallingCounts) {
-  PotCalibration cal;
-  cal.count = 0;
-  cal.add(3600.0f, 0.0f);
-  cal.add(2400.0f, 100.0f);
-  cal.add(1000.0f, 180.0f);
+  const PotCalibration cal = table({{3600.0f, 0.0f}, {2400.0f, 100.0f}, {1000.0f, 180.0f}});
   ASSERT_TRUE(cal.valid());
   EXPECT_FLOAT_EQ(cal.to_deg(3000.0f), 50.0f);
   EXPECT_FLOAT_EQ(cal.to_deg(1700.0f), 140.0f);
 }
 
 TEST(PotCalibration, NonMonotonicTablesAreRejected) {
-  PotCalibration cal;
-  cal.count = 0;
-  cal.add(200.0f, 0.0f);
-  cal.add(1200.0f, 90.0f);
-  cal.add(1100.0f, 180.0f);  // counts turn back
-  cal.add(3600.0f, 450.0f);
+  // The third point's counts turn back.
+  PotCalibration cal =
+      table({{200.0f, 0.0f}, {1200.0f, 90.0f}, {1100.0f, 180.0f}, {3600.0f, 450.0f}});
   EXPECT_EQ(cal.first_bad_point(), 2);
   cal.points[2] = {2000.0f, 80.0f};  // degrees turn back
   EXPECT_EQ(cal.first_bad_point(), 2);
