@@ -28,15 +28,23 @@ cleanup() {
 trap cleanup EXIT
 export XDG_CONFIG_HOME="$dir"
 unset STATE_DIRECTORY JOURNAL_STREAM
-# wait_for FILE TEXT [COUNT]: until FILE holds TEXT (COUNT times), at most
-# 60 s (a real daemon works at its own pace; this bounds liveness only).
-wait_for() {
-  for _ in $(seq 600); do
-    [ "$(grep -c -- "$2" "$1" 2>/dev/null)" -ge "${3:-1}" ] && return 0
-    sleep 0.1
+# retry TRIES PAUSE_S CMD...: runs CMD until it succeeds, at most TRIES
+# times, PAUSE_S seconds apart. The test's one wall-clock wait: avahi-daemon,
+# D-Bus and mDNS work on their own clocks, which no option of rotord's
+# moves; TRIES bounds liveness only, never what the test asserts.
+retry() {
+  local tries=$1 pause_s=$2
+  shift 2
+  for _ in $(seq "$tries"); do
+    "$@" && return 0
+    sleep "$pause_s"
   done
   return 1
 }
+# holds FILE TEXT [COUNT]: FILE holds TEXT (COUNT times).
+holds() { [ "$(grep -c -- "$2" "$1" 2>/dev/null)" -ge "${3:-1}" ]; }
+# wait_for FILE TEXT [COUNT]: until FILE holds TEXT, at most 60 s.
+wait_for() { retry 600 0.1 holds "$@"; }
 # start_rotord: on random free ports (a port taken meanwhile: try others).
 start_rotord() {
   for _ in 1 2 3 4 5; do
@@ -66,15 +74,13 @@ browse() { timeout 30 avahi-browse --resolve --parsable --terminate "$1" 2>/dev/
 # enough: --terminate ends at avahi's "all for now", which on a busy machine
 # can come before the record is resolved (interop.avahi failed so once, at
 # -j8 beside two busy loops); no sleep or timeout here decides the outcome.
+browsed=
+browse_finds() { browsed=$(browse "$1"); grep -q -- "$2" <<<"$browsed"; }
 browse_until() {
-  local out
-  for _ in $(seq 30); do
-    out=$(browse "$1")
-    grep -q -- "$2" <<<"$out" && { echo "$out"; return 0; }
-    sleep 1
-  done
-  echo "$out"
-  return 1
+  local rc=0
+  retry 30 1 browse_finds "$@" || rc=1
+  echo "$browsed"
+  return $rc
 }
 
 # 1. No D-Bus, no avahi-daemon: rotord runs and says it is not announced yet.
@@ -110,7 +116,7 @@ publish-workstation=no
 CONF
 dbus-daemon --config-file="$dir/bus.conf" --nofork >"$dir/bus.log" 2>&1 &
 bus_pid=$!
-for _ in $(seq 100); do [ -S "$dir/bus" ] && break; sleep 0.1; done
+retry 100 0.1 test -S "$dir/bus" || fail "dbus-daemon did not listen: $(cat "$dir/bus.log")"
 start_avahi
 start_rotord
 wait_for "$dir/rotord.log" "avahi: announced as 'rotord on " || fail "not announced"
@@ -134,9 +140,6 @@ browse_until _rotctld._tcp ";$rotctld;" >/dev/null || fail "not browsable after 
 kill -TERM "$rotord_pid"; wait "$rotord_pid" || fail "rotord did not exit 0"; rotord_pid=
 # The goodbye records take a moment to leave the daemon's cache (mDNS
 # gives them a TTL of 1 s): look again until they are gone, at most 20 s.
-for _ in $(seq 20); do
-  browse _rotctld._tcp | grep -q ";$rotctld;" || break
-  sleep 1
-done
-browse _rotctld._tcp | grep -q ";$rotctld;" && fail "still announced after rotord stopped"
+withdrawn() { ! browse_finds _rotctld._tcp ";$rotctld;"; }
+retry 20 1 withdrawn || fail "still announced after rotord stopped"
 echo PASS

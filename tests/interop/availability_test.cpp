@@ -17,29 +17,15 @@
 #include <string>
 #include <vector>
 
+#include "all_ports_test.hpp"
 #include "daemon_process.hpp"
 #include "http_client.hpp"
 
 namespace rotord::testing {
 namespace {
 
-std::string host(int n) {
-  return "127.0.0." + std::to_string(n);
-}
-
-class Availability : public ::testing::Test {
+class Availability : public AllPortsTest {
  protected:
-  void SetUp() override {
-    seed_port = free_port();
-    daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{
-        "--sim", "g5500", "--clock", "manual", "--seed-port", std::to_string(seed_port)});
-    ASSERT_TRUE(daemon->ready()) << daemon->output();
-    web = daemon->ports().web;
-  }
-  void set(const std::string& json) {
-    const HttpResponse r = http(web, "POST", "/api/settings", json);
-    ASSERT_EQ(r.status, 200) << r.body;
-  }
   /// Opens an event stream and waits for its first event.
   std::unique_ptr<TcpClient> event_stream(const std::string& from) {
     auto c = std::make_unique<TcpClient>(web, from);
@@ -50,10 +36,6 @@ class Availability : public ::testing::Test {
     EXPECT_NE(seen.find("data: {"), std::string::npos) << seen;
     return c;
   }
-
-  std::unique_ptr<DaemonProcess> daemon;
-  int web = 0;
-  int seed_port = 0;
 };
 
 TEST_F(Availability, EightTricklingClientsFromOneHostLeaveRoomForStop) {

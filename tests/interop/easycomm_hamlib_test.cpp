@@ -21,6 +21,7 @@
 #include "daemon_process.hpp"
 #include "poll.hpp"
 #include "shell.hpp"
+#include "wrc_view.hpp"
 
 namespace rotord::testing {
 namespace {
@@ -43,16 +44,11 @@ class EasycommHamlib : public ::testing::Test {
   }
 
   CommandOutput rotctl(int model, const std::string& where, const std::string& commands) {
-    return run_command("timeout 20 rotctl -m " + std::to_string(model) + " -r " + where + " " +
-                       commands);
+    return rotctl_once(model, where, commands);
   }
-
   /// Reads the position through Hamlib: {az, el}, or empty on failure.
   std::vector<double> position(int model, const std::string& where) {
-    const CommandOutput r = rotctl(model, where, "p");
-    const std::vector<double> v = numbers_in(r.out);
-    if (r.rc != 0 || v.size() != 2) return {};
-    return v;
+    return rotctl_position(model, where);
   }
 
   /// Polls through Hamlib until the position is within 1.5 deg (generous
@@ -68,26 +64,10 @@ class EasycommHamlib : public ::testing::Test {
   }
 
   /// The WRC view of the rotator: the unwrapped azimuth and the motion flags.
-  std::string wrc_state() {
-    TcpClient c(daemon->ports().wrc);
-    return c.ask("STATE\n");
-  }
-  double wrc_field(const std::string& key) {
-    const std::string s = wrc_state();
-    const auto pos = s.find(" " + key + "=");
-    return pos == std::string::npos ? -1e9 : std::stod(s.substr(pos + key.size() + 2));
-  }
+  std::string wrc_state() { return rotord::testing::wrc_state(*daemon); }
+  double wrc_field(const std::string& key) { return rotord::testing::wrc_field(*daemon, key); }
   double wrc_az() { return wrc_field("AZ"); }
-  bool wait_until_still() {
-    for (int n = 0; n < 300; ++n) {
-      const std::string s = wrc_state();
-      if (s.find("CW") == std::string::npos && s.find("CCW") == std::string::npos &&
-          s.find("UP") == std::string::npos && s.find("DOWN") == std::string::npos)
-        return true;
-      daemon->advance_ms(500);
-    }
-    return false;
-  }
+  bool wait_until_still() { return rotord::testing::wait_until_still(*daemon); }
 
   int seed_port = free_port();
   std::unique_ptr<DaemonProcess> daemon;

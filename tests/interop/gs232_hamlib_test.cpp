@@ -21,6 +21,7 @@
 
 #include "daemon_process.hpp"
 #include "shell.hpp"
+#include "wrc_view.hpp"
 
 namespace rotord::testing {
 namespace {
@@ -48,16 +49,11 @@ class Gs232Hamlib : public ::testing::Test {
   }
 
   CommandOutput rotctl(int model, const std::string& commands, const std::string& where = "") {
-    return run_command("timeout 20 rotctl -m " + std::to_string(model) + " -r " +
-                       (where.empty() ? tcp : where) + " " + commands);
+    return rotctl_once(model, where.empty() ? tcp : where, commands);
   }
-
   /// Reads the position through Hamlib: {az, el}, or empty on failure.
   std::vector<double> position(int model, const std::string& where = "") {
-    const CommandOutput r = rotctl(model, "p", where);
-    const std::vector<double> v = numbers_in(r.out);
-    if (r.rc != 0 || v.size() != 2) return {};
-    return v;
+    return rotctl_position(model, where.empty() ? tcp : where);
   }
 
   /// Polls through Hamlib until the position is within 1.5 deg (generous
@@ -72,25 +68,9 @@ class Gs232Hamlib : public ::testing::Test {
     return p;
   }
 
-  std::string wrc_state() {
-    TcpClient c(daemon->ports().wrc);
-    return c.ask("STATE\n");
-  }
-  double wrc_field(const std::string& key) {
-    const std::string s = wrc_state();
-    const auto pos = s.find(" " + key + "=");
-    return pos == std::string::npos ? -1e9 : std::stod(s.substr(pos + key.size() + 2));
-  }
-  bool wait_until_still() {
-    for (int n = 0; n < 300; ++n) {
-      const std::string s = wrc_state();
-      if (s.find("CW") == std::string::npos && s.find("UP") == std::string::npos &&
-          s.find("DOWN") == std::string::npos)
-        return true;
-      daemon->advance_ms(500);
-    }
-    return false;
-  }
+  std::string wrc_state() { return rotord::testing::wrc_state(*daemon); }
+  double wrc_field(const std::string& key) { return rotord::testing::wrc_field(*daemon, key); }
+  bool wait_until_still() { return rotord::testing::wait_until_still(*daemon); }
   /// Waits until the WRC flags show `flag` (a manual turn has started).
   bool wait_for_flag(const std::string& flag) {
     for (int n = 0; n < 100; ++n) {

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "both_axes.hpp"
 #include "daemon_process.hpp"
 #include "http_client.hpp"
 #include "shell.hpp"
@@ -83,22 +84,8 @@ class Ipv6 : public ::testing::Test {
     const HttpResponse r = http_from(kOwner6, web, "POST", "/api/settings", json);
     ASSERT_EQ(r.status, 200) << r.body;
   }
-  bool stopped() {
-    const std::string s = http(web, "GET", "/api/status").body;
-    std::size_t n = 0;
-    for (auto at = s.find("\"target_deg\":null"); at != std::string::npos;
-         at = s.find("\"target_deg\":null", at + 1))
-      ++n;
-    return n == 2;
-  }
-  void start_moving(int round) {
-    const HttpResponse r =
-        http(web, "POST", "/api/goto",
-             round % 2 == 0 ? R"({"az": 300, "el": 40})" : R"({"az": 100, "el": 20})");
-    ASSERT_EQ(r.status, 200) << r.body;
-    daemon->advance_ms(100);
-    ASSERT_FALSE(stopped());
-  }
+  bool stopped() { return both_axes_stopped(web); }
+  void start_moving(int round) { start_moving_both_axes(*daemon, web, round); }
   /// Twenty rounds: the attackers send a bare line end (reconnecting when
   /// closed), the rotator is set moving, `owner` says STOP on a new
   /// connection; then 5 s pass. Returns how many STOPs were obeyed.

@@ -10,15 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "all_ports_test.hpp"
+#include "both_axes.hpp"
 #include "daemon_process.hpp"
 #include "http_client.hpp"
 
 namespace rotord::testing {
 namespace {
-
-std::string host(int n) {
-  return "127.0.0." + std::to_string(n);
-}
 
 struct LineProtocol {
   const char* name;
@@ -30,14 +28,11 @@ struct LineProtocol {
   const char* busy;   ///< the refusal of a full port
 };
 
-class LineAttackers : public ::testing::Test {
+class LineAttackers : public AllPortsTest {
  protected:
   void SetUp() override {
-    seed_port = free_port();
-    daemon = std::make_unique<DaemonProcess>(std::vector<std::string>{
-        "--sim", "g5500", "--clock", "manual", "--seed-port", std::to_string(seed_port)});
-    ASSERT_TRUE(daemon->ready()) << daemon->output();
-    web = daemon->ports().web;
+    AllPortsTest::SetUp();
+    if (HasFatalFailure()) return;
     const DaemonProcess::Ports& p = daemon->ports();
     protocols = {
         {"WRC", p.wrc, "STOP\n", "AZ?\n", "AZ 100\n", "OK AZ 100.00", "ERROR TOO MANY CONNECTIONS"},
@@ -47,28 +42,8 @@ class LineAttackers : public ::testing::Test {
         {"seed", seed_port, "$D\n", "$Q\n", "$E\n", "$OK,E", "$ERR,BUSY"},
     };
   }
-  void set(const std::string& json) {
-    const HttpResponse r = http(web, "POST", "/api/settings", json);
-    ASSERT_EQ(r.status, 200) << r.body;
-  }
-  /// Both axes without a target: nothing moves or will.
-  bool stopped() {
-    const std::string s = http(web, "GET", "/api/status").body;
-    std::size_t n = 0;
-    for (auto at = s.find("\"target_deg\":null"); at != std::string::npos;
-         at = s.find("\"target_deg\":null", at + 1))
-      ++n;
-    return n == 2;
-  }
-  /// Through the web (not attacked here): both axes get a target.
-  void start_moving(int round) {
-    const HttpResponse r =
-        http(web, "POST", "/api/goto",
-             round % 2 == 0 ? R"({"az": 300, "el": 40})" : R"({"az": 100, "el": 20})");
-    ASSERT_EQ(r.status, 200) << r.body;
-    daemon->advance_ms(100);
-    ASSERT_FALSE(stopped());
-  }
+  bool stopped() { return both_axes_stopped(web); }
+  void start_moving(int round) { start_moving_both_axes(*daemon, web, round); }
   /// The owner's try: a new connection, STOP, then whether it was obeyed.
   bool owner_stops(const LineProtocol& proto) {
     TcpClient owner(proto.port, host(1));
@@ -88,9 +63,6 @@ class LineAttackers : public ::testing::Test {
     }
   }
 
-  std::unique_ptr<DaemonProcess> daemon;
-  int web = 0;
-  int seed_port = 0;
   std::vector<LineProtocol> protocols;
 };
 

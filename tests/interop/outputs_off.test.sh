@@ -13,35 +13,38 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 unset STATE_DIRECTORY
 mkdir -p "$dir/state"
-for ch in 0 1; do
-  mkdir -p "$dir/pwm/pwmchip0/pwm$ch"
-  echo 50000 >"$dir/pwm/pwmchip0/pwm$ch/period"
-  echo 40000 >"$dir/pwm/pwmchip0/pwm$ch/duty_cycle"
-  echo 1 >"$dir/pwm/pwmchip0/pwm$ch/enable"
-done
+# running: both channels at 80 %, as rotord's kill -9 leaves them.
+running() {
+  for ch in 0 1; do
+    mkdir -p "$dir/pwm/pwmchip0/pwm$ch"
+    echo 50000 >"$dir/pwm/pwmchip0/pwm$ch/period"
+    echo 40000 >"$dir/pwm/pwmchip0/pwm$ch/duty_cycle"
+    echo 1 >"$dir/pwm/pwmchip0/pwm$ch/enable"
+  done
+}
 value() { tr -d '\n' <"$dir/pwm/pwmchip0/$1" | sed 's/^0*\([0-9]\)/\1/'; }
 off() { [ "$(value pwm0/duty_cycle)" = 0 ] && [ "$(value pwm1/duty_cycle)" = 0 ] &&
   [ "$(value pwm0/enable)" = 0 ] && [ "$(value pwm1/enable)" = 0 ]; }
 
-# The service's settings file ($STATE_DIRECTORY/settings.json): an H-bridge azimuth.
-printf '{"settings_version": 2, "az.drive": "hbridge", "pwm.chip": 0}\n' >"$dir/state/settings.json"
-out=$(STATE_DIRECTORY="$dir/state" ROTORD_PWM_ROOT="$dir/pwm" "$ROTORD" --outputs-off --hw gpiod 2>&1)
-rc=$?
-echo "$out"
+# outputs_off SETTINGS: with the channels running and SETTINGS as the
+# service's settings file ($STATE_DIRECTORY/settings.json), rotord
+# --outputs-off --hw gpiod; its output in $out, its exit code in $rc.
+outputs_off() {
+  running
+  echo "$1" >"$dir/state/settings.json"
+  out=$(STATE_DIRECTORY="$dir/state" ROTORD_PWM_ROOT="$dir/pwm" "$ROTORD" --outputs-off --hw gpiod 2>&1)
+  rc=$?
+  echo "$out"
+}
+
+# An H-bridge azimuth.
+outputs_off '{"settings_version": 2, "az.drive": "hbridge", "pwm.chip": 0}'
 [ "$rc" -eq 0 ] || fail "exit code $rc"
 off || fail "a PWM channel is still on"
 grep -q 'outputs off: pwm.az_cw PWM 0/0, pwm.az_ccw PWM 0/1' <<<"$out" || fail "not logged"
 
 # Relays on a missing chip as well: the channels go off all the same, the chip is named.
-for ch in 0 1; do
-  echo 40000 >"$dir/pwm/pwmchip0/pwm$ch/duty_cycle"
-  echo 1 >"$dir/pwm/pwmchip0/pwm$ch/enable"
-done
-printf '{"settings_version": 2, "az.drive": "hbridge", "pwm.chip": 0, "el.enabled": true, "gpiod.chip": 31}\n' \
-  >"$dir/state/settings.json"
-out=$(STATE_DIRECTORY="$dir/state" ROTORD_PWM_ROOT="$dir/pwm" "$ROTORD" --outputs-off --hw gpiod 2>&1)
-rc=$?
-echo "$out"
+outputs_off '{"settings_version": 2, "az.drive": "hbridge", "pwm.chip": 0, "el.enabled": true, "gpiod.chip": 31}'
 [ "$rc" -eq 1 ] || fail "exit code $rc without the GPIO chip"
 off || fail "a PWM channel is still on"
 grep -q 'cannot open GPIO chip /dev/gpiochip31 (gpiod.chip = 31)' <<<"$out" || fail "chip not named"

@@ -33,6 +33,8 @@ XDG_CONFIG_HOME="$work/config" "$ROTORD" --bind 127.0.0.1 --sim spid --speedup 2
   >"$work/rotord.log" 2>&1 &
 pids+=($!)
 
+# Both daemons start at their own pace: poll (at most 10 s, liveness only)
+# until rotord says ready and the reference rotctld accepts a connection.
 for _ in $(seq 100); do
   if grep -q "rotord: ready" "$work/rotord.log" &&
     python3 -c "import socket,sys; socket.create_connection(('127.0.0.1', $ref_port)).close()" 2>/dev/null; then

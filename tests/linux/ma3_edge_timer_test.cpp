@@ -24,6 +24,21 @@ struct EdgeTrain {
     fall();
     t_ns += low_us * kUs;
   }
+  /// An edge `us` after the last one.
+  void rise_after(std::uint64_t us) {
+    t_ns += us * kUs;
+    rise();
+  }
+  void fall_after(std::uint64_t us) {
+    t_ns += us * kUs;
+    fall();
+  }
+  /// The next frame's rise, which closes the period before it; what the
+  /// timer gives then.
+  hal::PwmPeriod close() {
+    rise();
+    return timer.take(t_ns);
+  }
 };
 
 TEST(Ma3EdgeTimerTest, NothingBeforeTheFirstFullPeriod) {
@@ -31,8 +46,7 @@ TEST(Ma3EdgeTimerTest, NothingBeforeTheFirstFullPeriod) {
   EXPECT_FALSE(e.timer.take(e.t_ns).valid);
   e.frame(1025, 3072);
   EXPECT_FALSE(e.timer.take(e.t_ns).valid);  // no closing rise yet
-  e.rise();
-  const hal::PwmPeriod p = e.timer.take(e.t_ns);
+  const hal::PwmPeriod p = e.close();
   ASSERT_TRUE(p.valid);
   EXPECT_EQ(p.high_us, 1025u);
   EXPECT_EQ(p.low_us, 3072u);
@@ -45,8 +59,7 @@ TEST(Ma3EdgeTimerTest, AveragesThePeriodsOfOneTickToDivideTheJitter) {
   // alternate falls: ten frames per 10 ms tick.
   for (int k = 0; k < 10; ++k)
     e.frame(k % 2 == 0 ? 512 + 3 : 512 - 3, k % 2 == 0 ? 513 - 3 : 513 + 3);
-  e.rise();
-  const hal::PwmPeriod p = e.timer.take(e.t_ns);
+  const hal::PwmPeriod p = e.close();
   ASSERT_TRUE(p.valid);
   EXPECT_EQ(p.high_us, 512u);
   EXPECT_EQ(p.low_us, 513u);
@@ -60,8 +73,7 @@ TEST(Ma3EdgeTimerTest, APeriodSplitByANoiseEdgePairIsLeftOut) {
   e.frame(2000, 1000);
   e.frame(5, 1092);
   e.frame(2000, 2097);
-  e.rise();
-  const hal::PwmPeriod p = e.timer.take(e.t_ns);
+  const hal::PwmPeriod p = e.close();
   ASSERT_TRUE(p.valid);
   EXPECT_EQ(p.high_us, 2000u);  // only the two full-length frames count
   EXPECT_EQ(p.low_us, 2097u);
@@ -70,28 +82,21 @@ TEST(Ma3EdgeTimerTest, APeriodSplitByANoiseEdgePairIsLeftOut) {
 TEST(Ma3EdgeTimerTest, ALostEdgeNeverJoinsTwoFrames) {
   EdgeTrain e;
   e.frame(1000, 3097);
-  e.rise();
-  ASSERT_TRUE(e.timer.take(e.t_ns).valid);
+  ASSERT_TRUE(e.close().valid);
   // The kernel's queue overflowed: the fall of this frame is missing, so two
   // rises come in a row, then a fall whose rise is unknown.
-  e.t_ns += 4097 * kUs;
-  e.rise();  // rise, rise: no period
-  e.t_ns += 3000 * kUs;
-  e.fall();
-  e.t_ns += 1097 * kUs;
-  e.rise();  // rise, fall, rise: a real period again (3000 / 1097)
+  e.rise_after(4097);  // rise, rise: no period
+  e.fall_after(3000);
+  e.rise_after(1097);  // rise, fall, rise: a real period again (3000 / 1097)
   const hal::PwmPeriod p = e.timer.take(e.t_ns);
   ASSERT_TRUE(p.valid);
   EXPECT_EQ(p.high_us, 3000u);
   EXPECT_EQ(p.low_us, 1097u);
   // Two falls in a row restart the assembly as well.
+  e.fall_after(500);
+  e.fall_after(500);
   e.t_ns += 500 * kUs;
-  e.fall();
-  e.t_ns += 500 * kUs;
-  e.fall();
-  e.t_ns += 500 * kUs;
-  e.rise();
-  const hal::PwmPeriod same = e.timer.take(e.t_ns);
+  const hal::PwmPeriod same = e.close();
   EXPECT_EQ(same.high_us, 3000u);  // no new period: the last one again
 }
 
@@ -101,8 +106,7 @@ TEST(Ma3EdgeTimerTest, TimestampsGoingBackwardsRestart) {
   e.t_ns -= 10'000 * kUs;
   e.frame(1500, 2597);  // its rise is behind the previous edge: restart
   e.frame(1500, 2597);
-  e.rise();
-  const hal::PwmPeriod p = e.timer.take(e.t_ns);
+  const hal::PwmPeriod p = e.close();
   ASSERT_TRUE(p.valid);
   EXPECT_EQ(p.high_us, 1500u);
 }
@@ -110,8 +114,7 @@ TEST(Ma3EdgeTimerTest, TimestampsGoingBackwardsRestart) {
 TEST(Ma3EdgeTimerTest, NoEdgesForTheTimeoutMeansNoSignal) {
   EdgeTrain e;
   e.frame(1025, 3072);
-  e.rise();
-  ASSERT_TRUE(e.timer.take(e.t_ns).valid);
+  ASSERT_TRUE(e.close().valid);
   EXPECT_TRUE(e.timer.take(e.t_ns + Ma3EdgeTimer::kTimeoutNs).valid);  // the last period still
   EXPECT_FALSE(e.timer.take(e.t_ns + Ma3EdgeTimer::kTimeoutNs + 1).valid);
 }

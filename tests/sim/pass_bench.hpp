@@ -57,6 +57,14 @@ class PassBench : public hal::WallClock {
       max_az_ = std::fmax(max_az_, az);
     }
   }
+  /// Runs until both axes stand still and the azimuth has no target (at
+  /// most 100 s of controller time).
+  void settle() {
+    for (int i = 0; i < 200; ++i) {
+      run_ms(500);
+      if (!controller_->status().moving() && !controller_->status().az.has_target) return;
+    }
+  }
   double theta(AxisId axis) const { return sim_->plant(axis).theta_deg(); }
   Controller& controller() { return *controller_; }
   settings::Settings& settings() { return settings_; }

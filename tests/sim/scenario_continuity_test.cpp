@@ -152,43 +152,35 @@ TEST(ContinuityScenario, GpredictPassThroughNorthOnSpidStaysOnOneTurn) {
   EXPECT_LT(run.max_error_deg, 4.0 + 4.0);
 }
 
-/// Runs until both axes stand still (or the time is up).
-void settle(Bench& b) {
-  for (int i = 0; i < 200; ++i) {
-    b.run_ms(500);
-    if (!b.controller().status().moving() && !b.controller().status().az.has_target) return;
-  }
-}
-
 TEST(ContinuityScenario, ASingleGotoAndAZigZagAreLiteral) {
   Bench b("g5500", 400.0, 10.0);
   b.power_on();
   protocol::RotctldSession client(b.controller(), "test");
   // A single go-to means what Hamlib means: 60 is 60, not 420.
   ASSERT_EQ(ask(client, "P 60 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   EXPECT_NEAR(b.theta(AxisId::kAz), 60.0, 2.0);
   // A stream to 355, then a zig-zag across north: 359, 1 (continued: 361),
   // 359, then 1 again is a zig-zag and literal.
   for (const char* cmd : {"P 350 10\n", "P 355 10\n", "P 359 10\n", "P 1 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   EXPECT_NEAR(b.theta(AxisId::kAz), 361.0, 2.0);
   EXPECT_NEAR(std::stod(ask(client, "p\n")), 1.0, 2.0);  // in its frame
   ASSERT_EQ(ask(client, "P 359 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   ASSERT_EQ(ask(client, "P 1 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   EXPECT_NEAR(b.theta(AxisId::kAz), 1.0, 2.0);
   // A pause longer than a stream's: the next go-to is literal again.
   for (const char* cmd : {"P 350 10\n", "P 355 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   b.run_ms(GotoStream::kMaxGapMs + 1000);
   ASSERT_EQ(ask(client, "P 2 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   EXPECT_NEAR(b.theta(AxisId::kAz), 2.0, 2.0);
 }
 
@@ -199,12 +191,12 @@ TEST(ContinuityScenario, StopAnotherSourceAndTheTravelsEndAreObeyed) {
   protocol::RotctldSession other(b.controller(), "test");
   for (const char* cmd : {"P 70 10\n", "P 75 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   EXPECT_NEAR(b.theta(AxisId::kAz), 75.0, 2.0);  // the first was literal
   for (const char* cmd : {"P 350 10\n", "P 355 10\n", "P 359 10\n", "P 3 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   // Jumped: 350 is a new stream; 3 continues it at 363.
   EXPECT_NEAR(b.theta(AxisId::kAz), 363.0, 2.0);
@@ -214,29 +206,39 @@ TEST(ContinuityScenario, StopAnotherSourceAndTheTravelsEndAreObeyed) {
   b.run_ms(2000);
   EXPECT_LT(b.controller().status().az.target_deg, 10.0);
   ASSERT_EQ(ask(client, "S\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   // Near the end stop: the stream continues up to 450, never beyond it.
   for (const char* cmd : {"P 80 10\n", "P 82 10\n", "P 86 10\n", "P 89 10\n", "P 92 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
     EXPECT_LE(b.controller().status().az.target_deg, 450.0f);
   }
   // 80 literal; 82, 86, 89 on the same turn; 92 too (no other turn fits).
   EXPECT_NEAR(b.theta(AxisId::kAz), 92.0, 2.0);
   for (const char* cmd : {"P 350 10\n", "P 355 10\n", "P 2 10\n"}) {
     ASSERT_EQ(ask(client, cmd), "RPRT 0\n");
-    settle(b);
+    b.settle();
   }
   EXPECT_NEAR(b.theta(AxisId::kAz), 362.0, 2.0);
   // Another source's go-to is its own (literal) stream.
   ASSERT_EQ(ask(other, "P 5 10\n"), "RPRT 0\n");
-  settle(b);
+  b.settle();
   EXPECT_NEAR(b.theta(AxisId::kAz), 5.0, 2.0);
   EXPECT_EQ(b.limit_ticks(), 0);
 }
 
-/// One stream across north through another protocol's session; `format`
-/// prints one go-to.
+/// A G-5500 at 330 deg, powered on, with the lead rule (which would put the
+/// antenna up to a band past the last go-to) off: the turn each protocol
+/// lands on is the stream's, to the degree.
+std::unique_ptr<Bench> bench_without_lead() {
+  auto b = std::make_unique<Bench>("g5500", 330.0, 10.0);
+  b->settings().set(Id::kTrackStreamLead, 0.0);
+  b->power_on();
+  return b;
+}
+
+/// One stream across north through another protocol's session (`format`
+/// prints one go-to): the antenna ends on the stream's turn, at 369.
 void stream_across_north(protocol::Session& session, Bench& b, const char* format) {
   for (const double az : {340.0, 345.0, 350.0, 355.0, 359.0, 4.0, 9.0}) {
     char cmd[64];
@@ -244,19 +246,15 @@ void stream_across_north(protocol::Session& session, Bench& b, const char* forma
     ask(session, cmd);
     b.run_ms(1500);
   }
-  settle(b);
+  b.settle();
+  EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0) << format;
 }
 
 TEST(ContinuityScenario, TheSameStreamThroughGs232EasycommAndWrc) {
-  // The turn each protocol lands on, to the degree: the lead rule (which
-  // would put the antenna up to a band past the last go-to) is off here.
   {
-    Bench b("g5500", 330.0, 10.0);
-    b.settings().set(Id::kTrackStreamLead, 0.0);
-    b.power_on();
-    protocol::Gs232Session gs232(b.controller());
-    stream_across_north(gs232, b, "W%03.0f 010\r");
-    EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0);
+    const auto b = bench_without_lead();
+    protocol::Gs232Session gs232(b->controller());
+    stream_across_north(gs232, *b, "W%03.0f 010\r");
     // Read back in its frame: 009, not 369.
     EXPECT_NE(ask(gs232, "C\r").find("009"), std::string::npos) << ask(gs232, "C\r");
   }
@@ -264,20 +262,14 @@ TEST(ContinuityScenario, TheSameStreamThroughGs232EasycommAndWrc) {
     // Easycomm and WRC read 0..360 as a bearing on the turn nearest the
     // antenna, which agrees with the stream while the antenna keeps up; the
     // stream keeps them on its turn either way.
-    Bench b("g5500", 330.0, 10.0);
-    b.settings().set(Id::kTrackStreamLead, 0.0);
-    b.power_on();
-    protocol::EasycommSession easycomm(b.controller(), "test");
-    stream_across_north(easycomm, b, "AZ%.1f EL10.0\n");
-    EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0);
+    const auto b = bench_without_lead();
+    protocol::EasycommSession easycomm(b->controller(), "test");
+    stream_across_north(easycomm, *b, "AZ%.1f EL10.0\n");
   }
   {
-    Bench b("g5500", 330.0, 10.0);
-    b.settings().set(Id::kTrackStreamLead, 0.0);
-    b.power_on();
-    protocol::WrcSession wrc(b.controller(), "test");
-    stream_across_north(wrc, b, "AZ %.1f\n");
-    EXPECT_NEAR(b.theta(AxisId::kAz), 369.0, 2.0);
+    const auto b = bench_without_lead();
+    protocol::WrcSession wrc(b->controller(), "test");
+    stream_across_north(wrc, *b, "AZ %.1f\n");
     // WRC reads 0..360 as the bearing on the nearest turn and reports the
     // unwrapped position (docs/protocols): the rule agreed, nothing shifted.
     EXPECT_NE(ask(wrc, "AZ?\n").find("OK AZ 36"), std::string::npos) << ask(wrc, "AZ?\n");

@@ -261,13 +261,6 @@ void until_recognised(Bench& b, protocol::RotctldSession& client) {
   ASSERT_EQ(b.controller().status().mode, Mode::kTrack);
 }
 
-void settle(Bench& b) {
-  for (int i = 0; i < 200; ++i) {
-    b.run_ms(500);
-    if (!b.controller().status().moving() && !b.controller().status().az.has_target) return;
-  }
-}
-
 TEST(RecognitionScenario, ADepartingGotoEndsItAndIsObeyedLiterally) {
   Bench b("g5500", 300.0, 0.0);
   b.store_iss();
@@ -277,7 +270,7 @@ TEST(RecognitionScenario, ADepartingGotoEndsItAndIsObeyedLiterally) {
   ASSERT_EQ(ask(client, "P 180 45\n"), "RPRT 0\n");
   EXPECT_FALSE(b.recognition().active);
   EXPECT_EQ(b.recognition().ended, RecognitionEnd::kDeparted);
-  settle(b);
+  b.settle();
   EXPECT_NEAR(b.theta(AxisId::kAz), 180.0, 2.0);
   EXPECT_NEAR(b.theta(AxisId::kEl), 45.0, 2.0);
   EXPECT_NE(b.controller().status().mode, Mode::kTrack);
@@ -306,7 +299,7 @@ TEST(RecognitionScenario, StopParkAndAnotherClientEndIt) {
     until_recognised(b, client);
     ASSERT_EQ(ask(client, "K\n"), "RPRT 0\n");
     EXPECT_EQ(b.recognition().ended, RecognitionEnd::kPark);
-    settle(b);
+    b.settle();
     EXPECT_NEAR(b.theta(AxisId::kAz), 200.0, 2.0);
   }
   {
@@ -318,7 +311,7 @@ TEST(RecognitionScenario, StopParkAndAnotherClientEndIt) {
     until_recognised(b, client);
     ASSERT_EQ(ask(other, "P 100 20\n"), "RPRT 0\n");
     EXPECT_EQ(b.recognition().ended, RecognitionEnd::kOtherSource);
-    settle(b);
+    b.settle();
     EXPECT_NEAR(b.theta(AxisId::kAz), 100.0, 2.0);
   }
 }

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 
 #include "care_rig.hpp"
@@ -51,42 +52,46 @@ Burst burst_while_jogging(const char* profile, double sigma_deg, std::uint64_t s
   return b;
 }
 
+/// The worst of 20 bursts (seeds 1..20) of `sigma_deg` while jogging: each
+/// must end in SENSOR_JUMP; `each` checks a burst further.
+struct Worst {
+  double off_deg = 0.0;    // the position against the antenna, at most
+  double added_deg = 0.0;  // ... and further off than before the burst
+};
+Worst worst_of_bursts(const char* profile, const char* sensor, double sigma_deg,
+                      const std::function<void(const Burst&, std::uint64_t seed)>& each) {
+  Worst w;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const Burst b = burst_while_jogging(profile, sigma_deg, seed);
+    w.added_deg = std::max(w.added_deg, b.max_off_deg - b.before_deg);
+    EXPECT_EQ(b.fault, AxisFault::kSensorJump) << "seed " << seed;
+    each(b, seed);
+    w.off_deg = std::max(w.off_deg, b.max_off_deg);
+  }
+  std::printf(
+      "%s burst of %.0f deg rms, 20 seeds: position at most %.2f deg off the antenna, at most "
+      "%.2f deg further off than before the burst\n",
+      sensor, sigma_deg, w.off_deg, w.added_deg);
+  return w;
+}
+
 TEST(SensorFaults, ANoiseBurstMovesThePositionByLessThanTheTolerance) {
   // As the HIL scenario sensor-burst-ma3: 60 deg rms on a SPID's MA3. The
   // tolerance (az.tolerance_deg) is 1 deg; before the gate, readings within
   // az.jump_deg (15) of the last were taken and the position strayed ~4 deg.
-  double worst_deg = 0.0, worst_added_deg = 0.0;
-  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-    const Burst b = burst_while_jogging("spid", 60.0, seed);
-    worst_added_deg = std::max(worst_added_deg, b.max_off_deg - b.before_deg);
-    EXPECT_EQ(b.fault, AxisFault::kSensorJump) << "seed " << seed;
+  const Worst w = worst_of_bursts("spid", "MA3", 60.0, [](const Burst& b, std::uint64_t seed) {
     EXPECT_GE(b.fault_after_ms, 50) << "five readings in a row first";
     EXPECT_LE(b.fault_after_ms, 1500) << "seed " << seed;
-    worst_deg = std::max(worst_deg, b.max_off_deg);
-  }
-  std::printf(
-      "MA3 burst of 60 deg rms, 20 seeds: position at most %.2f deg off the antenna, at most "
-      "%.2f deg further off than before the burst\n",
-      worst_deg, worst_added_deg);
-  EXPECT_LE(worst_added_deg, 1.0);
-  EXPECT_LE(worst_deg, 1.0);
+  });
+  EXPECT_LE(w.added_deg, 1.0);
+  EXPECT_LE(w.off_deg, 1.0);
 }
 
 TEST(SensorFaults, AModerateBurstOnAPotIsHeldOffToo) {
   // 5 deg rms on a G-5500's pot (a wiper going bad): most readings miss the
   // gate; the position the controller steers by stays within the tolerance.
-  double worst_deg = 0.0, worst_added_deg = 0.0;
-  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-    const Burst b = burst_while_jogging("g5500", 5.0, seed);
-    worst_added_deg = std::max(worst_added_deg, b.max_off_deg - b.before_deg);
-    EXPECT_EQ(b.fault, AxisFault::kSensorJump) << "seed " << seed;
-    worst_deg = std::max(worst_deg, b.max_off_deg);
-  }
-  std::printf(
-      "pot burst of 5 deg rms, 20 seeds: position at most %.2f deg off the antenna, at most "
-      "%.2f deg further off than before the burst\n",
-      worst_deg, worst_added_deg);
-  EXPECT_LE(worst_added_deg, 1.0);  // az.tolerance_deg
+  const Worst w = worst_of_bursts("g5500", "pot", 5.0, [](const Burst&, std::uint64_t) {});
+  EXPECT_LE(w.added_deg, 1.0);  // az.tolerance_deg
 }
 
 /// Jogs, freezes the sensor after `run_ms`, and reports when the fault came
@@ -112,25 +117,27 @@ Freeze freeze_while_jogging(const char* profile, Millis run_ms) {
   return f;
 }
 
-TEST(SensorFaults, AFrozenPotIsASensorFaultWithinOneSecond) {
-  // As the HIL scenario sensor-stuck-pot: the stall rule alone cut the drive
-  // 3 s (az.stall_ms) after the freeze, the antenna having turned ~17 deg.
-  const Freeze f = freeze_while_jogging("g5500", 1500);
-  std::printf("frozen pot: SENSOR_STUCK %lld ms after the freeze, %.1f deg turned unseen\n",
+/// freeze_while_jogging after 1.5 s, printed as `sensor`'s: SENSOR_STUCK
+/// within a second of the freeze.
+Freeze stuck_within_a_second(const char* profile, const char* sensor) {
+  const Freeze f = freeze_while_jogging(profile, 1500);
+  std::printf("frozen %s: SENSOR_STUCK %lld ms after the freeze, %.1f deg turned unseen\n", sensor,
               static_cast<long long>(f.after_ms), f.unseen_deg);
   EXPECT_EQ(f.fault, AxisFault::kSensorStuck);
   EXPECT_GT(f.after_ms, 0);
   EXPECT_LE(f.after_ms, 1000);
+  return f;
+}
+
+TEST(SensorFaults, AFrozenPotIsASensorFaultWithinOneSecond) {
+  // As the HIL scenario sensor-stuck-pot: the stall rule alone cut the drive
+  // 3 s (az.stall_ms) after the freeze, the antenna having turned ~17 deg.
+  const Freeze f = stuck_within_a_second("g5500", "pot");
   EXPECT_LT(f.unseen_deg, 7.0);
 }
 
 TEST(SensorFaults, AFrozenMa3IsASensorFaultWithinOneSecond) {
-  const Freeze f = freeze_while_jogging("spid", 1500);
-  std::printf("frozen MA3: SENSOR_STUCK %lld ms after the freeze, %.1f deg turned unseen\n",
-              static_cast<long long>(f.after_ms), f.unseen_deg);
-  EXPECT_EQ(f.fault, AxisFault::kSensorStuck);
-  EXPECT_GT(f.after_ms, 0);
-  EXPECT_LE(f.after_ms, 1000);
+  stuck_within_a_second("spid", "MA3");
 }
 
 TEST(SensorFaults, AJamWhileTurningIsStillAStall) {

@@ -280,6 +280,15 @@ bool TcpClient::send(const std::string& bytes) {
   return true;
 }
 
+namespace {
+/// The milliseconds from now until `deadline` (not above 0 once passed).
+long long ms_left(std::chrono::steady_clock::time_point deadline) {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(deadline -
+                                                               std::chrono::steady_clock::now())
+      .count();
+}
+}  // namespace
+
 bool TcpClient::read_line(std::string& line, int timeout_ms) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
   for (;;) {
@@ -290,16 +299,7 @@ bool TcpClient::read_line(std::string& line, int timeout_ms) {
       buffer_.erase(0, lf + 1);
       return true;
     }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                          deadline - std::chrono::steady_clock::now())
-                          .count();
-    if (left <= 0) return false;
-    pollfd p{fd_, POLLIN, 0};
-    if (::poll(&p, 1, static_cast<int>(left)) <= 0) return false;
-    char buf[4096];
-    ssize_t n = ::recv(fd_, buf, sizeof(buf), 0);
-    if (n <= 0) return false;
-    buffer_.append(buf, static_cast<std::size_t>(n));
+    if (receive(ms_left(deadline)) != Received::bytes) return false;
   }
 }
 
@@ -320,17 +320,20 @@ std::string TcpClient::recv_once(int timeout_ms) {
 bool TcpClient::wait_closed(int timeout_ms) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
   for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                          deadline - std::chrono::steady_clock::now())
-                          .count();
-    if (left <= 0) return false;
-    pollfd p{fd_, POLLIN, 0};
-    if (::poll(&p, 1, static_cast<int>(left)) <= 0) return false;
-    char buf[4096];
-    ssize_t n = ::recv(fd_, buf, sizeof(buf), 0);
-    if (n <= 0) return true;
-    buffer_.append(buf, static_cast<std::size_t>(n));
+    const Received r = receive(ms_left(deadline));
+    if (r != Received::bytes) return r == Received::closed;
   }
+}
+
+TcpClient::Received TcpClient::receive(long long timeout_ms) {
+  if (timeout_ms <= 0) return Received::timeout;
+  pollfd p{fd_, POLLIN, 0};
+  if (::poll(&p, 1, static_cast<int>(timeout_ms)) <= 0) return Received::timeout;
+  char buf[4096];
+  const ssize_t n = ::recv(fd_, buf, sizeof(buf), 0);
+  if (n <= 0) return Received::closed;
+  buffer_.append(buf, static_cast<std::size_t>(n));
+  return Received::bytes;
 }
 
 bool TcpClient::closed_now() {

@@ -97,6 +97,10 @@ class TcpClient {
 
  private:
   void connect_ipv6(int port, const std::string& source);
+  enum class Received { bytes, closed, timeout };
+  /// Waits at most `timeout_ms` for bytes and appends them to buffer_ (a
+  /// failed read counts as closed).
+  Received receive(long long timeout_ms);
 
   int fd_ = -1;
   std::string buffer_;

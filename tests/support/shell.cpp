@@ -35,6 +35,18 @@ std::string body_of(const std::string& response) {
   return at == std::string::npos ? "" : response.substr(at + 4);
 }
 
+CommandOutput rotctl_once(int model, const std::string& where, const std::string& commands) {
+  return run_command("timeout 20 rotctl -m " + std::to_string(model) + " -r " + where + " " +
+                     commands);
+}
+
+std::vector<double> rotctl_position(int model, const std::string& where) {
+  const CommandOutput r = rotctl_once(model, where, "p");
+  const std::vector<double> v = numbers_in(r.out);
+  if (r.rc != 0 || v.size() != 2) return {};
+  return v;
+}
+
 std::vector<double> numbers_in(const std::string& text) {
   std::vector<double> v;
   std::istringstream in(text);

@@ -13,6 +13,12 @@ struct CommandOutput {
 /// Runs a shell command to completion.
 CommandOutput run_command(const std::string& command);
 
+/// One `rotctl -m MODEL -r WHERE COMMANDS` (Debian's Hamlib, a connection of
+/// its own), for at most 20 s.
+CommandOutput rotctl_once(int model, const std::string& where, const std::string& commands);
+/// The position through rotctl_once's `p`: {az, el}, or empty on failure.
+std::vector<double> rotctl_position(int model, const std::string& where);
+
 /// The words of `text` that are whole numbers, in order ("42.5\n-3\n" -> 42.5, -3).
 std::vector<double> numbers_in(const std::string& text);
 

@@ -392,15 +392,22 @@ TEST_F(ControllerTest, ContinuousRotatorTakesTheShortWayThroughNorth) {
   EXPECT_NEAR(status().az.position_deg, 10.0f, 1.0f);  // reported as a compass angle
 }
 
+/// Starts `r` again on its MA3, which reads `reads_deg` (a 12-bit frame),
+/// with the threshold input T1 as `beyond_360`.
+void start_on_ma3(testing::FakeRotator& r, int reads_deg, bool beyond_360) {
+  r.settings.set(Id::kAzSensor, 1);
+  r.az.t1.on = beyond_360;
+  const auto high = static_cast<std::uint32_t>(reads_deg * 4098 / 360 + 1);
+  r.az.ma3.period = {high, 4097 - high, true};
+  r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
+  r.controller->begin(0);
+}
+
 TEST(Ma3Axis, ANewZeroStaysOnTheTurnTheAxisIsOn) {
   // 0..450 rotator at 400 (MA3 reads 40, T1 on); re-zeroing by 5 deg leaves
   // it at 395, not at 35, and latches no jump fault.
   testing::FakeRotator r(false);
-  r.settings.set(Id::kAzSensor, 1);
-  r.az.t1.on = true;
-  r.az.ma3.period = {40 * 4098 / 360 + 1, 4097 - (40 * 4098 / 360 + 1), true};
-  r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
-  r.controller->begin(0);
+  start_on_ma3(r, 40, true);
   r.run_ms(50);
   ASSERT_NEAR(r.controller->status().az.position_deg, 400.0f, 0.2f);
   EXPECT_EQ(r.controller->status().az.raw_full_scale, 4096.0f);
@@ -414,17 +421,11 @@ TEST(Ma3Axis, ANewZeroStaysOnTheTurnTheAxisIsOn) {
 TEST(Ma3Axis, ThresholdInputPicksTheOverlapTurnAtStartUp) {
   // An MA3 reads 30 deg; on a 0..450 rotator that is 30 or 390. T1 says "beyond 360".
   testing::FakeRotator r(false);
-  r.settings.set(Id::kAzSensor, 1);
-  r.az.t1.on = true;
-  r.az.ma3.period = {30 * 4098 / 360 + 1, 4097 - (30 * 4098 / 360 + 1), true};
-  r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
-  r.controller->begin(0);
+  start_on_ma3(r, 30, true);
   r.controller->tick(10);
   EXPECT_NEAR(r.controller->status().az.position_deg, 390.0f, 0.2f);
 
-  r.az.t1.on = false;
-  r.controller = std::make_unique<Controller>(r.settings, r.az.io(), r.el.io());
-  r.controller->begin(0);
+  start_on_ma3(r, 30, false);
   r.controller->tick(10);
   EXPECT_NEAR(r.controller->status().az.position_deg, 30.0f, 0.2f);
 }

@@ -62,110 +62,97 @@ TEST(Ma3Decode, NoSignal) {
   EXPECT_FALSE(ma3_decode_code({100, 3997, false}, 12));
 }
 
-TEST(Ma3Sensor, ReadsDegreesWithZeroAndDirection) {
+/// A 12-bit MA3 (zero at 0, not reversed) on a fake input, as most tests
+/// start.
+struct TwelveBitMa3 {
   FakePwm pwm;
-  Ma3Sensor ma3(pwm);
-  ma3.configure(12, 0.0f, false);
-  pwm.period = frame(1024, 12);
-  PositionReading r = ma3.read(0);
+  Ma3Sensor ma3{pwm};
+  TwelveBitMa3() { ma3.configure(12, 0.0f, false); }
+  /// What the sensor reads at `t_ms` of a frame for `code`.
+  PositionReading at(int code, Millis t_ms) {
+    pwm.period = frame(code, 12);
+    return ma3.read(t_ms);
+  }
+};
+
+TEST(Ma3Sensor, ReadsDegreesWithZeroAndDirection) {
+  TwelveBitMa3 s;
+  PositionReading r = s.at(1024, 0);
   ASSERT_TRUE(r.ok);
   EXPECT_NEAR(r.deg, 90.0f, 0.01f);
   EXPECT_EQ(r.raw, 1024.0f);
 
-  ma3.configure(12, 30.0f, true);
-  r = ma3.read(10);
+  s.ma3.configure(12, 30.0f, true);
+  r = s.ma3.read(10);
   ASSERT_TRUE(r.ok);
   EXPECT_NEAR(r.deg, 240.0f, 0.01f);  // -90 - 30 wrapped
 }
 
 TEST(Ma3Sensor, APeriodThatDoesNotFitThePartIsAGlitch) {
-  FakePwm pwm;
-  Ma3Sensor ma3(pwm);
-  ma3.configure(12, 0.0f, false);
-  pwm.period = frame(2000, 12);
-  ASSERT_TRUE(ma3.read(0).ok);
+  TwelveBitMa3 s;
+  ASSERT_TRUE(s.at(2000, 0).ok);
   // A noise edge split the frame: a short "period" with a plausible-looking duty.
-  pwm.period = {500, 500, true};
-  PositionReading r = ma3.read(10);
+  s.pwm.period = {500, 500, true};
+  PositionReading r = s.ma3.read(10);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.fault, SensorFault::kImplausible);
-  EXPECT_EQ(ma3.last_reject(), Ma3Reject::kBadPeriod);
+  EXPECT_EQ(s.ma3.last_reject(), Ma3Reject::kBadPeriod);
   // Two frames merged.
-  pwm.period = {2001, 6193, true};
-  EXPECT_FALSE(ma3.read(20).ok);
-  pwm.period = frame(2001, 12);
-  EXPECT_TRUE(ma3.read(30).ok);
+  s.pwm.period = {2001, 6193, true};
+  EXPECT_FALSE(s.ma3.read(20).ok);
+  EXPECT_TRUE(s.at(2001, 30).ok);
 }
 
 TEST(Ma3Sensor, AWrongBitsSettingIsRefusedNotMisread) {
   // A 10-bit part (1025 us) configured as 12-bit would read a wrong angle
   // forever; its period gives it away.
-  FakePwm pwm;
-  Ma3Sensor ma3(pwm);
-  ma3.configure(12, 0.0f, false);
-  pwm.period = frame(512, 10);
-  EXPECT_FALSE(ma3.read(0).ok);
-  EXPECT_EQ(ma3.last_reject(), Ma3Reject::kBadPeriod);
-  ma3.configure(10, 0.0f, false);
-  const PositionReading r = ma3.read(10);
+  TwelveBitMa3 s;
+  s.pwm.period = frame(512, 10);
+  EXPECT_FALSE(s.ma3.read(0).ok);
+  EXPECT_EQ(s.ma3.last_reject(), Ma3Reject::kBadPeriod);
+  s.ma3.configure(10, 0.0f, false);
+  const PositionReading r = s.ma3.read(10);
   ASSERT_TRUE(r.ok);
   EXPECT_NEAR(r.deg, 180.0f, 0.01f);
 }
 
 TEST(Ma3Sensor, ASingleCorruptedPeriodNeverMovesTheAngle) {
-  FakePwm pwm;
-  Ma3Sensor ma3(pwm);
-  ma3.configure(12, 0.0f, false);
-  pwm.period = frame(1000, 12);
-  ASSERT_TRUE(ma3.read(0).ok);
-  pwm.period = frame(3000, 12);  // one bad frame, right length
-  EXPECT_FALSE(ma3.read(10).ok);
-  EXPECT_EQ(ma3.last_reject(), Ma3Reject::kUnconfirmed);
-  pwm.period = frame(1001, 12);  // back where it was: accepted at once
-  const PositionReading r = ma3.read(20);
+  TwelveBitMa3 s;
+  ASSERT_TRUE(s.at(1000, 0).ok);
+  EXPECT_FALSE(s.at(3000, 10).ok);  // one bad frame, right length
+  EXPECT_EQ(s.ma3.last_reject(), Ma3Reject::kUnconfirmed);
+  const PositionReading r = s.at(1001, 20);  // back where it was: accepted at once
   ASSERT_TRUE(r.ok);
   EXPECT_EQ(r.raw, 1001.0f);
 }
 
 TEST(Ma3Sensor, ARealJumpIsTakenWhenTheNextPeriodConfirmsIt) {
-  FakePwm pwm;
-  Ma3Sensor ma3(pwm);
-  ma3.configure(12, 0.0f, false);
-  pwm.period = frame(1000, 12);
-  ASSERT_TRUE(ma3.read(0).ok);
-  pwm.period = frame(3000, 12);
-  EXPECT_FALSE(ma3.read(10).ok);
-  pwm.period = frame(3003, 12);
-  const PositionReading r = ma3.read(20);
+  TwelveBitMa3 s;
+  ASSERT_TRUE(s.at(1000, 0).ok);
+  EXPECT_FALSE(s.at(3000, 10).ok);
+  const PositionReading r = s.at(3003, 20);
   ASSERT_TRUE(r.ok);
   EXPECT_EQ(r.raw, 3003.0f);
 }
 
 TEST(Ma3Sensor, NorthIsASmallStepNotAJump) {
-  FakePwm pwm;
-  Ma3Sensor ma3(pwm);
-  ma3.configure(12, 0.0f, false);
+  TwelveBitMa3 s;
   int code = 4080;
   for (Millis t = 0; t < 400; t += 10) {  // 4080 .. 4095, 0 .. 23
-    pwm.period = frame(code, 12);
-    const PositionReading r = ma3.read(t);
+    const PositionReading r = s.at(code, t);
     ASSERT_TRUE(r.ok) << code;
     code = (code + 1) % 4096;
   }
 }
 
 TEST(Ma3Sensor, LossThenReturnStartsAfresh) {
-  FakePwm pwm;
-  Ma3Sensor ma3(pwm);
-  ma3.configure(12, 0.0f, false);
-  pwm.period = frame(1000, 12);
-  ASSERT_TRUE(ma3.read(0).ok);
-  pwm.period.valid = false;
-  const PositionReading lost = ma3.read(10);
+  TwelveBitMa3 s;
+  ASSERT_TRUE(s.at(1000, 0).ok);
+  s.pwm.period.valid = false;
+  const PositionReading lost = s.ma3.read(10);
   EXPECT_FALSE(lost.ok);
   EXPECT_EQ(lost.fault, SensorFault::kNoSignal);
-  pwm.period = frame(3000, 12);  // re-plugged elsewhere: no confirmation needed
-  EXPECT_TRUE(ma3.read(20).ok);
+  EXPECT_TRUE(s.at(3000, 20).ok);  // re-plugged elsewhere: no confirmation needed
 }
 
 }  // namespace

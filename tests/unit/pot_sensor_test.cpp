@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <vector>
 
 #include "sensors/pot_calibration.hpp"
@@ -49,13 +50,17 @@ TEST(PotCalibration, ReversedPotWithFallingCounts) {
   EXPECT_FLOAT_EQ(cal.to_deg(2050.0f), 225.0f);
 }
 
-TEST(PotCalibration, MultiPointInterpolatesEachSegment) {
-  // A pot that is steep at first, then flat: 0 deg at 200, 90 at 1200, 450 at 3600.
+/// A calibration table of `points` ({counts, deg}), in their order.
+PotCalibration table(std::initializer_list<std::array<float, 2>> points) {
   PotCalibration cal;
   cal.count = 0;
-  cal.add(200.0f, 0.0f);
-  cal.add(1200.0f, 90.0f);
-  cal.add(3600.0f, 450.0f);
+  for (const auto& [counts, deg] : points) cal.add(counts, deg);
+  return cal;
+}
+
+TEST(PotCalibration, MultiPointInterpolatesEachSegment) {
+  // A pot that is steep at first, then flat: 0 deg at 200, 90 at 1200, 450 at 3600.
+  const PotCalibration cal = table({{200.0f, 0.0f}, {1200.0f, 90.0f}, {3600.0f, 450.0f}});
   ASSERT_TRUE(cal.valid());
   EXPECT_FLOAT_EQ(cal.to_deg(700.0f), 45.0f);    // first segment: 0.09 deg/count
   EXPECT_FLOAT_EQ(cal.to_deg(1200.0f), 90.0f);   // at the knee
@@ -65,23 +70,16 @@ TEST(PotCalibration, MultiPointInterpolatesEachSegment) {
 }
 
 TEST(PotCalibration, MultiPointWithFallingCounts) {
-  PotCalibration cal;
-  cal.count = 0;
-  cal.add(3600.0f, 0.0f);
-  cal.add(2400.0f, 100.0f);
-  cal.add(1000.0f, 180.0f);
+  const PotCalibration cal = table({{3600.0f, 0.0f}, {2400.0f, 100.0f}, {1000.0f, 180.0f}});
   ASSERT_TRUE(cal.valid());
   EXPECT_FLOAT_EQ(cal.to_deg(3000.0f), 50.0f);
   EXPECT_FLOAT_EQ(cal.to_deg(1700.0f), 140.0f);
 }
 
 TEST(PotCalibration, NonMonotonicTablesAreRejected) {
-  PotCalibration cal;
-  cal.count = 0;
-  cal.add(200.0f, 0.0f);
-  cal.add(1200.0f, 90.0f);
-  cal.add(1100.0f, 180.0f);  // counts turn back
-  cal.add(3600.0f, 450.0f);
+  // The third point's counts turn back.
+  PotCalibration cal =
+      table({{200.0f, 0.0f}, {1200.0f, 90.0f}, {1100.0f, 180.0f}, {3600.0f, 450.0f}});
   EXPECT_EQ(cal.first_bad_point(), 2);
   cal.points[2] = {2000.0f, 80.0f};  // degrees turn back
   EXPECT_EQ(cal.first_bad_point(), 2);
@@ -184,42 +182,46 @@ TEST(PotFilter, OffPassesReadingsUnchanged) {
   EXPECT_FLOAT_EQ(f.step(1000.0f, 30), 1000.0f);
 }
 
-TEST(PotSensor, OversamplesCalibratesAndFilters) {
+/// A pot of 100..4000 counts for 0..450 deg on the scripted ADC, its
+/// readings filtered as `filter` says.
+struct Pot450 {
   ScriptedAdc adc;
-  PotSensor pot(adc);
-  pot.configure(PotCalibration::two_point(100.0f, 0.0f, 4000.0f, 450.0f), {4, true, 0});
-  adc.script = {2050, 2049, 2051, 2050};
-  PositionReading r = pot.read(0);
+  PotSensor pot{adc};
+  explicit Pot450(PotFilterConfig filter) {
+    pot.configure(PotCalibration::two_point(100.0f, 0.0f, 4000.0f, 450.0f), filter);
+  }
+};
+
+TEST(PotSensor, OversamplesCalibratesAndFilters) {
+  Pot450 p({4, true, 0});
+  p.adc.script = {2050, 2049, 2051, 2050};
+  PositionReading r = p.pot.read(0);
   ASSERT_TRUE(r.ok);
   EXPECT_NEAR(r.deg, 225.0f, 0.01f);
-  EXPECT_EQ(adc.next, 4u);  // exactly pot_samples conversions per reading
+  EXPECT_EQ(p.adc.next, 4u);  // exactly pot_samples conversions per reading
   EXPECT_NEAR(r.raw, 2050.0f, 0.01f);
 }
 
 TEST(PotSensor, OpenWiperIsOutOfRangeAndRecoversWithoutDrag) {
-  ScriptedAdc adc;
-  PotSensor pot(adc);
-  pot.configure(PotCalibration::two_point(100.0f, 0.0f, 4000.0f, 450.0f), {8, true, 200});
-  adc.hold(1000);
-  for (Millis t = 0; t < 100; t += 10) pot.read(t);
-  adc.hold(0);
-  const PositionReading open = pot.read(100);
+  Pot450 p({8, true, 200});
+  p.adc.hold(1000);
+  for (Millis t = 0; t < 100; t += 10) p.pot.read(t);
+  p.adc.hold(0);
+  const PositionReading open = p.pot.read(100);
   EXPECT_FALSE(open.ok);
   EXPECT_EQ(open.fault, SensorFault::kOutOfRange);
   // Back at another place: the filters start afresh instead of sliding from 1000.
-  adc.hold(3000);
-  const PositionReading back = pot.read(110);
+  p.adc.hold(3000);
+  const PositionReading back = p.pot.read(110);
   ASSERT_TRUE(back.ok);
   EXPECT_NEAR(back.raw, 3000.0f, 0.01f);
 }
 
 TEST(PotSensor, SamplesAreClampedToTheBuffer) {
-  ScriptedAdc adc;
-  PotSensor pot(adc);
-  pot.configure(PotCalibration::two_point(100.0f, 0.0f, 4000.0f, 450.0f), {1000, false, 0});
-  adc.hold(2050);
-  EXPECT_TRUE(pot.read(0).ok);
-  EXPECT_EQ(adc.next, static_cast<std::size_t>(PotFilterConfig::kMaxSamples));
+  Pot450 p({1000, false, 0});
+  p.adc.hold(2050);
+  EXPECT_TRUE(p.pot.read(0).ok);
+  EXPECT_EQ(p.adc.next, static_cast<std::size_t>(PotFilterConfig::kMaxSamples));
 }
 
 }  // namespace

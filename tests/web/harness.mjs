@@ -6,6 +6,7 @@ import http from 'node:http';
 import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
+import { after, before } from 'node:test';
 import { chromium } from 'playwright-core';
 
 export const ROTORD = process.env.ROTORD ?? path.resolve(import.meta.dirname, '../../build/rotord');
@@ -191,4 +192,27 @@ export async function until(fn, { timeout = 15000, interval = 100, what = 'condi
 
 export function cleanup(dir) {
   rmSync(dir, { recursive: true, force: true });
+}
+
+/**
+ * A test file's one rotord (options as for Rotord, its settings file in a
+ * fresh temporary folder) and one browser: started before the file's first
+ * test, stopped after its last. `ready(rotord)` runs once the daemon is up,
+ * before the browser starts. Returns { rotord, browser, dir }, filled in by
+ * then.
+ */
+export function rotordAndBrowser(options = {}, ready = async () => {}) {
+  const run = {};
+  before(async () => {
+    run.dir = tempDir();
+    run.rotord = await new Rotord({ configPath: path.join(run.dir, 'settings.json'), ...options }).start();
+    await ready(run.rotord);
+    run.browser = await launchBrowser();
+  });
+  after(async () => {
+    if (run.browser) await run.browser.close();
+    if (run.rotord) await run.rotord.stop();
+    cleanup(run.dir);
+  });
+  return run;
 }

@@ -5,29 +5,16 @@
 // a login; logging out ends the session; the control lock shows who has it.
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 
 import {
-  ARTIFACTS, cleanup, launchBrowser, openPage, request, Rotord, screenshot, tempDir, until,
+  ARTIFACTS, openPage, request, rotordAndBrowser, screenshot, until,
 } from './harness.mjs';
 
 const PASSWORD = 'correct horse battery';
-let browser;
-let dir;
-let rotord;
-
-before(async () => {
-  dir = tempDir();
-  rotord = await new Rotord({ configPath: path.join(dir, 'settings.json') }).start();
+const run = rotordAndBrowser({}, async (rotord) => {
   // Off by default: one call turns it on.
   assert.equal((await rotord.post('/api/password', { password: PASSWORD })).status, 200);
-  browser = await launchBrowser();
-});
-
-after(async () => {
-  if (browser) await browser.close();
-  if (rotord) await rotord.stop();
-  cleanup(dir);
 });
 
 async function logIn(page, password) {
@@ -35,11 +22,11 @@ async function logIn(page, password) {
   await page.click('#submit');
 }
 
-// A fresh browser (no device cookie) shares the strangers' budget of
+// A fresh run.browser (no device cookie) shares the strangers' budget of
 // checked guesses (10 a minute, docs/security.md): the tests before this one
 // may have spent it, so the owner waits as a person would and tries again.
 async function logInAsOwner(page) {
-  // The guess budget refills on the daemon's wall clock (this rotord has no
+  // The guess budget refills on the daemon's wall clock (this run.rotord has no
   // manual clock): until() retries a second apart, as a person would, until
   // the login succeeds; the pace never decides the result.
   await until(async () => {
@@ -58,10 +45,10 @@ async function logInAsOwner(page) {
 }
 
 test('a page asked for without a login goes to the login page; STOP works there', async () => {
-  const page = await openPage(browser, rotord.url + '/settings.html');
+  const page = await openPage(run.browser, run.rotord.url + '/settings.html');
   assert.equal(new URL(page.url()).pathname, '/login.html');
-  assert.equal((await request(rotord.url + '/api/status')).status, 401);
-  assert.equal((await rotord.post('/api/goto', { az: 200 })).status, 401);
+  assert.equal((await request(run.rotord.url + '/api/status')).status, 401);
+  assert.equal((await run.rotord.post('/api/goto', { az: 200 })).status, 401);
   await page.click('#stop');
   await until(async () => (await page.textContent('#msg')) === 'stopped', { what: 'stopped' });
   await screenshot(page, 'login.png');
@@ -70,12 +57,12 @@ test('a page asked for without a login goes to the login page; STOP works there'
 });
 
 test('a wrong password is refused on the page; the right one opens the control page', async () => {
-  const page = await openPage(browser, rotord.url + '/');
+  const page = await openPage(run.browser, run.rotord.url + '/');
   await logIn(page, 'not the password');
   await until(async () => (await page.textContent('#msg')) === 'wrong password', { what: 'refusal' });
   assert.equal(new URL(page.url()).pathname, '/login.html');
   await logIn(page, PASSWORD);
-  await page.waitForURL(rotord.url + '/');
+  await page.waitForURL(run.rotord.url + '/');
   await page.waitForSelector('#conn.live');
   const [cookie] = await page.context().cookies();
   assert.equal(cookie.name, 'rotord_session');
@@ -91,15 +78,15 @@ test('a wrong password is refused on the page; the right one opens the control p
 });
 
 test('the control lock: taken on the page, others are read-only, released on the page', async () => {
-  const page = await openPage(browser, rotord.url + '/');
+  const page = await openPage(run.browser, run.rotord.url + '/');
   await logInAsOwner(page);
   await page.waitForSelector('#conn.live');
   await until(async () => page.isVisible('#lock-button'), { what: 'lock button' });
   await page.click('#lock-button');
   await until(async () => (await page.textContent('#lock-info')).startsWith('you have control'),
     { what: 'lock taken' });
-  // A second browser, logged in too, is read-only while the first holds it.
-  const other = await openPage(browser, rotord.url + '/');
+  // A second run.browser, logged in too, is read-only while the first holds it.
+  const other = await openPage(run.browser, run.rotord.url + '/');
   await logInAsOwner(other);
   await other.waitForSelector('#conn.live');
   await until(async () => (await other.textContent('#lock-info')).startsWith('locked by web session'),
@@ -117,21 +104,21 @@ test('the control lock: taken on the page, others are read-only, released on the
 });
 
 test('logging out ends the session', async () => {
-  const page = await openPage(browser, rotord.url + '/');
+  const page = await openPage(run.browser, run.rotord.url + '/');
   await logInAsOwner(page);
   await page.waitForSelector('#conn.live');
   await page.click('#logout');
-  await page.waitForURL(rotord.url + '/login.html');
+  await page.waitForURL(run.rotord.url + '/login.html');
   const status = await page.evaluate(() => fetch('/api/status').then((r) => r.status));
   assert.equal(status, 401);
   await page.context().close();
 });
 
 test('the settings page makes a token, shows it once, and lists it by name', async () => {
-  const page = await openPage(browser, rotord.url + '/');
+  const page = await openPage(run.browser, run.rotord.url + '/');
   await logInAsOwner(page);
   await page.waitForSelector('#conn.live');
-  await page.goto(rotord.url + '/settings.html');
+  await page.goto(run.rotord.url + '/settings.html');
   await page.waitForSelector('#token-create');
   // The hashes are not form fields.
   assert.equal(await page.locator('[data-key="web.password"]').count(), 0);
@@ -148,7 +135,7 @@ test('the settings page makes a token, shows it once, and lists it by name', asy
   // It works from a script, read-only; the page never shows it again.
   const status = await new Promise((resolve) => {
     import('node:http').then(({ default: http }) => {
-      http.get(rotord.url + '/api/status', { headers: { Authorization: `Bearer ${token}` } },
+      http.get(run.rotord.url + '/api/status', { headers: { Authorization: `Bearer ${token}` } },
         (res) => { res.resume(); resolve(res.statusCode); });
     });
   });

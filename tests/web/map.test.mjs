@@ -7,10 +7,9 @@
 // so the Sun and the Moon are where they were then, and nothing moves
 // unless the test advances time. Screenshots go to the test artifacts.
 import assert from 'node:assert/strict';
-import path from 'node:path';
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 
-import { cleanup, launchBrowser, openPage, Rotord, screenshot, tempDir, until } from './harness.mjs';
+import { openPage, rotordAndBrowser, screenshot, until } from './harness.mjs';
 
 const D = Math.PI / 180;
 const PHONE = { width: 390, height: 844 };
@@ -40,29 +39,11 @@ function greatCircle(a, b) {
 const wrap = (v) => ((v % 360) + 360) % 360;
 const angleDiff = (a, b) => Math.abs(((a - b + 540) % 360) - 180);
 
-let browser;
-let dir;
-let rotord;
-
-before(async () => {
-  dir = tempDir();
-  rotord = await new Rotord({
-    configPath: path.join(dir, 'settings.json'),
-    clock: 'manual',
-    extraArgs: ['--utc-start', '2026-06-21T12:00:00Z'],
-  }).start();
-  browser = await launchBrowser();
-});
-
-after(async () => {
-  if (browser) await browser.close();
-  if (rotord) await rotord.stop();
-  cleanup(dir);
-});
+const run = rotordAndBrowser({ clock: 'manual', extraArgs: ['--utc-start', '2026-06-21T12:00:00Z'] });
 
 async function station(loc) {
   const c = locatorCentre(loc);
-  const r = await rotord.post('/api/settings', { 'station.lat_deg': c.lat, 'station.lon_deg': c.lon });
+  const r = await run.rotord.post('/api/settings', { 'station.lat_deg': c.lat, 'station.lon_deg': c.lon });
   assert.equal(r.status, 200, JSON.stringify(r.body));
   return c;
 }
@@ -74,13 +55,13 @@ async function disc(page) {
 }
 
 async function openMap(size, url = '/map.html') {
-  const page = await openPage(browser, rotord.url + url, size);
+  const page = await openPage(run.browser, run.rotord.url + url, size);
   await page.waitForSelector('#map[data-ready="1"]');
   return page;
 }
 
 async function azTarget() {
-  const s = await rotord.status();
+  const s = await run.rotord.status();
   return s.az.target_deg;
 }
 
@@ -110,7 +91,7 @@ for (const size of [PHONE, DESKTOP]) {
 
   test(`a click on a city shows its bearing first, then turns there (${size.width} px)`, async () => {
     const home = await station('JO62QM');
-    await rotord.post('/api/stop');
+    await run.rotord.post('/api/stop');
     const page = await openMap(size);
     const city = size.width < 500 ? { name: 'Tokyo', lat: 35.6762, lon: 139.6503 }
       : { name: 'New York', lat: 40.7128, lon: -74.006 };
@@ -139,14 +120,14 @@ for (const size of [PHONE, DESKTOP]) {
     // The target line at once; the beam line and its wedge once the antenna has turned.
     await until(async () => (await page.getAttribute('#map .map-target', 'visibility')) === 'visible',
       { what: 'target line' });
-    await rotord.advance(120000);
+    await run.rotord.advance(120000);
     const beamAt = async () => {
       const m = /rotate\(([-\d.e]+)\)/.exec((await page.getAttribute('#map .map-beam', 'transform')) || '');
       return m && angleDiff(wrap(Number(m[1])), g.bearing + 180) < 1.5;
     };
     await until(beamAt, { what: 'the beam line on the long path' });
     await screenshot(page, `map-turned-${size.width}.png`);
-    await rotord.post('/api/stop');
+    await run.rotord.post('/api/stop');
     assert.deepEqual(page.errors, []);
     await page.context().close();
   });
@@ -154,8 +135,8 @@ for (const size of [PHONE, DESKTOP]) {
 
 test('the control page turns to a locator after showing its bearing', async () => {
   const home = await station('JO62QM');
-  await rotord.post('/api/stop');
-  const page = await openPage(browser, rotord.url + '/', PHONE);
+  await run.rotord.post('/api/stop');
+  const page = await openPage(run.browser, run.rotord.url + '/', PHONE);
   await page.fill('#place-text', 'FN31PR');
   await page.click('#place-show');
   const g = greatCircle(home, locatorCentre('FN31PR'));
@@ -169,12 +150,12 @@ test('the control page turns to a locator after showing its bearing', async () =
   await page.fill('#place-text', 'JO6');
   await page.click('#place-show');
   await until(async () => /4, 6, 8 or 10/.test(await page.textContent('#place-out')), { what: 'refusal' });
-  await rotord.post('/api/stop');
+  await run.rotord.post('/api/stop');
   await page.context().close();
 });
 
 test('presets are one tap each and survive a restart', async () => {
-  let page = await openPage(browser, rotord.url + '/', DESKTOP);
+  let page = await openPage(run.browser, run.rotord.url + '/', DESKTOP);
   await page.click('details summary');
   for (const [name, az, lp] of [['EU', '45', false], ['JA LP', '150', true]]) {
     await page.fill('#preset-name', name);
@@ -188,15 +169,15 @@ test('presets are one tap each and survive a restart', async () => {
   assert.equal(await page.isVisible('#pick-short'), false);
   await screenshot(page, 'control-map-1280.png');
   await page.context().close();
-  await rotord.stop();
-  await rotord.start();
-  page = await openPage(browser, rotord.url + '/', PHONE);
+  await run.rotord.stop();
+  await run.rotord.start();
+  page = await openPage(run.browser, run.rotord.url + '/', PHONE);
   await page.waitForSelector('#presets button[data-name="JA LP"]');
   assert.equal(await page.textContent('#presets button[data-name="JA LP"]'), 'JA LP 150° LP');
   await screenshot(page, 'control-presets-390.png');
   await page.tap('#presets button[data-name="EU"]');
   await until(async () => angleDiff(wrap(await azTarget()), 45) < 0.01, { what: 'EU 45' });
-  await rotord.post('/api/stop');
+  await run.rotord.post('/api/stop');
   assert.deepEqual(page.errors, []);
   await page.context().close();
 });

@@ -130,10 +130,12 @@ for (const [width, height] of [[390, 844], [1280, 900]]) {
     assert.match(await page.textContent('#unsaved'), /^1 unsaved$/);
     assert.ok(await inView(page, '#save'), 'Save is in reach');
     await page.click('#save');
-    await until(async () => /saved/.test(await page.textContent('#msg')), { what: 'saved' });
+    // Not /saved/: the refusal above ("not saved: ...") is still shown until
+    // the save's answer replaces it; the page reloads the values after it.
+    await until(async () => /^saved/.test(await page.textContent('#msg')), { what: 'saved' });
     assert.ok(await inView(page, '#msg'), 'the result is in view');
     assert.ok(await inView(page, parkField), 'the page did not jump away');
-    assert.equal(await page.textContent('#unsaved'), '');
+    await until(async () => (await page.textContent('#unsaved')) === '', { what: 'nothing unsaved once reloaded' });
     assert.doesNotMatch(await row(page, park).getAttribute('class'), /changed/);
     assert.equal((await request(rotord.url + '/api/settings')).body[park], 5);
     await screenshot(page, `settings-words-saved-${width}x${height}.png`);
