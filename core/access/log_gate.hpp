@@ -8,7 +8,9 @@
 // budget). One gate serves the whole process: on Linux every line of the
 // daemon's log goes through it (ports/linux/log.hpp), on the Pico W the
 // web's; the web's access log shares it (web/web_auth.hpp,
-// docs/security.md, "Logs"). Fixed storage, no heap.
+// docs/security.md, "Logs"). The command log keeps its own budget of lines
+// with one more, whole lines only (command/command_log.hpp). Fixed storage,
+// no heap.
 #include <array>
 #include <cstddef>
 #include <cstdint>
