@@ -82,13 +82,13 @@ void CommandLog::poll(Millis now) {
   for (Repeat& r : repeats_)
     if (r.used && now - r.since >= kWindowMs) sum_up(r);
   now_ = now;
-  if (const access::LogGate::Summary over = budget_.next_due(now); over.count > 0)
+  if (const std::uint32_t over = budget_.take_over(now); over > 0)
     write("%lu more command lines in the last minute, over the command log's budget",
-          static_cast<unsigned long>(over.count));
+          static_cast<unsigned long>(over));
 }
 
 void CommandLog::write(const char* format, ...) {
-  if (!budget_.admit_line(now_)) return;
+  if (!budget_.admit(now_)) return;
   char line[176];
   std::va_list args;
   va_start(args, format);
