@@ -11,31 +11,13 @@ bool same(const Peer& a, const Peer& b) {
 
 }  // namespace
 
-void LogGate::roll(Millis now) {
-  if (!started_) {
-    started_ = true;
-    window_start_ = now;
-  }
-  if (now - window_start_ < kWindowMs) return;
-  window_start_ = now;
-  lines_ = 0;
-  dropped_ += dropping_;
-  dropping_ = 0;
-}
-
 bool LogGate::admit_line(Millis now) {
-  roll(now);
-  if (lines_ >= lines_per_window_) {
-    ++dropping_;
-    return false;
-  }
-  ++lines_;
-  return true;
+  return budget_.admit(now);
 }
 
 bool LogGate::admit(const Peer& source, Millis now, Summary& evicted) {
   evicted = {};
-  roll(now);
+  budget_.roll(now);
   Entry* slot = nullptr;
   for (Entry& e : entries_) {
     if (e.used && same(e.source, source)) slot = &e;
@@ -60,7 +42,7 @@ bool LogGate::admit(const Peer& source, Millis now, Summary& evicted) {
     if (admit_line(now)) {
       evicted = {slot->source, slot->quiet};
     } else {
-      dropping_ += slot->quiet - 1;  // admit_line counted one
+      budget_.count_over(slot->quiet - 1);  // admit_line counted one
     }
   }
   *slot = Entry{true, source, now, 0};
@@ -68,19 +50,14 @@ bool LogGate::admit(const Peer& source, Millis now, Summary& evicted) {
 }
 
 LogGate::Summary LogGate::next_due(Millis now) {
-  roll(now);
+  budget_.roll(now);
   for (Entry& e : entries_) {
     if (!e.used || e.quiet == 0 || now - e.since < kWindowMs) continue;
     const Summary s{e.source, e.quiet};
     e.quiet = 0;
     return s;
   }
-  if (dropped_ > 0) {
-    const Summary s{Peer{}, dropped_};
-    dropped_ = 0;
-    return s;
-  }
-  return {};
+  return {Peer{}, budget_.take_over(now)};
 }
 
 const char* LogGate::summary_text(const Summary& s, char* out, std::size_t size) {

@@ -8,11 +8,13 @@
 // budget). One gate serves the whole process: on Linux every line of the
 // daemon's log goes through it (ports/linux/log.hpp), on the Pico W the
 // web's; the web's access log shares it (web/web_auth.hpp,
-// docs/security.md, "Logs"). Fixed storage, no heap.
+// docs/security.md, "Logs"). Its budget is a LineBudget (line_budget.hpp),
+// as the command log's is. Fixed storage, no heap.
 #include <array>
 #include <cstddef>
 #include <cstdint>
 
+#include "access/line_budget.hpp"
 #include "access/peer.hpp"
 #include "util/time.hpp"
 
@@ -20,12 +22,11 @@ namespace rotord::access {
 
 class LogGate {
  public:
-  static constexpr Millis kWindowMs = 60000;
+  static constexpr Millis kWindowMs = LineBudget::kWindowMs;
   /// A web access log of its own (the Pico W's, a test's).
   static constexpr unsigned kLinesPerWindow = 30;
 
-  explicit LogGate(unsigned lines_per_window = kLinesPerWindow)
-      : lines_per_window_(lines_per_window) {}
+  explicit LogGate(unsigned lines_per_window = kLinesPerWindow) : budget_(lines_per_window) {}
   /// Sources followed at once; one more takes the place of the oldest (its
   /// count is summed up then).
   static constexpr std::size_t kSources = 8;
@@ -59,15 +60,9 @@ class LogGate {
     Millis since = 0;  ///< its minute began (its first line written)
     std::uint32_t quiet = 0;
   };
-  void roll(Millis now);
 
-  unsigned lines_per_window_;
+  LineBudget budget_;
   std::array<Entry, kSources> entries_{};
-  Millis window_start_ = 0;
-  bool started_ = false;
-  unsigned lines_ = 0;          ///< written in this window
-  std::uint32_t dropped_ = 0;   ///< over the budget in the last window
-  std::uint32_t dropping_ = 0;  ///< over the budget in this window
 };
 
 }  // namespace rotord::access

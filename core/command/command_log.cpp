@@ -77,25 +77,18 @@ void CommandLog::sum_up(Repeat& r) {
 }
 
 void CommandLog::poll(Millis now) {
-  now_ = now;
+  // The repeats due are summed up in the minute that ends with them, then
+  // the budget's minute rolls and says what it held back.
   for (Repeat& r : repeats_)
     if (r.used && now - r.since >= kWindowMs) sum_up(r);
-  if (now - window_start_ < kWindowMs) return;
-  const std::uint32_t dropped = dropped_;
-  window_start_ = now;
-  lines_ = 0;
-  dropped_ = 0;
-  if (dropped > 0)
+  now_ = now;
+  if (const std::uint32_t over = budget_.take_over(now); over > 0)
     write("%lu more command lines in the last minute, over the command log's budget",
-          static_cast<unsigned long>(dropped));
+          static_cast<unsigned long>(over));
 }
 
 void CommandLog::write(const char* format, ...) {
-  if (lines_ >= kLinesPerWindow) {
-    ++dropped_;
-    return;
-  }
-  ++lines_;
+  if (!budget_.admit(now_)) return;
   char line[176];
   std::va_list args;
   va_start(args, format);

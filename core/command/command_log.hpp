@@ -15,12 +15,15 @@
 // streams go-tos writes two lines a minute, whatever its rate. Four such
 // repeats are followed at once (a fifth's arrival sums up the oldest), and
 // the whole command log writes at most kLinesPerWindow lines a minute, the
-// rest counted in one line. Fixed storage, no heap: it runs on the Pico W.
+// rest counted in one line: that budget is an access::LineBudget of its
+// own, the arithmetic every log gate of the process keeps its budget with.
+// Fixed storage, no heap: it runs on the Pico W.
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <string_view>
 
+#include "access/line_budget.hpp"
 #include "rotator/controller.hpp"
 #include "util/byte_sink.hpp"
 #include "util/time.hpp"
@@ -51,11 +54,13 @@ void told(Controller& controller, const Origin& from, std::string_view what,
 /// "rotord: " on the Pico W).
 class CommandLog final : public CommandJournal {
  public:
-  static constexpr Millis kWindowMs = 60000;
+  static constexpr Millis kWindowMs = access::LineBudget::kWindowMs;
   static constexpr unsigned kLinesPerWindow = 30;
   static constexpr std::size_t kRepeats = 4;
 
-  explicit CommandLog(ByteSink& out) : out_(out) {}
+  /// The budget's minutes are counted from the clock's 0, as the repeats'
+  /// are (a budget's first minute begins at its first line otherwise).
+  explicit CommandLog(ByteSink& out) : out_(out) { budget_.roll(0); }
   void record(const CommandEntry& entry) override;
   /// The port's clock: the summaries that are due are written now. Call
   /// every pass of the port's loop.
@@ -78,10 +83,10 @@ class CommandLog final : public CommandJournal {
 
   ByteSink& out_;
   std::array<Repeat, kRepeats> repeats_{};
+  /// The last poll's time: a line counts in the budget's minute of then,
+  /// the repeats summed up at a minute's end included.
   Millis now_ = 0;
-  Millis window_start_ = 0;
-  unsigned lines_ = 0;
-  std::uint32_t dropped_ = 0;
+  access::LineBudget budget_{kLinesPerWindow};
 };
 
 }  // namespace rotord::command

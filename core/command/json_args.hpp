@@ -6,20 +6,14 @@
 #include <string_view>
 
 #include "command/result.hpp"
+#include "json/json_members.hpp"
 #include "json/json_reader.hpp"
 
 namespace rotord::command {
 
-/// One member of a small command body, checked against what the command takes.
-struct Member {
-  Member(const char* member_name, web::JsonType member_type)
-      : name(member_name), type(member_type) {}
-  const char* name;
-  web::JsonType type;
-  bool present = false;
-  web::JsonValue value;
-  char text_copy[16] = {};
-};
+/// One member of a small command body, checked against what the command
+/// takes (read by the one loop every small body is read with).
+using Member = web::JsonMember;
 
 /// Reads `body` (empty = {}) into `members`; false with `refusal` a 400 on
 /// bad JSON, an unknown member or a member of the wrong type. (The caller's

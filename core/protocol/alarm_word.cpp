@@ -2,21 +2,23 @@
 
 namespace rotord::protocol {
 
-const char* alarm_word(Error e) {
+const char* refusal_word(Error e, const RefusalWords& words) {
   switch (e) {
-    case Error::kOutOfRange:
-      return "RANGE";
     case Error::kFaulted:
-      return "FAULT";
     case Error::kLimit:
-      return "LIMIT";
     case Error::kStowed:
-      return "STOWED";
+      return error_name(e);
+    case Error::kOutOfRange:
+      return words.out_of_range;
     case Error::kNotSupported:
-      return "UNSUPPORTED";
+      return words.not_supported;
     default:
-      return "SYNTAX";
+      return words.other;
   }
+}
+
+const char* alarm_word(Error e) {
+  return refusal_word(e, {"RANGE", "UNSUPPORTED", "SYNTAX"});
 }
 
 }  // namespace rotord::protocol

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "command/typed.hpp"
+#include "protocol/alarm_word.hpp"
 #include "protocol/reading_format.hpp"
 #include "rotator/controller.hpp"
 #include "util/text.hpp"
@@ -18,19 +19,10 @@ void send(ByteSink& out, const char* fmt, Args... args) {
   WrcSession::Reply(WrcSession::kReplyRules).line(out, fmt, args...);
 }
 
+/// WRC's `ERROR <REASON>` (docs/protocols/wrc.md): FAULT, LIMIT, STOWED,
+/// NOT SUPPORTED, and INVALID ARGUMENT for the rest, out of range included.
 const char* error_reason(Error e) {
-  switch (e) {
-    case Error::kFaulted:
-      return "FAULT";
-    case Error::kLimit:
-      return "LIMIT";
-    case Error::kStowed:
-      return "STOWED";
-    case Error::kNotSupported:
-      return "NOT SUPPORTED";
-    default:
-      return "INVALID ARGUMENT";
-  }
+  return refusal_word(e, {"INVALID ARGUMENT", "NOT SUPPORTED", "INVALID ARGUMENT"});
 }
 
 bool parse_float(std::string_view s, float& out) {

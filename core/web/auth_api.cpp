@@ -17,7 +17,8 @@ using settings::Id;
 
 Api::Outcome Api::login(const HttpRequest& request, protocol::ByteSink& out,
                         const ResponseOptions& options, const access::Peer& peer) {
-  BodyField fields[] = {{"password", JsonType::kString}};
+  PasswordText password = {};
+  JsonMember fields[] = {{"password", JsonType::kString, password}};
   if (!read_body(request.body, fields, out, options)) return Outcome::kDone;
   if (!fields[0].present) {
     send_error(out, 400, "give password", options);
@@ -63,8 +64,7 @@ Api::Outcome Api::login(const HttpRequest& request, protocol::ByteSink& out,
   // One hash at a time: a second login waits its turn by retrying, except
   // the owner's, which a stranger's gives way to.
   if (who != WebAuth::Guesser::kStranger) auth_.preempt_for_trusted();
-  if (auth_.start(WebAuth::JobKind::kLogin, fields[0].too_long ? "" : fields[0].text, stored, peer,
-                  -1) == 0) {
+  if (auth_.start(WebAuth::JobKind::kLogin, password, stored, peer, -1) == 0) {
     ResponseOptions o = options;
     o.extra_headers = "Retry-After: 1\r\n";
     send_error(out, 503, "busy checking another login: try again in a second", o);
@@ -91,7 +91,8 @@ void Api::logout(const Caller& caller, protocol::ByteSink& out, const ResponseOp
 Api::Outcome Api::set_password(const HttpRequest& request, protocol::ByteSink& out,
                                const ResponseOptions& options, const Caller& caller,
                                const access::Peer& peer) {
-  BodyField fields[] = {{"password", JsonType::kString}};
+  PasswordText password = {};
+  JsonMember fields[] = {{"password", JsonType::kString, password}};
   if (!read_body(request.body, fields, out, options)) return Outcome::kDone;
   if (!fields[0].present) {
     send_error(out, 400, "give password (\"\" turns access control off)", options);
@@ -99,7 +100,7 @@ Api::Outcome Api::set_password(const HttpRequest& request, protocol::ByteSink& o
   }
   settings::Settings& values = ctx_.controller.settings();
   char address[access::kAddressTextBytes];
-  if (fields[0].text[0] == '\0' && !fields[0].too_long) {
+  if (password[0] == '\0' && !fields[0].too_long) {
     backup_ = values;
     values.set_text(Id::kWebPassword, "");
     if (!persist(out, options)) {
@@ -114,7 +115,7 @@ Api::Outcome Api::set_password(const HttpRequest& request, protocol::ByteSink& o
     return Outcome::kDone;
   }
   const char* why = fields[0].too_long ? "the password may have at most 63 characters"
-                                       : access::password_rule_violation(fields[0].text);
+                                       : access::password_rule_violation(password);
   if (why != nullptr) {
     send_error(out, 422, why, options);
     return Outcome::kDone;
@@ -125,7 +126,7 @@ Api::Outcome Api::set_password(const HttpRequest& request, protocol::ByteSink& o
     send_error(out, 503, "no cryptographic random numbers on this controller", options);
     return Outcome::kDone;
   }
-  if (auth_.start(WebAuth::JobKind::kSetPassword, fields[0].text, target, peer,
+  if (auth_.start(WebAuth::JobKind::kSetPassword, password, target, peer,
                   caller.kind == Caller::Kind::kSession ? caller.session : -1) == 0) {
     ResponseOptions o = options;
     o.extra_headers = "Retry-After: 1\r\n";

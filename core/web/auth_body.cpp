@@ -7,44 +7,12 @@
 
 namespace rotord::web {
 
-bool read_body(std::string_view body, std::span<BodyField> fields, protocol::ByteSink& out,
+bool read_body(std::string_view body, std::span<JsonMember> fields, protocol::ByteSink& out,
                const ResponseOptions& options) {
-  if (body.empty()) return true;
-  JsonObjectReader reader(body);
-  if (!reader.valid()) {
-    char message[120];
-    std::snprintf(message, sizeof message, "invalid JSON: %s", reader.error());
-    send_error(out, 400, message, options);
-    return false;
-  }
-  std::string_view key;
-  JsonValue value;
-  while (reader.next(key, value)) {
-    BodyField* found = nullptr;
-    for (BodyField& f : fields)
-      if (key == f.name) found = &f;
-    if (found == nullptr || value.type != found->type) {
-      char message[120];
-      if (found == nullptr) {
-        std::snprintf(message, sizeof message, "unknown member '%.*s'",
-                      static_cast<int>(key.size() > 40 ? 40 : key.size()), key.data());
-      } else {
-        std::snprintf(message, sizeof message, "%s must be a %s", found->name,
-                      json_type_name(found->type));
-      }
-      send_error(out, 400, message, options);
-      return false;
-    }
-    found->present = true;
-    if (value.type == JsonType::kNumber) found->number = value.number;
-    if (value.type == JsonType::kString) {
-      found->too_long = value.truncated || value.text.size() >= sizeof found->text;
-      const std::size_t n = found->too_long ? 0 : value.text.size();
-      std::memcpy(found->text, value.text.data(), n);
-      found->text[n] = '\0';
-    }
-  }
-  return true;
+  char why[120];
+  if (read_members(body, fields, why, sizeof why)) return true;
+  send_error(out, 400, why, options);
+  return false;
 }
 
 std::string_view session_cookie(char (&buf)[160], const char* id, long max_age_s) {

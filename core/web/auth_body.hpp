@@ -1,30 +1,25 @@
 #pragma once
 // What the access-control endpoints (auth_api.cpp, token_api.cpp) share:
-// reading their small bodies, the session cookie.
+// reading their small bodies (the one member loop, json/json_members.hpp,
+// with a 400 for what it refuses), the session cookie.
 #include <cstddef>
 #include <span>
 #include <string_view>
 
-#include "json/json_reader.hpp"
+#include "json/json_members.hpp"
 #include "settings/settings.hpp"
 #include "util/byte_sink.hpp"
 #include "web/http_response.hpp"
 
 namespace rotord::web {
 
-/// A small body's string and number members, read by name.
-struct BodyField {
-  const char* name;
-  JsonType type;
-  bool present = false;
-  char text[72] = {};  ///< strings: the value (a password of up to 63 bytes fits)
-  bool too_long = false;
-  double number = 0.0;
-};
+/// A password's buffer: 8 to 63 characters fit, with room to tell a longer
+/// one (JsonMember::too_long) from one that fits.
+using PasswordText = char[72];
 
-/// Reads `body` (empty = {}) into `fields`; on failure the 400 has gone
-/// out and it returns false.
-bool read_body(std::string_view body, std::span<BodyField> fields, protocol::ByteSink& out,
+/// Reads `body` (empty = {}) into `fields` (json/json_members.hpp); on
+/// failure the 400 has gone out and it returns false.
+bool read_body(std::string_view body, std::span<JsonMember> fields, protocol::ByteSink& out,
                const ResponseOptions& options);
 
 /// "Set-Cookie: rotord_session=...; ..." for a session, or the header that

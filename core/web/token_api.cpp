@@ -73,13 +73,14 @@ void Api::get_tokens(protocol::ByteSink& out, const ResponseOptions& options) {
 
 void Api::create_token(const HttpRequest& request, protocol::ByteSink& out,
                        const ResponseOptions& options) {
-  BodyField fields[] = {{"name", JsonType::kString}, {"scope", JsonType::kString}};
+  char name[access::TokenRecord::kMaxNameBytes + 1] = {};  // a longer one is too long
+  JsonMember fields[] = {{"name", JsonType::kString, name}, {"scope", JsonType::kString}};
   if (!read_body(request.body, fields, out, options)) return;
-  if (!fields[0].present || !access::valid_token_name(fields[0].text)) {
+  if (!fields[0].present || !access::valid_token_name(name)) {
     send_error(out, 422, "name: 1 to 16 letters, digits, '-', '_' or '.'", options);
     return;
   }
-  const std::string_view scope_text = fields[1].present ? fields[1].text : "read";
+  const std::string_view scope_text = fields[1].present ? fields[1].value.text : "read";
   if (scope_text != "read" && scope_text != "control") {
     send_error(out, 422, "scope must be read or control", options);
     return;
@@ -90,7 +91,7 @@ void Api::create_token(const HttpRequest& request, protocol::ByteSink& out,
     access::TokenRecord record;
     if (!access::parse_token_record(values.text(row), record)) {
       if (free_row == nullptr) free_row = &row;
-    } else if (std::string_view(record.name) == fields[0].text) {
+    } else if (std::string_view(record.name) == name) {
       send_error(out, 409, "a token of that name exists: revoke it first", options);
       return;
     }
@@ -100,7 +101,7 @@ void Api::create_token(const HttpRequest& request, protocol::ByteSink& out,
     return;
   }
   access::TokenRecord record;
-  std::memcpy(record.name, fields[0].text, sizeof record.name - 1);
+  std::memcpy(record.name, name, sizeof record.name - 1);
   record.scope = scope_text == "control" ? access::Scope::kControl : access::Scope::kRead;
   char token[access::kTokenTextBytes + 1];
   char text[80];
@@ -130,13 +131,14 @@ void Api::create_token(const HttpRequest& request, protocol::ByteSink& out,
 
 void Api::revoke_token(const HttpRequest& request, protocol::ByteSink& out,
                        const ResponseOptions& options) {
-  BodyField fields[] = {{"name", JsonType::kString}};
+  char name[access::TokenRecord::kMaxNameBytes + 1] = {};
+  JsonMember fields[] = {{"name", JsonType::kString, name}};
   if (!read_body(request.body, fields, out, options)) return;
   settings::Settings& values = ctx_.controller.settings();
   for (Id row : kTokenRows) {
     access::TokenRecord record;
     if (!access::parse_token_record(values.text(row), record) ||
-        std::string_view(record.name) != fields[0].text)
+        std::string_view(record.name) != name)
       continue;
     backup_ = values;
     values.set_text(row, "");
@@ -158,9 +160,9 @@ void Api::revoke_token(const HttpRequest& request, protocol::ByteSink& out,
 
 void Api::lock(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
                Caller caller) {
-  BodyField fields[] = {{"minutes", JsonType::kNumber}};
+  JsonMember fields[] = {{"minutes", JsonType::kNumber}};
   if (!read_body(request.body, fields, out, options)) return;
-  const double minutes = fields[0].present ? fields[0].number : 10;
+  const double minutes = fields[0].present ? fields[0].value.number : 10;
   if (minutes != static_cast<int>(minutes) || minutes < 1 ||
       minutes * 60000 > static_cast<double>(access::ControlLock::kMaxHoldMs)) {
     send_error(out, 422, "minutes must be a whole number 1..240", options);

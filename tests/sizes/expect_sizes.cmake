@@ -5,27 +5,11 @@
 # measured) and fail (so a test fails when the check refuses for another
 # reason than the one meant).
 cmake_minimum_required(VERSION 3.25)
+include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/expect_verdict.cmake)
 
 find_program(PYTHON3 python3 REQUIRED)
-execute_process(COMMAND ${PYTHON3} ${CHECKER} --max-file-lines 400 --max-function-lines 60
-                        --root ${ROOT} ${DIRS}
-                RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
-set(output "${out}${err}")
-message("${output}")
-
-if(EXPECT STREQUAL "pass")
-  if(NOT result EQUAL 0)
-    message(FATAL_ERROR "the size check refused ${DIRS} (exit ${result})")
-  endif()
-elseif(EXPECT STREQUAL "fail")
-  if(result EQUAL 0)
-    message(FATAL_ERROR "the size check accepted ${DIRS}, which is over a limit")
-  endif()
-else()
-  message(FATAL_ERROR "EXPECT must be pass or fail, not '${EXPECT}'")
-endif()
-foreach(expected IN LISTS MESSAGES)
-  if(NOT output MATCHES "${expected}")
-    message(FATAL_ERROR "the size check's report lacks: ${expected}")
-  endif()
-endforeach()
+string(REPLACE ";" " " subject "${DIRS}")
+rotord_expect_verdict(CHECK "the size check" SUBJECT "${subject}" EXPECT ${EXPECT}
+                      COMMAND ${PYTHON3} ${CHECKER} --max-file-lines 400 --max-function-lines 60
+                              --root ${ROOT} ${DIRS}
+                      MESSAGES ${MESSAGES})
