@@ -3,6 +3,7 @@
 #include <array>
 
 #include "sim/adc_scale.hpp"
+#include "sim/sensor_overrides.hpp"
 
 namespace rotord::sim {
 
@@ -95,22 +96,11 @@ struct AxisKeys {
   const char* max_deg;
   const char* drive;
   const char* has_brake;  // nullptr: the axis has no such setting
-  const char* sensor;
-  const char* pot_cal_lo_counts;
-  const char* pot_cal_lo_deg;
-  const char* pot_cal_hi_counts;
-  const char* pot_cal_hi_deg;
-  const char* ma3_zero_deg;
+  SensorKeys sensor;
 };
 
-constexpr AxisKeys kAzKeys{
-    "az.min_deg",        "az.max_deg",           "az.drive",          "az.has_brake",
-    "az.sensor",         "az.pot_cal_lo_counts", "az.pot_cal_lo_deg", "az.pot_cal_hi_counts",
-    "az.pot_cal_hi_deg", "az.ma3_zero_deg"};
-constexpr AxisKeys kElKeys{
-    "el.min_deg",        "el.max_deg",           "el.drive",          nullptr,
-    "el.sensor",         "el.pot_cal_lo_counts", "el.pot_cal_lo_deg", "el.pot_cal_hi_counts",
-    "el.pot_cal_hi_deg", "el.ma3_zero_deg"};
+constexpr AxisKeys kAzKeys{"az.min_deg", "az.max_deg", "az.drive", "az.has_brake", kAzSensorKeys};
+constexpr AxisKeys kElKeys{"el.min_deg", "el.max_deg", "el.drive", nullptr, kElSensorKeys};
 
 constexpr std::size_t kMaxOverrides = 24;
 
@@ -124,17 +114,7 @@ struct OverrideList {
     add(keys.max_deg, a.max_deg);
     add(keys.drive, static_cast<double>(a.plant.drive));
     if (keys.has_brake != nullptr) add(keys.has_brake, a.plant.has_brake ? 1.0 : 0.0);
-    add(keys.sensor, static_cast<double>(a.sensor));
-    if (a.sensor == SensorType::kPot) {
-      // Two-point calibration at the range ends with the unrounded codes, so
-      // a noise-free pot reads the true angle to within half a count.
-      add(keys.pot_cal_lo_counts, adc_counts_exact(a.pot.v_at_min_v));
-      add(keys.pot_cal_lo_deg, a.min_deg);
-      add(keys.pot_cal_hi_counts, adc_counts_exact(a.pot.v_at_max_v));
-      add(keys.pot_cal_hi_deg, a.max_deg);
-    } else {
-      add(keys.ma3_zero_deg, 0.0);  // the simulated encoder reads 0 at theta = 0
-    }
+    add_sensor_overrides(a, keys.sensor, items.data(), count);
   }
   constexpr std::span<const SettingOverride> view() const { return {items.data(), count}; }
 };

@@ -2,8 +2,6 @@
 // fake hardware. Crashes, sanitizer reports and broken invariants fail.
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
-#include <string_view>
 
 #include "fake_rotator.hpp"
 #include "fuzz_session.hpp"
@@ -11,16 +9,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   rotord::testing::FakeRotator rotator;
-  const auto revision = rotator.settings.revision();
   rotord::protocol::EasycommSession session(*rotator.controller, "fuzz");
-  rotord::fuzz::NullSink sink;
-  rotord::fuzz::feed_in_two(session, rotator, data, size, sink);
-  rotord::fuzz::abort_on_both_directions(rotator);
-  // Targets stay inside the travel (az 0..450, el 0..180) unless the input
-  // itself changed the limits (Easycomm CW writes settings).
-  if (rotator.settings.revision() == revision)
-    rotord::fuzz::abort_on_target_outside_travel(rotator);
-  // Every reply line is bounded, so output is bounded by the input size.
-  if (sink.bytes > 256 + size * 64) std::abort();
+  rotord::fuzz::run_bounded_line_session(session, rotator, data, size);
   return 0;
 }

@@ -48,4 +48,18 @@ inline void abort_on_target_outside_travel(const testing::FakeRotator& rotator) 
   if (s.el.has_target && (s.el.target_deg < 0.0f || s.el.target_deg > 180.0f)) std::abort();
 }
 
+/// The whole run of a session whose every reply line is bounded (Easycomm,
+/// seed): the input fed in two; never both directions; a go-to's target
+/// inside the travel unless the input itself changed the settings (Easycomm's
+/// CW writes them); output bounded by the input size.
+inline void run_bounded_line_session(protocol::Session& session, testing::FakeRotator& rotator,
+                                     const std::uint8_t* data, std::size_t size) {
+  const auto revision = rotator.settings.revision();
+  NullSink sink;
+  feed_in_two(session, rotator, data, size, sink);
+  abort_on_both_directions(rotator);
+  if (rotator.settings.revision() == revision) abort_on_target_outside_travel(rotator);
+  if (sink.bytes > 256 + size * 64) std::abort();
+}
+
 }  // namespace rotord::fuzz

@@ -95,11 +95,8 @@ TEST_F(Gs232Test, GS232AReportsPlusZeroFields) {
 
 TEST_F(Gs232Test, LowerCaseSpacesAndEveryLineEndWork) {
   variant('A');
-  EXPECT_EQ(ask("c2\r"), "+0100+0020\r\n");
-  EXPECT_EQ(ask("C 2\r"), "+0100+0020\r\n");
-  EXPECT_EQ(ask("C2\n"), "+0100+0020\r\n");
-  EXPECT_EQ(ask("C2\r\n"), "+0100+0020\r\n");
-  EXPECT_EQ(ask("  C2  \r"), "+0100+0020\r\n");
+  for (const char* spelling : {"c2\r", "C 2\r", "C2\n", "C2\r\n", "  C2  \r"})
+    EXPECT_EQ(ask(spelling), "+0100+0020\r\n") << spelling;
 }
 
 TEST_F(Gs232Test, SplitAndCoalescedCommands) {

@@ -60,6 +60,22 @@ class HttpApi : public ::testing::Test {
   static bool has(const HttpResponse& res, const std::string& text) {
     return res.body.find(text) != std::string::npos;
   }
+  /// The port's loop for `ticks` ticks of 10 ms: the controller runs, then
+  /// the session polls; it stops early once the session closes.
+  void run_ticks(StringSink& sink, int ticks) {
+    for (int tick = 0; tick < ticks && !session.wants_close(); ++tick) {
+      r.run_ms(10);
+      session.poll(r.now, sink);
+    }
+  }
+  /// All a session sent before it closed a request that took too long: one
+  /// 408 that says why.
+  static void expect_one_408(const StringSink& sink, const char* why) {
+    const auto rs = parse_responses(sink.data);
+    ASSERT_EQ(rs.size(), 1u);
+    EXPECT_EQ(rs[0].status, 408);
+    EXPECT_NE(rs[0].body.find(why), std::string::npos);
+  }
 };
 
 TEST_F(HttpApi, StatusIsJsonWithBothAxes) {
@@ -450,17 +466,11 @@ TEST_F(HttpApi, ATricklingRequestGets408AtItsDeadlineWhateverItKeepsSending) {
   std::size_t sent = 0;
   while (!session.wants_close() && sent < head.size()) {
     session.receive(head.substr(sent++, 1), sink);
-    for (int tick = 0; tick < 200 && !session.wants_close(); ++tick) {
-      r.run_ms(10);
-      session.poll(r.now, sink);
-    }
+    run_ticks(sink, 200);
   }
   ASSERT_TRUE(session.wants_close());
   EXPECT_LE(r.now - start, HttpSession::kRequestDeadlineMs + 2000);
-  const auto rs = parse_responses(sink.data);
-  ASSERT_EQ(rs.size(), 1u);
-  EXPECT_EQ(rs[0].status, 408);
-  EXPECT_NE(rs[0].body.find("not completed in time"), std::string::npos);
+  expect_one_408(sink, "not completed in time");
 }
 
 TEST_F(HttpApi, ABodyArrivingTooSlowlyGets408BeforeTheDeadline) {
@@ -471,18 +481,12 @@ TEST_F(HttpApi, ABodyArrivingTooSlowlyGets408BeforeTheDeadline) {
       sink);
   const Millis start = r.now;
   for (int second = 0; second < 10 && !session.wants_close(); ++second) {
-    for (int tick = 0; tick < 100 && !session.wants_close(); ++tick) {
-      r.run_ms(10);
-      session.poll(r.now, sink);
-    }
+    run_ticks(sink, 100);
     session.receive(" ", sink);  // a byte a second
   }
   ASSERT_TRUE(session.wants_close());
   EXPECT_LT(r.now - start, HttpSession::kRequestDeadlineMs);
-  const auto rs = parse_responses(sink.data);
-  ASSERT_EQ(rs.size(), 1u);
-  EXPECT_EQ(rs[0].status, 408);
-  EXPECT_NE(rs[0].body.find("too slowly"), std::string::npos);
+  expect_one_408(sink, "too slowly");
 }
 
 TEST_F(HttpApi, ABodyAtAnOrdinaryPaceIsServed) {
@@ -495,10 +499,7 @@ TEST_F(HttpApi, ABodyAtAnOrdinaryPaceIsServed) {
           std::to_string(body.size()) + "\r\n\r\n",
       sink);
   for (std::size_t sent = 0; sent < body.size(); sent += 100) {
-    for (int tick = 0; tick < 10; ++tick) {
-      r.run_ms(10);
-      session.poll(r.now, sink);
-    }
+    run_ticks(sink, 10);
     session.receive(body.substr(sent, 100), sink);
   }
   const auto rs = parse_responses(sink.data);
@@ -511,10 +512,7 @@ TEST_F(HttpApi, StrayLineEndsDoNotKeepAnIdleConnectionOpen) {
   session.poll(r.now, sink);
   for (int n = 0; n < 20 && !session.wants_close(); ++n) {
     session.receive("\r\n", sink);
-    for (int tick = 0; tick < 100; ++tick) {
-      r.run_ms(10);
-      session.poll(r.now, sink);
-    }
+    run_ticks(sink, 100);
   }
   EXPECT_TRUE(session.wants_close());
 }

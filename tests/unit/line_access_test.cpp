@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <string>
 
 #include "fake_rotator.hpp"
@@ -116,62 +117,61 @@ class ReadOnly : public ::testing::TestWithParam<Why> {
     EXPECT_FALSE(r.controller->status().az.has_target);
     EXPECT_EQ(r.settings.revision(), revision);
   }
+  struct Exchange {
+    const char* command;
+    const char* reply;
+  };
+  /// What a read-only client of one protocol sees: a query answered, every
+  /// command that moves or writes refused in the protocol's own words, the
+  /// commands everyone may send (STOP and its kin) answered; and afterwards
+  /// nothing moved and no setting changed.
+  template <typename Session>
+  void expect_read_only(Session& s, Exchange query, std::initializer_list<const char*> refused,
+                        const char* refusal, std::initializer_list<Exchange> allowed) {
+    const auto revision = r.settings.revision();
+    EXPECT_EQ(ask(s, query.command), query.reply);
+    for (const char* command : refused) EXPECT_EQ(ask(s, command), refusal) << command;
+    for (const Exchange& e : allowed) EXPECT_EQ(ask(s, e.command), e.reply) << e.command;
+    expect_untouched(revision);
+  }
   testing::FakeRotator r;
 };
 
 TEST_P(ReadOnly, RotctldAnswersQueriesAndRefusesTheRestWithRigErjcted) {
   protocol::RotctldSession s(*r.controller, "9");
-  const auto revision = r.settings.revision();
-  EXPECT_EQ(ask(s, "p\n"), "100.00\n20.00\n");
-  for (const char* command :
-       {"P 200 30\n", "K\n", "R 1\n", "M 8 50\n", "V SPEED 20\n", "C park.az_deg 10\n"})
-    EXPECT_EQ(ask(s, command), "RPRT -9\n") << command;
-  EXPECT_EQ(ask(s, "S\n"), "RPRT 0\n");
-  expect_untouched(revision);
+  expect_read_only(s, {"p\n", "100.00\n20.00\n"},
+                   {"P 200 30\n", "K\n", "R 1\n", "M 8 50\n", "V SPEED 20\n", "C park.az_deg 10\n"},
+                   "RPRT -9\n", {{"S\n", "RPRT 0\n"}});
 }
 
 TEST_P(ReadOnly, Gs232RefusesWithItsError) {
   protocol::Gs232Session s(*r.controller);
-  const auto revision = r.settings.revision();
-  EXPECT_EQ(ask(s, "C\r"), "AZ=100\r\n");
-  for (const char* command :
-       {"M200\r", "W200 030\r", "R\r", "L\r", "U\r", "D\r", "X2\r", "O\r", "F2\r", "T\r"})
-    EXPECT_EQ(ask(s, command), "?>\r\n") << command;
-  EXPECT_EQ(ask(s, "S\r"), "\r");
-  EXPECT_EQ(ask(s, "A\r"), "\r");
-  expect_untouched(revision);
+  expect_read_only(
+      s, {"C\r", "AZ=100\r\n"},
+      {"M200\r", "W200 030\r", "R\r", "L\r", "U\r", "D\r", "X2\r", "O\r", "F2\r", "T\r"}, "?>\r\n",
+      {{"S\r", "\r"}, {"A\r", "\r"}});
 }
 
 TEST_P(ReadOnly, EasycommRefusesWithAnAlarm) {
   protocol::EasycommSession s(*r.controller, "9");
-  const auto revision = r.settings.revision();
-  EXPECT_EQ(ask(s, "AZ EL\n"), "AZ100.0 EL20.0\n");
-  for (const char* command :
-       {"AZ200.0 EL30.0\n", "MR\n", "VL0500\n", "PARK\n", "RESET\n", "CW7,10\n", "CW 7,10\n"})
-    EXPECT_EQ(ask(s, command), "ALDENIED\n") << command;
-  EXPECT_EQ(ask(s, "SA SE\n"), "");
-  expect_untouched(revision);
+  expect_read_only(
+      s, {"AZ EL\n", "AZ100.0 EL20.0\n"},
+      {"AZ200.0 EL30.0\n", "MR\n", "VL0500\n", "PARK\n", "RESET\n", "CW7,10\n", "CW 7,10\n"},
+      "ALDENIED\n", {{"SA SE\n", ""}});
 }
 
 TEST_P(ReadOnly, WrcRefusesWithAnError) {
   protocol::WrcSession s(*r.controller, "9");
-  const auto revision = r.settings.revision();
-  EXPECT_EQ(ask(s, "AZ?\n"), "OK AZ 100.0\r\n");
-  for (const char* command :
-       {"AZ 200\n", "EL 30\n", "MOVE CW\n", "SPEED 20\n", "PARK\n", "RESET\n", "AZOFFSET 5\n"})
-    EXPECT_EQ(ask(s, command), "ERROR NOT ALLOWED\r\n") << command;
-  EXPECT_EQ(ask(s, "STOP\n"), "OK STOP\r\n");
-  expect_untouched(revision);
+  expect_read_only(
+      s, {"AZ?\n", "OK AZ 100.0\r\n"},
+      {"AZ 200\n", "EL 30\n", "MOVE CW\n", "SPEED 20\n", "PARK\n", "RESET\n", "AZOFFSET 5\n"},
+      "ERROR NOT ALLOWED\r\n", {{"STOP\n", "OK STOP\r\n"}});
 }
 
 TEST_P(ReadOnly, SeedRefusesWithAnError) {
   protocol::SeedSession s(*r.controller);
-  const auto revision = r.settings.revision();
-  EXPECT_EQ(ask(s, "$E\n"), "$OK,E\r\n");
-  EXPECT_EQ(ask(s, "$R,cw\n"), "$ERR,DENIED\r\n");
-  EXPECT_EQ(ask(s, "$S,20\n"), "$ERR,DENIED\r\n");
-  EXPECT_EQ(ask(s, "$D\n"), "$OK,D\r\n");
-  expect_untouched(revision);
+  expect_read_only(s, {"$E\n", "$OK,E\r\n"}, {"$R,cw\n", "$S,20\n"}, "$ERR,DENIED\r\n",
+                   {{"$D\n", "$OK,D\r\n"}});
 }
 
 TEST_P(ReadOnly, AClientInTheListControls) {

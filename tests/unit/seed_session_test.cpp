@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "fake_rotator.hpp"
 #include "string_sink.hpp"
@@ -78,24 +79,19 @@ TEST_F(SeedTest, RunWhileDisabledIsRefusedAndNothingMoves) {
 
 TEST_F(SeedTest, BadInputGetsErrorsAndChangesNothing) {
   ask("$E\n");
-  EXPECT_EQ(ask("E\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$\n"), "$ERR,UNKNOWN\r\n");
-  EXPECT_EQ(ask("$X\n"), "$ERR,UNKNOWN\r\n");
-  EXPECT_EQ(ask("$X,1,2,3\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$E,1\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$D,now\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$Q,1\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$S\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$S,\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$S,fast\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$S,50.5\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$S,0\n"), "$ERR,RANGE\r\n");
-  EXPECT_EQ(ask("$S,101\n"), "$ERR,RANGE\r\n");
-  EXPECT_EQ(ask("$S,-5\n"), "$ERR,RANGE\r\n");
-  EXPECT_EQ(ask("$S,50,1\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$R\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$R,left\n"), "$ERR,SYNTAX\r\n");
-  EXPECT_EQ(ask("$R,cw,fast\n"), "$ERR,SYNTAX\r\n");
+  // Each malformed line and the error it gets, one at a time.
+  const std::pair<const char*, const char*> kBad[] = {
+      {"E\n", "$ERR,SYNTAX\r\n"},       {"$\n", "$ERR,UNKNOWN\r\n"},
+      {"$X\n", "$ERR,UNKNOWN\r\n"},     {"$X,1,2,3\n", "$ERR,SYNTAX\r\n"},
+      {"$E,1\n", "$ERR,SYNTAX\r\n"},    {"$D,now\n", "$ERR,SYNTAX\r\n"},
+      {"$Q,1\n", "$ERR,SYNTAX\r\n"},    {"$S\n", "$ERR,SYNTAX\r\n"},
+      {"$S,\n", "$ERR,SYNTAX\r\n"},     {"$S,fast\n", "$ERR,SYNTAX\r\n"},
+      {"$S,50.5\n", "$ERR,SYNTAX\r\n"}, {"$S,0\n", "$ERR,RANGE\r\n"},
+      {"$S,101\n", "$ERR,RANGE\r\n"},   {"$S,-5\n", "$ERR,RANGE\r\n"},
+      {"$S,50,1\n", "$ERR,SYNTAX\r\n"}, {"$R\n", "$ERR,SYNTAX\r\n"},
+      {"$R,left\n", "$ERR,SYNTAX\r\n"}, {"$R,cw,fast\n", "$ERR,SYNTAX\r\n"},
+  };
+  for (const auto& [line, reply] : kBad) EXPECT_EQ(ask(line), reply) << line;
   EXPECT_EQ(ask(std::string("$\0\xff", 3) + "\n"), "$ERR,UNKNOWN\r\n");
   EXPECT_EQ(ask(std::string(500, '$') + "\n$Q\n"),
             "$ERR,TOOLONG\r\n$Q,100.0,20.0,100,E,STOP,STOP,NONE\r\n");

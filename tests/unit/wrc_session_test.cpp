@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "fake_rotator.hpp"
 #include "string_sink.hpp"
@@ -74,17 +75,20 @@ TEST_F(WrcTest, AnOffsetFarBeyondTheJumpThresholdLatchesNoFault) {
 }
 
 TEST_F(WrcTest, ErrorsChangeNothing) {
-  EXPECT_EQ(ask("AZ abc\n"), "ERROR INVALID AZIMUTH\r\n");
-  EXPECT_EQ(ask("AZ 451\n"), "ERROR INVALID AZIMUTH\r\n");
-  EXPECT_EQ(ask("AZ -1\n"), "ERROR INVALID AZIMUTH\r\n");
-  EXPECT_EQ(ask("EL 200\n"), "ERROR INVALID ELEVATION\r\n");
-  EXPECT_EQ(ask("MOVE UPWARDS\n"), "ERROR INVALID DIRECTION\r\n");
-  EXPECT_EQ(ask("SPEED 0\n"), "ERROR INVALID SPEED\r\n");
-  EXPECT_EQ(ask("SPEED 5.5\n"), "ERROR INVALID SPEED\r\n");
-  EXPECT_EQ(ask("MONITOR 2\n"), "ERROR INVALID ARGUMENT\r\n");
-  EXPECT_EQ(ask("AZOFFSET 400\n"), "ERROR INVALID AZIMUTH OFFSET\r\n");
-  EXPECT_EQ(ask("FROB\n"), "ERROR INVALID COMMAND\r\n");
-  EXPECT_EQ(ask("AZ\n"), "ERROR INVALID COMMAND\r\n");
+  const std::pair<const char*, const char*> kBad[] = {
+      {"AZ abc\n", "ERROR INVALID AZIMUTH\r\n"},
+      {"AZ 451\n", "ERROR INVALID AZIMUTH\r\n"},
+      {"AZ -1\n", "ERROR INVALID AZIMUTH\r\n"},
+      {"EL 200\n", "ERROR INVALID ELEVATION\r\n"},
+      {"MOVE UPWARDS\n", "ERROR INVALID DIRECTION\r\n"},
+      {"SPEED 0\n", "ERROR INVALID SPEED\r\n"},
+      {"SPEED 5.5\n", "ERROR INVALID SPEED\r\n"},
+      {"MONITOR 2\n", "ERROR INVALID ARGUMENT\r\n"},
+      {"AZOFFSET 400\n", "ERROR INVALID AZIMUTH OFFSET\r\n"},
+      {"FROB\n", "ERROR INVALID COMMAND\r\n"},
+      {"AZ\n", "ERROR INVALID COMMAND\r\n"},
+  };
+  for (const auto& [line, reply] : kBad) EXPECT_EQ(ask(line), reply) << line;
   const RotatorStatus s = r.controller->status();
   EXPECT_FALSE(s.az.has_target);
   EXPECT_FALSE(s.el.has_target);

@@ -55,9 +55,9 @@
 
 #include "json/settings_json.hpp"
 #include "settings/settings.hpp"
-#include "sim/adc_scale.hpp"
 #include "sim/fault_window.hpp"
 #include "sim/profiles.hpp"
+#include "sim/sensor_overrides.hpp"
 #include "sim/sensors.hpp"
 #include "sim/sim_rotator.hpp"
 
@@ -191,42 +191,6 @@ bool parse_sensor(const char* text, rotord::SensorType& kind) {
   return true;
 }
 
-/// The sensor settings of one axis for the sensor fitted: the pot's
-/// two-point calibration at the range ends (unrounded codes, as `rotord
-/// --sim` applies them) or the MA3's zero.
-struct SensorKeys {
-  const char* sensor;
-  const char* cal_lo_counts;
-  const char* cal_lo_deg;
-  const char* cal_hi_counts;
-  const char* cal_hi_deg;
-  const char* ma3_zero;
-};
-constexpr SensorKeys kAzSensorKeys{"az.sensor",         "az.pot_cal_lo_counts",
-                                   "az.pot_cal_lo_deg", "az.pot_cal_hi_counts",
-                                   "az.pot_cal_hi_deg", "az.ma3_zero_deg"};
-constexpr SensorKeys kElSensorKeys{"el.sensor",         "el.pot_cal_lo_counts",
-                                   "el.pot_cal_lo_deg", "el.pot_cal_hi_counts",
-                                   "el.pot_cal_hi_deg", "el.ma3_zero_deg"};
-
-bool is_sensor_key(std::string_view key, const SensorKeys& k) {
-  return key == k.sensor || key == k.cal_lo_counts || key == k.cal_lo_deg ||
-         key == k.cal_hi_counts || key == k.cal_hi_deg || key == k.ma3_zero;
-}
-
-void add_sensor_overrides(const sim::AxisProfile& a, const SensorKeys& k, sim::SettingOverride* out,
-                          std::size_t& n) {
-  out[n++] = {k.sensor, static_cast<double>(a.sensor)};
-  if (a.sensor == rotord::SensorType::kPot) {
-    out[n++] = {k.cal_lo_counts, sim::adc_counts_exact(a.pot.v_at_min_v)};
-    out[n++] = {k.cal_lo_deg, a.min_deg};
-    out[n++] = {k.cal_hi_counts, sim::adc_counts_exact(a.pot.v_at_max_v)};
-    out[n++] = {k.cal_hi_deg, a.max_deg};
-  } else {
-    out[n++] = {k.ma3_zero, 0.0};
-  }
-}
-
 /// Both sensors of one axis, read whichever the controller uses (the
 /// rotator's own are only reachable through io when the profile fits them).
 struct AxisSensors {
@@ -307,7 +271,8 @@ int main(int argc, char** argv) {
   std::size_t n = 0;
   for (const sim::SettingOverride& o : base->overrides) {
     const std::string_view key = o.key;
-    if (is_sensor_key(key, kAzSensorKeys) || is_sensor_key(key, kElSensorKeys)) continue;
+    if (sim::is_sensor_key(key, sim::kAzSensorKeys) || sim::is_sensor_key(key, sim::kElSensorKeys))
+      continue;
     if (key == "az.drive" && opt.drive >= 0) continue;
     // Without --el the harness plays the azimuth only: the elevation is switched off.
     if (key.starts_with("el.") && !play_el) continue;
@@ -318,8 +283,8 @@ int main(int argc, char** argv) {
     profile.az.plant.drive = kDriveKinds[static_cast<std::size_t>(opt.drive)];
     overrides[n++] = {"az.drive", static_cast<double>(opt.drive)};
   }
-  add_sensor_overrides(profile.az, kAzSensorKeys, overrides, n);
-  if (play_el) add_sensor_overrides(profile.el, kElSensorKeys, overrides, n);
+  sim::add_sensor_overrides(profile.az, sim::kAzSensorKeys, overrides, n);
+  if (play_el) sim::add_sensor_overrides(profile.el, sim::kElSensorKeys, overrides, n);
   profile.overrides = {overrides, n};
 
   static sim::SimRotator rotator(profile, 1,
