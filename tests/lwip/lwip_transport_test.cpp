@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -256,6 +257,7 @@ class LwipTransportTest : public ::testing::Test {
   }
 
   void TearDown() override {
+    stop_test_service();
     CoreLock lock;
     netif_remove(&netif_);
   }
@@ -309,6 +311,18 @@ class LwipTransportTest : public ::testing::Test {
     return std::make_unique<Served>(*this);
   }
 
+  /// The test service of `config`, serving until the test ends.
+  TestService& serve_test(const ServerConfig& config) {
+    test_service_.emplace(config, make_test_session());
+    test_served_ = serve(test_service_->server());
+    return *test_service_;
+  }
+  /// Stops it (clients aborted, as Served does) before any netif goes.
+  void stop_test_service() {
+    test_served_.reset();
+    test_service_.reset();
+  }
+
   Client& connect(const ip_addr_t* source = nullptr) {
     Client& c = clients_[client_count_++];
     {
@@ -351,6 +365,8 @@ class LwipTransportTest : public ::testing::Test {
   std::array<Client, 128> clients_{};
   std::size_t client_count_ = 0;
   Millis now_ = 0;
+  std::optional<TestService> test_service_;
+  std::unique_ptr<Served> test_served_;
 };
 
 TEST_F(LwipTransportTest, ServesWrcCommandsOverTcp) {
@@ -408,8 +424,7 @@ TEST_F(LwipTransportTest, ConnectionsRefusalsAndErrorRepliesAreCountedForMetrics
 }
 
 TEST_F(LwipTransportTest, RefusesClientsOverTheLimitWithTheRejectMessage) {
-  TestService service(test_config(2, "ERROR TOO MANY CONNECTIONS\r\n"), make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(test_config(2, "ERROR TOO MANY CONNECTIONS\r\n"));
 
   Client& a = connect();
   Client& b = connect();
@@ -442,8 +457,7 @@ TEST_F(LwipTransportTest, RefusesClientsOverTheLimitWithTheRejectMessage) {
 }
 
 TEST_F(LwipTransportTest, PeerCloseReleasesTheSession) {
-  TestService service(test_config(4), make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(test_config(4));
   Client& c = connect();
   ASSERT_TRUE(wait([&] { return TestSession::live == 1; }));
   {
@@ -457,8 +471,7 @@ TEST_F(LwipTransportTest, PeerCloseReleasesTheSession) {
 }
 
 TEST_F(LwipTransportTest, SessionCloseFlushesTheReplyThenSendsFin) {
-  TestService service(test_config(4), make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(test_config(4));
   Client& c = connect();
   send(c, "Q");
   EXPECT_TRUE(wait([&] { return c.peer_closed || c.reset; }));
@@ -470,8 +483,7 @@ TEST_F(LwipTransportTest, SessionCloseFlushesTheReplyThenSendsFin) {
 }
 
 TEST_F(LwipTransportTest, AReadingClientGetsTheWholeFloodInOrder) {
-  TestService service(test_config(4), make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(test_config(4));
   Client& c = connect();
   send(c, "F");
   EXPECT_TRUE(wait([&] { return c.received.size() >= TestSession::kFloodBytes || c.reset; }));
@@ -483,8 +495,7 @@ TEST_F(LwipTransportTest, AReadingClientGetsTheWholeFloodInOrder) {
 }
 
 TEST_F(LwipTransportTest, AClientThatStopsReadingIsDroppedAndTheOthersCarryOn) {
-  TestService service(test_config(4), make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(test_config(4));
   Client& stalled = connect();
   Client& other = connect();
   stalled.reading = false;  // its receive window closes, then lwIP's send buffer fills
@@ -507,8 +518,7 @@ TEST_F(LwipTransportTest, AClientThatStopsReadingIsDroppedAndTheOthersCarryOn) {
 // windows, each written when the peer has acknowledged enough (tcp_sent, or
 // the loop's poll): whole and in order, the client never dropped.
 TEST_F(LwipTransportTest, AReplyLongerThanTheSendBufferGoesOutInWindows) {
-  TestService service(test_config(1), make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(test_config(1));
   TestSession::windows = 0;
   Client& c = connect();
   send(c, "L");
@@ -522,8 +532,7 @@ TEST_F(LwipTransportTest, AReplyLongerThanTheSendBufferGoesOutInWindows) {
 }
 
 TEST_F(LwipTransportTest, ImmutableDataLargerThanTheBufferGoesOutByReferenceInOrder) {
-  TestService service(test_config(4), make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(test_config(4));
   Client& c = connect();
   send(c, "S");
   const std::size_t total = 5 + kAssetBytes + 5;
@@ -539,8 +548,7 @@ TEST_F(LwipTransportTest, ImmutableDataLargerThanTheBufferGoesOutByReferenceInOr
 TEST_F(LwipTransportTest, WithoutTheImmutablePredicateALargeWriteDropsTheClient) {
   ServerConfig config = test_config(4);
   config.is_immutable = nullptr;  // 50 KB cannot be copied into a 1 KB buffer
-  TestService service(config, make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(config);
   Client& c = connect();
   send(c, "S");
   EXPECT_TRUE(wait([&] { return c.reset; }));
@@ -566,6 +574,7 @@ class LwipAdmissionTest : public LwipTransportTest {
     }
   }
   void TearDown() override {
+    stop_test_service();
     {
       CoreLock lock;
       for (netif& n : hosts_) netif_remove(&n);
@@ -595,8 +604,7 @@ class LwipAdmissionTest : public LwipTransportTest {
 TEST_F(LwipAdmissionTest, AFullPortServesANewcomerOnceAClientHasBeenIdleSixtySeconds) {
   ServerConfig config = test_config(2);
   config.settings = &settings_;
-  TestService service(config, make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(config);
   Client& a = connect_from(1);
   ASSERT_TRUE(pong(a));
   Client& b = connect_from(2);
@@ -626,8 +634,7 @@ TEST_F(LwipAdmissionTest, AFullPortServesANewcomerOnceAClientHasBeenIdleSixtySec
 TEST_F(LwipAdmissionTest, AKeepAliveConnectionBetweenRequestsMakesRoomAtOnce) {
   ServerConfig config = test_config(2);
   config.settings = &settings_;
-  TestService service(config, make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(config);
   Client& a = connect_from(1);
   send(a, "B");
   ASSERT_TRUE(pong(a));  // a request in progress
@@ -655,8 +662,7 @@ TEST_F(LwipAdmissionTest, AKeepAliveConnectionBetweenRequestsMakesRoomAtOnce) {
 TEST_F(LwipAdmissionTest, OneHostNeverTakesEverySlot) {
   ServerConfig config = test_config(3);
   config.settings = &settings_;  // net.max_per_address 6, kept below 3: 2
-  TestService service(config, make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(config);
   ASSERT_TRUE(pong(connect_from(1)));
   ASSERT_TRUE(pong(connect_from(1)));
   Client& third = connect_from(1);
@@ -672,8 +678,7 @@ TEST_F(LwipAdmissionTest, WhenEverySlotIsTakenTheOldestEventStreamMakesRoom) {
   ServerConfig config = test_config(4);
   config.settings = &settings_;
   config.max_event_streams = 2;
-  TestService service(config, make_test_session());
-  auto served = serve(service.server());
+  TestService& service = serve_test(config);
   Client& s1 = connect_from(1);
   send(s1, "E");
   ASSERT_TRUE(pong(s1));  // the test session still answers; the transport counts it apart

@@ -11,10 +11,10 @@
 #include <memory>
 #include <string>
 
-#include "../unit/iss_elements.hpp"
 #include "../unit/string_sink.hpp"
 #include "bench/sky_angle.hpp"
 #include "pass_bench.hpp"
+#include "pass_client.hpp"
 #include "protocol/easycomm_session.hpp"
 #include "protocol/gs232_session.hpp"
 #include "protocol/rotctld_session.hpp"
@@ -22,9 +22,7 @@
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
-#include "tracking/julian.hpp"
 #include "tracking/sky_target.hpp"
-#include "tracking/tle.hpp"
 
 namespace rotord {
 namespace {
@@ -32,8 +30,6 @@ namespace {
 using settings::Id;
 
 using testing::ask;
-using testing::kIssLine1;
-using testing::kIssLine2;
 /// A rotator on the simulator at Boulder, its controller and a clock for the sky.
 using Bench = testing::PassBench;
 
@@ -55,30 +51,13 @@ double great_circle_deg(double az1, double el1, double az2, double el2) {
 /// the threshold on either axis. The ISS's pass of 2019-12-09 22:3x UTC over
 /// Boulder rises at 312 deg and sets at 74 through north.
 PassRun gpredict_pass(Bench& b, double threshold_deg) {
-  tracking::Tle tle;
-  EXPECT_TRUE(tracking::parse_tle(kIssLine1, kIssLine2, tle).ok());
-  tracking::SkyTarget sat;
-  EXPECT_EQ(sat.set_satellite(tle), tracking::Sgp4Error::kOk);
-  std::int64_t utc0 = 0;
-  EXPECT_TRUE(tracking::parse_utc("2019-12-09T22:36:00Z", utc0));
-  const tracking::Observer station = b.controller().observer();
   protocol::RotctldSession gpredict(b.controller(), "test");
   gpredict.set_peer(access::Peer::from_ipv4(0x7f000001));
   PassRun run;
   double sent_az = -1;
-  bool up = false;
-  for (int cycle = 0; cycle < 1200; ++cycle) {
-    tracking::LookAngles look;
-    EXPECT_EQ(sat.look(utc0 + b.now(), station, look), tracking::Sgp4Error::kOk);
-    if (look.el_deg < 0.0) {
-      if (up) break;  // LOS
-      b.run_ms(1000);
-      continue;
-    }
-    up = true;
+  testing::each_second_of_the_iss_pass(b, [&](int cycle, const tracking::LookAngles& look) {
     double read_az = 0, read_el = 0;
-    const std::string reply = ask(gpredict, "p\n");
-    EXPECT_EQ(std::sscanf(reply.c_str(), "%lf\n%lf", &read_az, &read_el), 2) << reply;
+    testing::read_position(gpredict, read_az, read_el);
     if (sent_az >= 0)
       run.max_readback_gap_deg = std::fmax(run.max_readback_gap_deg, std::fabs(read_az - sent_az));
     if (cycle > 0 && sent_az >= 0) {
@@ -89,15 +68,13 @@ PassRun gpredict_pass(Bench& b, double threshold_deg) {
     }
     if (std::fabs(look.az_deg - read_az) > threshold_deg ||
         std::fabs(look.el_deg - read_el) > threshold_deg) {
-      char cmd[64];
-      std::snprintf(cmd, sizeof cmd, "P %.2f %.2f\n", look.az_deg, look.el_deg);
-      const std::string r = ask(gpredict, cmd);
+      const bool taken = testing::send_goto(gpredict, look.az_deg, look.el_deg);
       ++run.commands;
-      if (r != "RPRT 0\n") ++run.refused;
+      if (!taken) ++run.refused;
       sent_az = std::round(look.az_deg * 100.0) / 100.0;
     }
-    b.run_ms(1000);
-  }
+    return true;
+  });
   return run;
 }
 

@@ -19,6 +19,7 @@
 #include "bench/sky_angle.hpp"
 #include "hal/wall_clock.hpp"
 #include "pass_bench.hpp"
+#include "pass_client.hpp"
 #include "protocol/rotctld_session.hpp"
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
@@ -78,33 +79,18 @@ enum class Frame {
 /// `each` runs after every go-to with its number and may end the run (false).
 ClientRun gpredict(Bench& b, protocol::RotctldSession& client, double threshold_deg, Frame frame,
                    const std::function<bool(int)>& each = nullptr) {
-  tracking::Tle tle;
-  EXPECT_TRUE(tracking::parse_tle(kIssLine1, kIssLine2, tle).ok());
-  tracking::SkyTarget sat;
-  EXPECT_EQ(sat.set_satellite(tle), tracking::Sgp4Error::kOk);
-  const tracking::Observer station = b.controller().observer();
   ClientRun run;
-  bool up = false;
   double sent_az = -1, sent_el = 0;
   std::int64_t culmination_ms = 0;  // of this pass (max el 13.9 deg)
   EXPECT_TRUE(tracking::parse_utc("2019-12-09T22:49:32Z", culmination_ms));
-  for (int cycle = 0; cycle < 1200; ++cycle) {
-    tracking::LookAngles look;
-    EXPECT_EQ(sat.look(*b.unix_ms(), station, look), tracking::Sgp4Error::kOk);
-    if (look.el_deg < 0.0) {
-      if (up) break;
-      b.run_ms(1000);
-      continue;
-    }
-    up = true;
+  testing::each_second_of_the_iss_pass(b, [&](int, const tracking::LookAngles& look) {
     double az = look.az_deg, el = look.el_deg;
     if (frame == Frame::kFlip || (frame == Frame::kMirror && *b.unix_ms() >= culmination_ms)) {
       az = std::fmod(az + 180.0, 360.0);
       el = 180.0 - el;
     }
     double read_az = 0, read_el = 0;
-    const std::string reply = ask(client, "p\n");
-    EXPECT_EQ(std::sscanf(reply.c_str(), "%lf\n%lf", &read_az, &read_el), 2) << reply;
+    testing::read_position(client, read_az, read_el);
     if (sent_az >= 0) {
       // As the client compares them: its target now with what it reads.
       const double gap = std::fabs(read_az - az);
@@ -123,19 +109,17 @@ ClientRun gpredict(Bench& b, protocol::RotctldSession& client, double threshold_
       run.max_error_deg = std::fmax(run.max_error_deg, e);
     }
     if (std::fabs(az - read_az) > threshold_deg || std::fabs(el - read_el) > threshold_deg) {
-      char cmd[64];
-      std::snprintf(cmd, sizeof cmd, "P %.2f %.2f\n", az, el);
       const bool before = b.recognition().active;
-      if (ask(client, cmd) != "RPRT 0\n") ++run.refused;
+      if (!testing::send_goto(client, az, el)) ++run.refused;
       ++run.commands;
       sent_az = std::round(az * 100.0) / 100.0;
       sent_el = el;
       if (!before && b.recognition().active && run.recognised_at < 0)
         run.recognised_at = run.commands;
-      if (each && !each(run.commands)) return run;
+      if (each && !each(run.commands)) return false;
     }
-    b.run_ms(1000);
-  }
+    return true;
+  });
   return run;
 }
 

@@ -10,41 +10,21 @@
 #include "sim/fault_window.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
+#include "sim_bench.hpp"
 
 namespace rotord {
 namespace {
 
-class Scenario {
+/// The shared bench (sim_bench.hpp), counting the ticks both azimuth relays
+/// are on and the plant is stalled, and the azimuth's extent.
+class Scenario : public testing::SimBench {
  public:
   Scenario(const char* profile_name, double az0_deg, double el0_deg = 0.0)
       : Scenario(*sim::find_profile(profile_name), az0_deg, el0_deg) {}
   /// A variation of a built-in profile (another drive, say), kept by the scenario.
-  Scenario(const sim::Profile& profile, double az0_deg, double el0_deg = 0.0) : profile_(profile) {
-    for (const auto& o : profile_.overrides) settings_.set(*settings::find(o.key), o.value);
-    sim_ = std::make_unique<sim::SimRotator>(profile_, 11);
-    sim_->set_theta_deg(AxisId::kAz, az0_deg);
-    if (sim_->has_el()) sim_->set_theta_deg(AxisId::kEl, el0_deg);
+  Scenario(const sim::Profile& profile, double az0_deg, double el0_deg = 0.0)
+      : SimBench(profile, 11, az0_deg, el0_deg) {
     power_on();
-  }
-
-  /// A power cut and restart: a new controller on the same (unmoved) rotator.
-  void power_on() {
-    controller_ =
-        std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
-    controller_->begin(now_);
-  }
-
-  void run_ms(Millis ms) {
-    for (Millis t = 0; t < ms; t += 10) {
-      now_ += 10;
-      sim_->advance_to(now_);
-      controller_->tick(now_);
-      const DriveOutputs& az = sim_->outputs(AxisId::kAz);
-      if (az.on(OutputChannel::kRelayCw) && az.on(OutputChannel::kRelayCcw)) ++both_relays_ticks_;
-      if (sim_->plant(AxisId::kAz).stalled()) ++stalled_ticks_;
-      max_az_ = std::max(max_az_, theta(AxisId::kAz));
-      min_az_ = std::min(min_az_, theta(AxisId::kAz));
-    }
   }
 
   /// Runs until both axes are idle with no target (or the time runs out).
@@ -69,10 +49,10 @@ class Scenario {
     Reversal r;
     for (Millis t = 0; t < limit_ms && !r.reversed; t += 10) {
       run_ms(10);
-      const DriveOutputs& out = sim_->outputs(AxisId::kAz);
+      const DriveOutputs& out = sim().outputs(AxisId::kAz);
       if (out.on(OutputChannel::kRelayCcw)) {
         r.reversed = true;
-        r.speed_at_reversal_deg_s = sim_->plant(AxisId::kAz).w_deg_s();
+        r.speed_at_reversal_deg_s = sim().plant(AxisId::kAz).w_deg_s();
       } else if (!out.on(OutputChannel::kRelayCw)) {
         r.unpowered_ms += 10;
       }
@@ -80,22 +60,20 @@ class Scenario {
     return r;
   }
 
-  double theta(AxisId axis) const { return sim_->plant(axis).theta_deg(); }
-  RotatorStatus status() const { return controller_->status(); }
-  Controller& controller() { return *controller_; }
-  sim::SimRotator& sim() { return *sim_; }
-  settings::Settings& settings() { return settings_; }
   int both_relays_ticks() const { return both_relays_ticks_; }
   int stalled_ticks() const { return stalled_ticks_; }
   double max_az() const { return max_az_; }
   double min_az() const { return min_az_; }
 
  private:
-  const sim::Profile profile_;
-  settings::Settings settings_;
-  std::unique_ptr<sim::SimRotator> sim_;
-  std::unique_ptr<Controller> controller_;
-  Millis now_ = 0;
+  void on_tick() override {
+    const DriveOutputs& az = sim().outputs(AxisId::kAz);
+    if (az.on(OutputChannel::kRelayCw) && az.on(OutputChannel::kRelayCcw)) ++both_relays_ticks_;
+    if (sim().plant(AxisId::kAz).stalled()) ++stalled_ticks_;
+    max_az_ = std::max(max_az_, theta(AxisId::kAz));
+    min_az_ = std::min(min_az_, theta(AxisId::kAz));
+  }
+
   int both_relays_ticks_ = 0;
   int stalled_ticks_ = 0;
   double max_az_ = -1e9;

@@ -10,9 +10,11 @@
 
 #include "../unit/iss_elements.hpp"
 #include "bench/sky_angle.hpp"
+#include "hal/wall_clock.hpp"
 #include "rotator/controller.hpp"
 #include "sim/profiles.hpp"
 #include "sim/sim_rotator.hpp"
+#include "sim_bench.hpp"
 #include "tracking/julian.hpp"
 #include "tracking/tle.hpp"
 
@@ -30,18 +32,6 @@ std::int64_t utc(const char* text) {
   return ms;
 }
 
-/// UTC = the scenario's start UTC + controller time, as under rotord's
-/// --clock manual.
-class ScenarioClock final : public hal::WallClock {
- public:
-  ScenarioClock(std::int64_t start_utc_ms, const Millis* now) : start_(start_utc_ms), now_(now) {}
-  std::optional<std::int64_t> unix_ms() const override { return start_ + *now_; }
-
- private:
-  std::int64_t start_;
-  const Millis* now_;
-};
-
 /// The pointing error: the angle on the sky (bench/sky_angle.hpp, as the
 /// bench rows measure it); an azimuth-only rotator is judged at the
 /// target's elevation.
@@ -49,57 +39,25 @@ double pointing_error_deg(double ant_az, double ant_el, double sat_az, double sa
   return bench::sky_angle_deg(ant_az, has_el ? ant_el : sat_el, sat_az, sat_el);
 }
 
-class TrackScenario {
+/// The shared bench (sim_bench.hpp) with a station, a UTC clock in step with
+/// virtual time (as under rotord's --clock manual: the scenario's start UTC +
+/// controller time), and the true target to measure the pointing against.
+class TrackScenario : public testing::SimBench, public hal::WallClock {
  public:
   TrackScenario(const char* profile, const char* start_utc, double lat, double lon, double alt_m,
                 double az0, double el0)
-      : profile_(*sim::find_profile(profile)), clock_(utc(start_utc), &now_) {
-    for (const auto& o : profile_.overrides) settings_.set(*settings::find(o.key), o.value);
-    settings_.set(Id::kStationLatDeg, lat);
-    settings_.set(Id::kStationLonDeg, lon);
-    settings_.set(Id::kStationAltM, alt_m);
-    sim_ = std::make_unique<sim::SimRotator>(profile_, 7);
-    sim_->set_theta_deg(AxisId::kAz, az0);
-    if (sim_->has_el()) sim_->set_theta_deg(AxisId::kEl, el0);
+      : SimBench(*sim::find_profile(profile), 7, az0, el0), start_utc_ms_(utc(start_utc)) {
+    set_station(lat, lon, alt_m);
   }
-  void power_on() {
-    controller_ =
-        std::make_unique<Controller>(settings_, sim_->io(AxisId::kAz), sim_->io(AxisId::kEl));
-    controller_->attach_utc_clock(&clock_);
-    controller_->begin(now_);
-  }
-
-  /// Runs the controller for `ms`; while the track is in its pass, the error
-  /// against the true target is sampled once a second.
-  void run_ms(Millis ms) {
-    for (Millis t = 0; t < ms; t += 10) {
-      now_ += 10;
-      sim_->advance_to(now_);
-      controller_->tick(now_);
-      const RotatorStatus s = controller_->status();
-      if (s.az.switch_cw || s.az.switch_ccw || s.el.switch_cw || s.el.switch_ccw) ++limit_ticks_;
-      if (sim_->plant(AxisId::kAz).stalled()) ++limit_ticks_;
-      const TrackStatus& ts = controller_->track_status();
-      if (ts.phase == TrackPhase::kTracking) {
-        const double az = sim_->plant(AxisId::kAz).theta_deg();
-        min_az_ = std::fmin(min_az_, az);
-        max_az_ = std::fmax(max_az_, az);
-        if (now_ % 1000 == 0) sample_error();
-        if (!in_pass_) starts_at_aos_ = s.az.moves + s.el.moves;
-        in_pass_ = true;
-        starts_in_pass_ = s.az.moves + s.el.moves - starts_at_aos_;
-      }
-    }
-  }
+  std::optional<std::int64_t> unix_ms() const override { return start_utc_ms_ + now(); }
 
   void sample_error() {
     tracking::LookAngles look;
-    const std::int64_t t = *clock_.unix_ms();
-    ASSERT_EQ(truth_.look(t, controller_->observer(), look), tracking::Sgp4Error::kOk);
+    const std::int64_t t = *unix_ms();
+    ASSERT_EQ(truth_.look(t, controller().observer(), look), tracking::Sgp4Error::kOk);
     if (look.el_deg < 0.0) return;
-    const bool has_el = sim_->has_el();
-    const double e = pointing_error_deg(sim_->plant(AxisId::kAz).theta_deg(),
-                                        has_el ? sim_->plant(AxisId::kEl).theta_deg() : 0.0,
+    const bool has_el = sim().has_el();
+    const double e = pointing_error_deg(theta(AxisId::kAz), has_el ? theta(AxisId::kEl) : 0.0,
                                         look.az_deg, look.el_deg, has_el);
     sum_sq_ += e * e;
     ++samples_;
@@ -113,7 +71,7 @@ class TrackScenario {
     std::snprintf(r.tle.name, sizeof r.tle.name, "ISS (ZARYA)");
     EXPECT_EQ(truth_.set_satellite(r.tle), tracking::Sgp4Error::kOk);
     r.when = when;
-    return controller_->track(r);
+    return controller().track(r);
   }
   TrackError track_body(tracking::Body body) {
     TrackRequest r;
@@ -121,7 +79,7 @@ class TrackScenario {
         body == tracking::Body::kSun ? tracking::TargetKind::kSun : tracking::TargetKind::kMoon;
     truth_.set_body(body);
     r.when = TrackWhen::kNow;
-    return controller_->track(r);
+    return controller().track(r);
   }
 
   void report(const char* name) const {
@@ -137,24 +95,33 @@ class TrackScenario {
   double min_az() const { return min_az_; }
   double max_az() const { return max_az_; }
   int starts_in_pass() const { return starts_in_pass_; }
-  Controller& controller() { return *controller_; }
-  settings::Settings& settings() { return settings_; }
-  sim::SimRotator& sim() { return *sim_; }
-  std::int64_t utc_now() const { return *clock_.unix_ms(); }
-  double theta(AxisId axis) const { return sim_->plant(axis).theta_deg(); }
 
   /// Runs until the pass is over (or the time is up).
   void run_until_done(Millis limit_ms) {
-    for (Millis t = 0; t < limit_ms && controller_->track_status().armed(); t += 1000) run_ms(1000);
+    for (Millis t = 0; t < limit_ms && controller().track_status().armed(); t += 1000) run_ms(1000);
   }
 
  private:
-  const sim::Profile& profile_;
-  settings::Settings settings_;
-  Millis now_ = 0;
-  ScenarioClock clock_;
-  std::unique_ptr<sim::SimRotator> sim_;
-  std::unique_ptr<Controller> controller_;
+  void attach(Controller& c) override { c.attach_utc_clock(this); }
+  /// While the track is in its pass, the error against the true target is
+  /// sampled once a second.
+  void on_tick() override {
+    const RotatorStatus s = status();
+    if (on_a_limit_switch(s)) ++limit_ticks_;
+    if (sim().plant(AxisId::kAz).stalled()) ++limit_ticks_;
+    const TrackStatus& ts = controller().track_status();
+    if (ts.phase == TrackPhase::kTracking) {
+      const double az = theta(AxisId::kAz);
+      min_az_ = std::fmin(min_az_, az);
+      max_az_ = std::fmax(max_az_, az);
+      if (now() % 1000 == 0) sample_error();
+      if (!in_pass_) starts_at_aos_ = s.az.moves + s.el.moves;
+      in_pass_ = true;
+      starts_in_pass_ = s.az.moves + s.el.moves - starts_at_aos_;
+    }
+  }
+
+  std::int64_t start_utc_ms_;
   tracking::SkyTarget truth_;
   double sum_sq_ = 0, max_error_ = 0;
   int samples_ = 0;
