@@ -1,8 +1,8 @@
-#include "protocol/gs232_calibration.hpp"
+#include "command/calibration.hpp"
 
 #include "motion/angles.hpp"
 
-namespace rotord::protocol::gs232 {
+namespace rotord::command {
 namespace {
 
 using settings::Id;
@@ -38,9 +38,7 @@ Error set_pair(settings::Settings& s, Id a, double a_value, Id b, double b_value
   return Error::kOutOfRange;
 }
 
-}  // namespace
-
-Error calibrate(Controller& controller, AxisId axis, CalPoint point) {
+Error set_point(Controller& controller, AxisId axis, CalPoint point) {
   const bool az = axis == AxisId::kAz;
   if (!az && !controller.has_el()) return Error::kNotSupported;
   const RotatorStatus status = controller.status();
@@ -54,7 +52,7 @@ Error calibrate(Controller& controller, AxisId axis, CalPoint point) {
     return Error::kFaulted;
   settings::Settings& s = controller.settings();
   const AxisKeys& k = az ? kAz : kEl;
-  const bool offset = point == CalPoint::kOffset;
+  const bool offset = point == CalPoint::kLo;
   // The sensor frame excludes the user offset: position = sensor + offset.
   const double stop_deg = s.get(offset ? k.min_deg : k.max_deg) - s.get(k.offset_deg);
 
@@ -76,4 +74,12 @@ Error calibrate(Controller& controller, AxisId axis, CalPoint point) {
   }
 }
 
-}  // namespace rotord::protocol::gs232
+}  // namespace
+
+Error calibrate(Controller& controller, const Origin& from, AxisId axis, CalPoint point) {
+  static constexpr std::string_view kWords[2][2] = {{"az lo", "az hi"}, {"el lo", "el hi"}};
+  return told(controller, from, "cal", set_point(controller, axis, point), NAN, NAN,
+              kWords[axis == AxisId::kEl][point == CalPoint::kHi]);
+}
+
+}  // namespace rotord::command
