@@ -44,8 +44,7 @@ SetResult apply_model(Controller& controller, const Origin& from,
               settings::apply_rotator_model(model, controller.settings()), store);
 }
 
-SetResult set_station(Controller& controller, const Origin& from, double lat_deg,
-                      double lon_deg) {
+SetResult set_station(Controller& controller, const Origin& from, double lat_deg, double lon_deg) {
   settings::Settings& s = controller.settings();
   const double old_lat_deg = s.get(Id::kStationLatDeg);
   settings::Rejection r = s.set(Id::kStationLatDeg, lat_deg);

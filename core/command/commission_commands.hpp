@@ -24,8 +24,8 @@ Error commission(Controller& controller, const Origin& from, const Commissioning
 SetResult accept_commissioning(Controller& controller, const Origin& from, const Store* store);
 /// Fills the settings from a model's published figures; kInvalid with the
 /// reason when they break a rule: nothing changed.
-SetResult apply_model(Controller& controller, const Origin& from, const settings::RotatorModel& model,
-                      const Store* store);
+SetResult apply_model(Controller& controller, const Origin& from,
+                      const settings::RotatorModel& model, const Store* store);
 /// The station's position, both or neither; kInvalid with the reason.
 SetResult set_station(Controller& controller, const Origin& from, double lat_deg, double lon_deg);
 

@@ -53,8 +53,7 @@ Refusal may_write(Id id, Writer writer) {
       return settings::line_writable(id) ? Refusal::kNone : Refusal::kLogin;
     default:
       if ((flags & (settings::kWebOnly | settings::kHidden)) != 0) return Refusal::kWebOnly;
-      if ((flags & settings::kSecret) != 0 && writer == Writer::kNetwork)
-        return Refusal::kPassword;
+      if ((flags & settings::kSecret) != 0 && writer == Writer::kNetwork) return Refusal::kPassword;
       return Refusal::kNone;
   }
 }
@@ -108,8 +107,8 @@ SetResult set_settings(Controller& controller, const Origin& from, Writer writer
   const web::ApplyOutcome r =
       web::apply_settings_json(json, values, scratch.settings, scratch.errors, true);
   if (r.status != web::ApplyOutcome::kApplied) {
-    result.status = r.status == web::ApplyOutcome::kBadJson ? SetResult::kBadJson
-                                                            : SetResult::kInvalid;
+    result.status =
+        r.status == web::ApplyOutcome::kBadJson ? SetResult::kBadJson : SetResult::kInvalid;
     result.reason = r.message;
     result.listed = true;
     web::SettingSet keys;

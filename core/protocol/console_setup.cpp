@@ -76,7 +76,8 @@ void ConsoleSession::setup(std::string_view args, ByteSink& out) {
   std::string_view rest = args;
   const std::string_view word = text::next_token(rest);
   const std::string_view id = text::trim(rest);
-  if (text::iequals(word, "station") && !id.empty()) return setup_station(controller_, origin(), id, out);
+  if (text::iequals(word, "station") && !id.empty())
+    return setup_station(controller_, origin(), id, out);
   if (text::iequals(word, "models") && id.empty()) {
     for (const settings::RotatorModel& m : settings::rotator_models())
       send(out, "%-16s %s", m.id, m.name);

@@ -3,8 +3,8 @@
 #include <array>
 #include <cstdio>
 
-#include "command/typed.hpp"
 #include "command/calibration.hpp"
+#include "command/typed.hpp"
 #include "protocol/gs232_detail.hpp"
 #include "rotator/controller.hpp"
 #include "util/slice.hpp"

@@ -37,8 +37,8 @@ Api::Outcome Api::reset_settings(const Call& call) {
   } else {
     scratch_.reset_to_defaults();
   }
-  return send_set(call, command::reset_settings(ctx_.controller, {"rest", call.peer}, scratch_, store()),
-                  422);
+  return send_set(
+      call, command::reset_settings(ctx_.controller, {"rest", call.peer}, scratch_, store()), 422);
 }
 
 Api::Outcome Api::send_set(const Call& call, const command::SetResult& r, int refused_status) {
