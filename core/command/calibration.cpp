@@ -1,5 +1,6 @@
 #include "command/calibration.hpp"
 
+#include "command/settings_commands.hpp"
 #include "motion/angles.hpp"
 
 namespace rotord::command {
@@ -77,9 +78,10 @@ Error set_point(Controller& controller, AxisId axis, CalPoint point) {
 }  // namespace
 
 Error calibrate(Controller& controller, const Origin& from, AxisId axis, CalPoint point) {
-  static constexpr std::string_view kWords[2][2] = {{"az lo", "az hi"}, {"el lo", "el hi"}};
-  return told(controller, from, "cal", set_point(controller, axis, point), NAN, NAN,
-              kWords[axis == AxisId::kEl][point == CalPoint::kHi]);
+  const Error e = set_point(controller, axis, point);
+  told_words(controller, from, axis == AxisId::kEl ? "cal el" : "cal az", error_name(e),
+             point == CalPoint::kHi ? "hi" : "lo");
+  return e;
 }
 
 }  // namespace rotord::command

@@ -1,64 +1,45 @@
 #include "command/settings_commands.hpp"
 
-#include <cstring>
+#include <cstdio>
 
 namespace rotord::command {
 namespace {
 
 using settings::Id;
 
-/// The keys of a log line, cut with "..." where they would not fit the
-/// line (command_log.cpp writes at most 176 bytes).
+/// The keys of a log line, cut at kKeysBytes (command_log.cpp writes at
+/// most 176 bytes a line).
 constexpr std::size_t kKeysBytes = 100;
-std::string_view key_list(const web::SettingSet& keys, char (&text)[kKeysBytes]) {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < settings::kCount; ++i) {
-    if (!keys[i]) continue;
-    std::string_view part = settings::def(static_cast<Id>(i)).key;
-    if (n + 1 + part.size() + 4 > sizeof text) part = "...";  // room for " ..." is kept
-    if (n > 0) text[n++] = ' ';
-    std::memcpy(text + n, part.data(), part.size());
-    n += part.size();
-    if (part == "...") break;
-  }
-  return {text, n};
-}
-
-/// Writes the line of "set" (or `what`) over `keys`; returns `result`.
-SetResult told_set(Controller& controller, const Origin& from, const SetResult& result,
-                   const web::SettingSet& keys, std::string_view what = "set") {
-  char text[kKeysBytes];
-  told(controller, from, what, outcome_word(result), NAN, NAN, key_list(keys, text));
-  return result;
-}
-
-web::SettingSet one(Id id) {
-  web::SettingSet keys;
-  keys[static_cast<std::size_t>(id)] = true;
-  return keys;
+const char* key_list(const web::SettingSet& keys, char (&text)[kKeysBytes]) {
+  int n = 0;
+  text[0] = '\0';
+  for (std::size_t i = 0; i < settings::kCount; ++i)
+    if (keys[i] && n < static_cast<int>(sizeof text))
+      n += std::snprintf(text + n, sizeof text - n, n > 0 ? " %s" : "%s",
+                         settings::def(static_cast<Id>(i)).key);
+  return text;
 }
 
 }  // namespace
 
-Writer line_writer(const access::Peer& peer) {
-  return peer.kind == access::Peer::Kind::kLine ? Writer::kLine : Writer::kNetwork;
+void told_words(Controller& controller, const Origin& from, const char* what, const char* outcome,
+                const char* args) {
+  told(controller, from, what, outcome, NAN, NAN, args);
 }
 
 Refusal may_write(Id id, Writer writer) {
   const auto flags = settings::def(id).flags;
-  switch (writer) {
-    case Writer::kLogin:
-      return Refusal::kNone;
-    case Writer::kToken:
-      return settings::line_writable(id) ? Refusal::kNone : Refusal::kLogin;
-    default:
-      if ((flags & (settings::kWebOnly | settings::kHidden)) != 0) return Refusal::kWebOnly;
-      if ((flags & settings::kSecret) != 0 && writer == Writer::kNetwork) return Refusal::kPassword;
-      return Refusal::kNone;
-  }
+  if (writer == Writer::kLogin) return Refusal::kNone;
+  // A token: settings::line_writable's rule (not a secret, not web-only).
+  if (writer == Writer::kToken)
+    return (flags & (settings::kSecret | settings::kWebOnly)) != 0 ? Refusal::kLogin
+                                                                   : Refusal::kNone;
+  if ((flags & (settings::kWebOnly | settings::kHidden)) != 0) return Refusal::kWebOnly;
+  return (flags & settings::kSecret) != 0 && writer == Writer::kNetwork ? Refusal::kPassword
+                                                                        : Refusal::kNone;
 }
 
-std::string_view outcome_word(const SetResult& result) {
+const char* outcome_word(const SetResult& result) {
   switch (result.status) {
     case SetResult::kOk:
       return "OK";
@@ -83,7 +64,8 @@ SetResult set_setting(Controller& controller, const Origin& from, Writer writer,
     result.status = SetResult::kInvalid;
     result.reason = r.reason;
   }
-  return told_set(controller, from, result, one(id));
+  told_words(controller, from, "set", outcome_word(result), settings::def(id).key);
+  return result;
 }
 
 SetResult set_settings(Controller& controller, const Origin& from, Writer writer,
@@ -95,11 +77,11 @@ SetResult set_settings(Controller& controller, const Origin& from, Writer writer
     web::JsonValue value;
     while (reader.valid() && reader.next(key, value)) {
       const std::optional<Id> id = settings::find(key);
-      if (!id || may_write(*id, writer) == Refusal::kNone) continue;
+      if (!id || (result.refusal = may_write(*id, writer)) == Refusal::kNone) continue;
       result.status = SetResult::kRefused;
-      result.refusal = may_write(*id, writer);
       result.key = *id;
-      return told_set(controller, from, result, one(*id));
+      told_words(controller, from, "set", outcome_word(result), settings::def(*id).key);
+      return result;
     }
   }
   settings::Settings& values = controller.settings();
@@ -111,15 +93,16 @@ SetResult set_settings(Controller& controller, const Origin& from, Writer writer
         r.status == web::ApplyOutcome::kBadJson ? SetResult::kBadJson : SetResult::kInvalid;
     result.reason = r.message;
     result.listed = true;
-    web::SettingSet keys;
-    for (std::size_t n = 0; n < scratch.errors.size(); ++n)
-      if (const std::optional<Id> id = settings::find(scratch.errors[n].key))
-        keys[static_cast<std::size_t>(*id)] = true;
-    return told_set(controller, from, result, keys);
+    // The first key refused names the line (a rule across settings: none).
+    told_words(controller, from, "set", outcome_word(result),
+               scratch.errors.size() > 0 ? scratch.errors[0].key : "");
+    return result;
   }
   result = keep_change(controller, store);
   if (store == nullptr) result.changed = r.changed;
-  return told_set(controller, from, result, r.named);
+  char text[kKeysBytes];
+  told_words(controller, from, "set", outcome_word(result), key_list(r.named, text));
+  return result;
 }
 
 SetResult reset_settings(Controller& controller, const Origin& from,
@@ -133,13 +116,18 @@ SetResult reset_settings(Controller& controller, const Origin& from,
     if ((settings::def(id).flags & settings::kHidden) == 0) values.copy_value(id, defaults);
   }
   const SetResult result = keep_change(controller, &store);
-  told(controller, from, "reset", outcome_word(result), NAN, NAN, "settings");
+  told_words(controller, from, "reset", outcome_word(result), "settings");
   return result;
 }
 
-SetResult keep_change(Controller& controller, const Store* store) {
+SetResult keep_change(Controller& controller, const Store* store,
+                      const settings::Rejection& refused) {
   SetResult result;
-  if (store == nullptr) return result;
+  if (refused.error != Error::kOk) {
+    result.status = SetResult::kInvalid;
+    result.reason = refused.reason;
+  }
+  if (store == nullptr || refused.error != Error::kOk) return result;
   settings::Settings& values = controller.settings();
   for (std::size_t n = 0; n < settings::kCount; ++n)
     result.changed[n] = !values.same_value(static_cast<Id>(n), store->backup);

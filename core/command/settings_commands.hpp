@@ -23,7 +23,9 @@ enum class Writer : unsigned char {
   kLine,     ///< the console over USB or serial: secrets too, not the access rules
 };
 /// The console's writer: kLine on a local line (USB, serial), else kNetwork.
-Writer line_writer(const access::Peer& peer);
+inline Writer line_writer(const access::Peer& peer) {
+  return peer.kind == access::Peer::Kind::kLine ? Writer::kLine : Writer::kNetwork;
+}
 
 /// Why a writer may not write a key.
 enum class Refusal : unsigned char {
@@ -76,10 +78,17 @@ SetResult reset_settings(Controller& controller, const Origin& from,
 
 /// The end of a change already made in the settings (`store`'s backup holds
 /// them from before it): saved, the changed values listed; or, when saving
-/// fails, undone. Without a store: kOk, nothing listed.
-SetResult keep_change(Controller& controller, const Store* store);
+/// fails, undone. Without a store: kOk, nothing listed. A change refused
+/// (`refused`, nothing changed): kInvalid with its reason.
+SetResult keep_change(Controller& controller, const Store* store,
+                      const settings::Rejection& refused = {});
 
 /// The log line's words for a write that came to `result`: "OK", "DENIED"...
-std::string_view outcome_word(const SetResult& result);
+const char* outcome_word(const SetResult& result);
+/// The log line of a settings, set-up or calibration command: `what`
+/// (static: the log keeps it; a per-axis command's names its axis, "cal az"),
+/// then `args`, then the outcome.
+void told_words(Controller& controller, const Origin& from, const char* what, const char* outcome,
+                const char* args);
 
 }  // namespace rotord::command

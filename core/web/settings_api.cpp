@@ -32,13 +32,10 @@ Api::Outcome Api::post_settings(const Call& call) {
 }
 
 Api::Outcome Api::reset_settings(const Call& call) {
-  if (ctx_.defaults != nullptr) {
-    scratch_ = *ctx_.defaults;
-  } else {
-    scratch_.reset_to_defaults();
-  }
+  if (ctx_.defaults == nullptr) scratch_.reset_to_defaults();
+  const settings::Settings& defaults = ctx_.defaults != nullptr ? *ctx_.defaults : scratch_;
   return send_set(
-      call, command::reset_settings(ctx_.controller, {"rest", call.peer}, scratch_, store()), 422);
+      call, command::reset_settings(ctx_.controller, {"rest", call.peer}, defaults, store()), 422);
 }
 
 Api::Outcome Api::send_set(const Call& call, const command::SetResult& r, int refused_status) {

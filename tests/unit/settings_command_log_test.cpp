@@ -136,8 +136,7 @@ TEST(SettingsCommandLog, ARefusedKeyIsLoggedDeniedByEitherFrontEnd) {
   EXPECT_EQ(console.last(), "command set access.control_networks from console (10.0.0.3): DENIED");
   EXPECT_EQ(without_sender(rest.last()), without_sender(console.last()));
   // A secret: a token and a network client are refused it alike.
-  EXPECT_EQ(rest.post("/api/settings", R"({"wifi.password": "n3tw0rkSecret"})", token).status,
-            403);
+  EXPECT_EQ(rest.post("/api/settings", R"({"wifi.password": "n3tw0rkSecret"})", token).status, 403);
   EXPECT_EQ(console.console("set wifi.password n3tw0rkSecret", kNetClient),
             "error: wifi.password is a password: set it over USB or serial, not the network\r\n");
   EXPECT_EQ(console.last(), "command set wifi.password from console (10.0.0.3): DENIED");
@@ -147,7 +146,8 @@ TEST(SettingsCommandLog, ARefusedKeyIsLoggedDeniedByEitherFrontEnd) {
 
 TEST(SettingsCommandLog, ASecretsValueNeverReachesTheLog) {
   Rig rig;
-  EXPECT_EQ(rig.console("set wifi.password Sup3rSecretValue"), "ok wifi.password=******** (takes effect after a reboot)\r\n");
+  EXPECT_EQ(rig.console("set wifi.password Sup3rSecretValue"),
+            "ok wifi.password=******** (takes effect after a reboot)\r\n");
   EXPECT_EQ(rig.console(R"(import {"wifi.ap_password": "Imp0rtedSecret"})").rfind("ok ", 0), 0u);
   EXPECT_EQ(rig.post("/api/settings", R"({"mqtt.password": "Br0kerSecret"})").status, 200);
   EXPECT_EQ(rig.console("set wifi.password N3tworkSecret", kNetClient).rfind("error: ", 0), 0u);
@@ -158,8 +158,8 @@ TEST(SettingsCommandLog, ASecretsValueNeverReachesTheLog) {
   EXPECT_EQ(rig.out.lines[2], "command set mqtt.password from rest (10.0.0.2): OK");
   EXPECT_EQ(rig.out.lines[3], "command set wifi.password from console (10.0.0.3): DENIED");
   for (const std::string& line : rig.out.lines)
-    for (const char* secret : {"Sup3rSecretValue", "Imp0rtedSecret", "Br0kerSecret",
-                               "N3tworkSecret", "Secret"})
+    for (const char* secret :
+         {"Sup3rSecretValue", "Imp0rtedSecret", "Br0kerSecret", "N3tworkSecret", "Secret"})
       EXPECT_EQ(line.find(secret), std::string::npos) << line;
 }
 
@@ -169,14 +169,16 @@ TEST(SettingsCommandLog, CalibrationFromTheConsoleAndGs232WritesOneLine) {
     rig->r.az.adc.counts = 300;
     rig->r.run_ms(500);
   }
-  EXPECT_EQ(console.console("cal az hi"), "ok az hi point set from the sensor's present reading\r\n");
+  EXPECT_EQ(console.console("cal az hi"),
+            "ok az hi point set from the sensor's present reading\r\n");
   protocol::Gs232Session session{*gs232.r.controller};
   session.set_peer(kNetClient);
   StringSink sink;
   session.receive("F\r", sink);
   EXPECT_EQ(console.last(), "command cal az hi from console (a serial port): OK");
   EXPECT_EQ(gs232.last(), "command cal az hi from gs232 (10.0.0.3): OK");
-  EXPECT_EQ(console.console("cal el lo"), "ok el lo point set from the sensor's present reading\r\n");
+  EXPECT_EQ(console.console("cal el lo"),
+            "ok el lo point set from the sensor's present reading\r\n");
   EXPECT_EQ(console.last(), "command cal el lo from console (a serial port): OK");
 }
 
