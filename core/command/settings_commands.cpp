@@ -55,7 +55,6 @@ const char* outcome_word(const SetResult& result) {
 SetResult set_setting(Controller& controller, const Origin& from, Writer writer, Id id,
                       std::string_view text) {
   SetResult result;
-  result.key = id;
   result.refusal = may_write(id, writer);
   if (result.refusal != Refusal::kNone) {
     result.status = SetResult::kRefused;
@@ -99,7 +98,7 @@ SetResult set_settings(Controller& controller, const Origin& from, Writer writer
     return result;
   }
   result = keep_change(controller, store);
-  if (store == nullptr) result.changed = r.changed;
+  result.changed = r.changed;  // with a store too: the same set
   char text[kKeysBytes];
   told_words(controller, from, "set", outcome_word(result), key_list(r.named, text));
   return result;
@@ -126,8 +125,9 @@ SetResult keep_change(Controller& controller, const Store* store,
   if (refused.error != Error::kOk) {
     result.status = SetResult::kInvalid;
     result.reason = refused.reason;
+    return result;
   }
-  if (store == nullptr || refused.error != Error::kOk) return result;
+  if (store == nullptr) return result;
   settings::Settings& values = controller.settings();
   for (std::size_t n = 0; n < settings::kCount; ++n)
     result.changed[n] = !values.same_value(static_cast<Id>(n), store->backup);

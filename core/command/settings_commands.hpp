@@ -1,10 +1,10 @@
 #pragma once
 // Settings writes in the command layer (docs/architecture.md, "The command
 // layer"): who may write which key, once for every front end; a setting from
-// text (the console's `set`), a JSON document of them (POST /api/settings,
-// the console's `import`), the defaults back (POST /api/settings/reset).
-// Each writes its one log line (docs/logging.md), naming the keys and never
-// a value, so a password never reaches the log:
+// text (the console's `set`, rotctld's `C`, Easycomm's `CW`), a JSON document of them (POST
+// /api/settings, the console's `import`), the defaults back (POST /api/settings/reset). Each writes
+// its one log line (docs/logging.md), naming the keys and never a value, so a password never
+// reaches the log:
 //   command set az.offset_deg from console (USB): OK
 //   command set access.control_networks from rest (192.168.1.20): DENIED
 // The front ends keep only their bytes: the key's spelling, the reply.
@@ -19,7 +19,8 @@ namespace rotord::command {
 enum class Writer : unsigned char {
   kLogin,    ///< the web login, or REST with access control off: any key
   kToken,    ///< a REST bearer token: not the access rules, not a secret
-  kNetwork,  ///< the console over the network: not the access rules, not a secret
+  kNetwork,  ///< the console over the network, or a line protocol (rotctld `C`,
+             ///< Easycomm `CW`) over any line: not the access rules, not a secret
   kLine,     ///< the console over USB or serial: secrets too, not the access rules
 };
 /// The console's writer: kLine on a local line (USB, serial), else kNetwork.
@@ -50,7 +51,7 @@ struct Store {
 struct SetResult {
   enum Status : unsigned char { kOk, kRefused, kBadJson, kInvalid, kNotSaved } status = kOk;
   Refusal refusal = Refusal::kNone;  ///< kRefused: why
-  settings::Id key{};                ///< kRefused: the key refused
+  settings::Id key{};                ///< set_settings, kRefused: the key refused
   const char* reason = "";           ///< kBadJson, kInvalid: why
   bool listed = false;               ///< kInvalid: the Scratch's errors name the keys
   web::SettingSet changed;           ///< kOk with a Store: the values that changed

@@ -16,6 +16,7 @@
 #include "memory_storage.hpp"
 #include "protocol/console_session.hpp"
 #include "protocol/gs232_session.hpp"
+#include "protocol/rotctld_session.hpp"
 #include "web/http_session.hpp"
 
 namespace rotord::command {
@@ -142,6 +143,22 @@ TEST(SettingsCommandLog, ARefusedKeyIsLoggedDeniedByEitherFrontEnd) {
   EXPECT_EQ(console.last(), "command set wifi.password from console (10.0.0.3): DENIED");
   EXPECT_EQ(without_sender(rest.last()), without_sender(console.last()));
   EXPECT_EQ(console.r.settings.text(settings::Id::kWifiPassword), "");
+}
+
+// rotctld's `C` (and Easycomm's `CW`) are the same settings write, under
+// the line protocols' rule: never a secret or an access rule, whoever asks.
+TEST(SettingsCommandLog, RotctldsSetConfIsTheSameCommand) {
+  Rig rest, rotctld;
+  ASSERT_EQ(rest.post("/api/settings", R"({"park.az_deg": 90})").status, 200);
+  protocol::RotctldSession session{*rotctld.r.controller, "1"};
+  session.set_peer(kNetClient);
+  StringSink sink;
+  session.receive("C park.az_deg 90\nC wifi.password r0tctldSecret\n", sink);
+  EXPECT_EQ(sink.data, "RPRT 0\nRPRT -9\n");
+  ASSERT_EQ(rotctld.out.lines.size(), 2u);
+  EXPECT_EQ(rotctld.out.lines[0], "command set park.az_deg from rotctld (10.0.0.3): OK");
+  EXPECT_EQ(without_sender(rest.last()), without_sender(rotctld.out.lines[0]));
+  EXPECT_EQ(rotctld.out.lines[1], "command set wifi.password from rotctld (10.0.0.3): DENIED");
 }
 
 TEST(SettingsCommandLog, ASecretsValueNeverReachesTheLog) {
