@@ -17,19 +17,16 @@
 #include "protocol/console_session.hpp"
 #include "protocol/gs232_session.hpp"
 #include "protocol/rotctld_session.hpp"
+#include "string_sink.hpp"
 #include "web/http_session.hpp"
 
 namespace rotord::command {
 namespace {
 
+using rotord::testing::ask;
 using rotord::testing::HttpResponse;
+using rotord::testing::LineSink;
 using rotord::testing::StringSink;
-
-class Lines final : public ByteSink {
- public:
-  std::vector<std::string> lines;
-  void write(std::string_view bytes) override { lines.emplace_back(bytes); }
-};
 
 const access::Peer kWebClient = access::Peer::from_ipv4(0x0A000002);  // 10.0.0.2
 const access::Peer kNetClient = access::Peer::from_ipv4(0x0A000003);  // 10.0.0.3
@@ -53,7 +50,7 @@ struct Rig {
   settings::Settings defaults;
   rotord::testing::MemoryStorage storage;
   rotord::testing::FakeCrypto crypto;
-  Lines out;
+  LineSink out;
   CommandLog log{out};
   Millis now = 1000;
   web::Api api{context()};
@@ -65,10 +62,9 @@ struct Rig {
     web::HttpSession session(api);
     session.set_peer(kWebClient);
     StringSink sink;
-    session.receive("POST " + path + " HTTP/1.1\r\nHost: localhost\r\n" + extra +
-                        "Content-Type: application/json\r\nContent-Length: " +
-                        std::to_string(body.size()) + "\r\n\r\n" + body,
-                    sink);
+    std::string type = "application/json";
+    if (!extra.empty()) type += "\r\n" + extra.substr(0, extra.size() - 2);  // a header more
+    session.receive(rotord::testing::post_request(path, body, type), sink);
     for (int n = 0; n < 20 && sink.data.empty(); ++n) {
       now += 10;
       api.poll(now);
@@ -80,9 +76,7 @@ struct Rig {
   std::string console(const std::string& line, access::Peer peer = access::Peer::line()) {
     protocol::ConsoleSession session{*r.controller, "9.9.9", &port};
     session.set_peer(peer);
-    StringSink sink;
-    session.receive(line + "\n", sink);
-    return sink.data;
+    return ask(session, line + "\n");
   }
   /// A control token, with access control turned on by a web password.
   std::string control_token() {
@@ -152,9 +146,7 @@ TEST(SettingsCommandLog, RotctldsSetConfIsTheSameCommand) {
   ASSERT_EQ(rest.post("/api/settings", R"({"park.az_deg": 90})").status, 200);
   protocol::RotctldSession session{*rotctld.r.controller, "1"};
   session.set_peer(kNetClient);
-  StringSink sink;
-  session.receive("C park.az_deg 90\nC wifi.password r0tctldSecret\n", sink);
-  EXPECT_EQ(sink.data, "RPRT 0\nRPRT -9\n");
+  EXPECT_EQ(ask(session, "C park.az_deg 90\nC wifi.password r0tctldSecret\n"), "RPRT 0\nRPRT -9\n");
   ASSERT_EQ(rotctld.out.lines.size(), 2u);
   EXPECT_EQ(rotctld.out.lines[0], "command set park.az_deg from rotctld (10.0.0.3): OK");
   EXPECT_EQ(without_sender(rest.last()), without_sender(rotctld.out.lines[0]));
@@ -190,8 +182,7 @@ TEST(SettingsCommandLog, CalibrationFromTheConsoleAndGs232WritesOneLine) {
             "ok az hi point set from the sensor's present reading\r\n");
   protocol::Gs232Session session{*gs232.r.controller};
   session.set_peer(kNetClient);
-  StringSink sink;
-  session.receive("F\r", sink);
+  ask(session, "F\r");
   EXPECT_EQ(console.last(), "command cal az hi from console (a serial port): OK");
   EXPECT_EQ(gs232.last(), "command cal az hi from gs232 (10.0.0.3): OK");
   EXPECT_EQ(console.console("cal el lo"),
