@@ -57,7 +57,9 @@ set(ROTORD_LAYER_net access settings)
 # The Controller: axes, park, tracks, the control lock.
 set(ROTORD_LAYER_rotator axis care tracking settings access)
 # The command layer: each command a client may send (go-to, move, stop,
-# park, reset, speed, place, preset) once, with its argument checks (typed
+# park, reset, speed, place, preset; settings writes, calibration,
+# commissioning and set-up, with the one rule of who may write which key)
+# once, with its argument checks (typed
 # for the line protocols, read from JSON for REST and MQTT: the body and the
 # payload are the same document), who may call it (the allow-list from net),
 # the control lock, and its errors as values; the front ends above only

@@ -3,6 +3,7 @@
 // meanwhile waits in its hold.
 #include <cstring>
 
+#include "command/settings_commands.hpp"
 #include "json/json_writer.hpp"
 #include "json/settings_json.hpp"
 #include "protocol/console_reply.hpp"
@@ -48,7 +49,7 @@ void ConsoleSession::write_listing(ByteSink& out) const {
       for (std::size_t n = 0; n < settings::kCount; ++n) {
         const auto id = static_cast<Id>(n);
         // Passwords are masked in any export, so they carry nothing.
-        if (!keys[n] || !writable(id, access::Peer::line()) ||
+        if (!keys[n] || command::may_write(id, command::Writer::kLine) != command::Refusal::kNone ||
             (settings::def(id).flags & settings::kSecret) != 0)
           continue;
         w.key(settings::def(id).key);

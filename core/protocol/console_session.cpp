@@ -4,11 +4,10 @@
 #include <cstdio>
 #include <cstring>
 
+#include "command/calibration.hpp"
+#include "command/settings_commands.hpp"
 #include "command/typed.hpp"
-#include "json/json_reader.hpp"
-#include "json/settings_json.hpp"
 #include "protocol/console_reply.hpp"
-#include "protocol/gs232_calibration.hpp"
 #include "rotator/controller.hpp"
 #include "util/slice.hpp"
 #include "util/text.hpp"
@@ -79,13 +78,6 @@ constexpr ConsoleSession::Command ConsoleSession::kCommands[] = {
 
 std::span<const ConsoleSession::Command> ConsoleSession::commands() {
   return kCommands;
-}
-
-bool ConsoleSession::writable(Id id, const access::Peer& peer) {
-  const auto flags = settings::def(id).flags;
-  if ((flags & (settings::kWebOnly | settings::kHidden)) != 0) return false;
-  if ((flags & settings::kSecret) != 0) return peer.kind == access::Peer::Kind::kLine;
-  return true;
 }
 
 void ConsoleSession::receive(std::string_view bytes, ByteSink& out) {
@@ -192,18 +184,18 @@ void ConsoleSession::set(std::string_view args, ByteSink& out) {
     const Echo echo(key);
     return send(out, "error: unknown setting '%s' (list shows every setting)", echo.text);
   }
+  // Who may write it (never the access rules; a password only over USB or
+  // serial) and the checks are the command layer's (settings_commands.hpp).
   const settings::Def& def = settings::def(*id);
-  if (!writable(*id, peer())) {
+  const command::SetResult r =
+      command::set_setting(controller_, origin(), command::line_writer(peer()), *id, value);
+  if (r.status == command::SetResult::kRefused)
     return send(out,
-                (def.flags & settings::kSecret) != 0 && (def.flags & settings::kWebOnly) == 0
+                r.refusal == command::Refusal::kPassword
                     ? "error: %s is a password: set it over USB or serial, not the network"
                     : "error: %s is set through the web only",
                 def.key);
-  }
-  // The same checks as every other writer: type, range, format, then the
-  // rules across settings (a value that breaks one is undone).
-  const settings::Rejection r = controller_.settings().save_from_text(*id, value);
-  if (r.error != Error::kOk) return send(out, "error: %s: %s", def.key, r.reason);
+  if (r.status != command::SetResult::kOk) return send(out, "error: %s: %s", def.key, r.reason);
   const Value now(controller_.settings(), *id);
   send(out, "ok %s=%s%s", def.key, now.text,
        (def.flags & settings::kRestart) != 0 ? " (takes effect after a reboot)" : "");
@@ -222,28 +214,21 @@ void ConsoleSession::import_settings(std::string_view args, ByteSink& out) {
     return error(out, "import is not available on this port");
   // Every key is checked before anything changes: one this client may not
   // write refuses the whole document.
-  {
-    web::JsonObjectReader reader(json);
-    std::string_view key;
-    web::JsonValue value;
-    while (reader.valid() && reader.next(key, value)) {
-      const std::optional<Id> id = settings::find(key);
-      if (id && !writable(*id, peer()))
-        return send(out,
-                    "error: %s cannot be imported here (web only, or a password over the "
-                    "network): remove it",
-                    settings::def(*id).key);
-    }
-  }
   web::SettingErrors errors;
-  const web::ApplyOutcome r =
-      web::apply_settings_json(json, controller_.settings(), *port_->scratch, errors, true);
-  if (r.status == web::ApplyOutcome::kBadJson)
-    return send(out, "error: invalid JSON: %s", r.message);
-  if (r.status == web::ApplyOutcome::kInvalid) {
+  const command::SetResult r =
+      command::set_settings(controller_, origin(), command::line_writer(peer()), json,
+                            {*port_->scratch, errors}, nullptr);
+  if (r.status == command::SetResult::kRefused)
+    return send(out,
+                "error: %s cannot be imported here (web only, or a password over the "
+                "network): remove it",
+                settings::def(r.key).key);
+  if (r.status == command::SetResult::kBadJson)
+    return send(out, "error: invalid JSON: %s", r.reason);
+  if (r.status != command::SetResult::kOk) {
     for (std::size_t n = 0; n < errors.size(); ++n)
       send(out, "  %s: %s", errors[n].key, errors[n].reason);
-    return send(out, "error: nothing changed: %s", r.message);
+    return send(out, "error: nothing changed: %s", r.reason);
   }
   int changed = 0;
   bool restart = false;
@@ -265,8 +250,8 @@ void ConsoleSession::calibrate(std::string_view args, ByteSink& out) {
   if ((!az && !text::iequals(axis_word, "el")) || (!lo && !text::iequals(point_word, "hi")) ||
       !text::trim(rest).empty())
     return error(out, "usage: cal <az|el> <lo|hi>");
-  const Error e = gs232::calibrate(controller_, az ? AxisId::kAz : AxisId::kEl,
-                                   lo ? gs232::CalPoint::kOffset : gs232::CalPoint::kFullScale);
+  const Error e = command::calibrate(controller_, origin(), az ? AxisId::kAz : AxisId::kEl,
+                                     lo ? command::CalPoint::kLo : command::CalPoint::kHi);
   switch (e) {
     case Error::kOk:
       return send(out, "ok %s %s point set from the sensor's present reading", az ? "az" : "el",

@@ -73,12 +73,6 @@ class ConsoleSession final : public Session {
   };
   static std::span<const Command> commands();
 
-  /// Whether the console may write `id` for `peer`: never the web-only rows
-  /// (the access rules, the web password and tokens, MQTT's credentials);
-  /// secrets (the Wi-Fi passwords) only from a local line (USB, serial, pty),
-  /// never over the network.
-  static bool writable(settings::Id id, const access::Peer& peer);
-
   ConsoleSession(Controller& controller, const char* version, const ConsolePort* port)
       : controller_(controller), version_(version), port_(port) {}
 

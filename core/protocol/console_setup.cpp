@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "command/commission_commands.hpp"
 #include "protocol/console_reply.hpp"
 #include "protocol/console_session.hpp"
 #include "rotator/controller.hpp"
@@ -53,19 +54,14 @@ void report(Controller& controller, ByteSink& out) {
 // The station's position from a Maidenhead locator or a latitude and a
 // longitude: wherever a position is asked for, a locator is understood. A
 // locator gives its square's centre, kept to 0.0001 deg (about 11 m).
-void setup_station(Controller& controller, std::string_view where, ByteSink& out) {
+void setup_station(Controller& controller, const command::Origin& from, std::string_view where,
+                   ByteSink& out) {
   PlaceQuery q;
   if (const char* why = parse_place(where, q)) return error(out, why);
   const double lat_deg = std::round(q.to.lat_deg * 1e4) / 1e4;
   const double lon_deg = std::round(q.to.lon_deg * 1e4) / 1e4;
-  settings::Settings& s = controller.settings();
-  const double old_lat_deg = s.get(Id::kStationLatDeg);
-  settings::Rejection r = s.set(Id::kStationLatDeg, lat_deg);
-  if (r.error == Error::kOk) r = s.set(Id::kStationLonDeg, lon_deg);
-  if (r.error != Error::kOk) {
-    s.set(Id::kStationLatDeg, old_lat_deg);  // all or nothing
-    return send(out, "error: nothing changed: %s", r.reason);
-  }
+  const command::SetResult r = command::set_station(controller, from, lat_deg, lon_deg);
+  if (r.status != command::SetResult::kOk) return send(out, "error: nothing changed: %s", r.reason);
   if (q.locator[0] != '\0')
     send(out, "station %s: lat %.4f lon %.4f (the centre of the square)", q.locator, lat_deg,
          lon_deg);
@@ -80,7 +76,8 @@ void ConsoleSession::setup(std::string_view args, ByteSink& out) {
   std::string_view rest = args;
   const std::string_view word = text::next_token(rest);
   const std::string_view id = text::trim(rest);
-  if (text::iequals(word, "station") && !id.empty()) return setup_station(controller_, id, out);
+  if (text::iequals(word, "station") && !id.empty())
+    return setup_station(controller_, origin(), id, out);
   if (text::iequals(word, "models") && id.empty()) {
     for (const settings::RotatorModel& m : settings::rotator_models())
       send(out, "%-16s %s", m.id, m.name);
@@ -93,8 +90,8 @@ void ConsoleSession::setup(std::string_view args, ByteSink& out) {
   for (const settings::RotatorModel& m : settings::rotator_models())
     if (text::iequals(id, m.id)) model = &m;
   if (model == nullptr) return error(out, "unknown model (setup models lists them)");
-  const settings::Rejection r = settings::apply_rotator_model(*model, controller_.settings());
-  if (r.error != Error::kOk) return send(out, "error: nothing changed: %s", r.reason);
+  const command::SetResult r = command::apply_model(controller_, origin(), *model, nullptr);
+  if (r.status != command::SetResult::kOk) return send(out, "error: nothing changed: %s", r.reason);
   settings::ModelSetting rows[settings::kModelSettingCount];
   const std::size_t n = settings::model_settings(*model, rows, settings::kModelSettingCount);
   int filled = 0;
@@ -119,8 +116,9 @@ void ConsoleSession::commission(std::string_view args, ByteSink& out) {
   }
   if (!may_control(controller_, "commission")) return error(out, kNotInControl);
   if (text::iequals(word, "accept") && text::trim(rest).empty()) {
-    const settings::Rejection r = controller_.accept_commissioning();
-    if (r.error != Error::kOk) return send(out, "error: nothing changed: %s", r.reason);
+    const command::SetResult r = command::accept_commissioning(controller_, origin(), nullptr);
+    if (r.status != command::SetResult::kOk)
+      return send(out, "error: nothing changed: %s", r.reason);
     return send(out, "ok settings written (pins take effect after a reboot)");
   }
   const bool az = text::iequals(word, "az");
@@ -159,7 +157,8 @@ void ConsoleSession::commission(std::string_view args, ByteSink& out) {
     request.cw_stop_deg = static_cast<float>(hi);
   }
   const char* why = "";
-  if (controller_.commission(request, &why) != Error::kOk) return send(out, "error: %s", why);
+  if (command::commission(controller_, origin(), request, &why) != Error::kOk)
+    return send(out, "error: %s", why);
   if (bearing) {
     report(controller_, out);
     return send(out, "ok");

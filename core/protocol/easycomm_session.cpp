@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "command/settings_commands.hpp"
 #include "command/typed.hpp"
 #include "motion/angles.hpp"
 #include "protocol/alarm_word.hpp"
@@ -270,11 +271,13 @@ void EasycommSession::write_config(std::string_view arg, ByteSink& out) {
   if (comma == std::string_view::npos) return alarm(out, "SYNTAX");
   const std::optional<Id> id = find_register(text::slice(arg, 0, comma));
   if (!id) return alarm(out, "UNKNOWN");
-  // Secrets and the access rules are written through the web or REST only.
-  if (!settings::line_writable(*id)) return alarm(out, "DENIED");
-  // A value that breaks a cross-setting rule (a min above its max) is undone.
-  if (controller_.settings().save_from_text(*id, text::slice(arg, comma + 1)).error != Error::kOk)
-    alarm(out, "RANGE");
+  // The command layer's settings write: never a secret or an access rule
+  // (written through the web or REST only); a value that breaks a
+  // cross-setting rule (a min above its max) is undone.
+  const command::SetResult r = command::set_setting(
+      controller_, origin(), command::Writer::kNetwork, *id, text::slice(arg, comma + 1));
+  if (r.status == command::SetResult::kRefused) return alarm(out, "DENIED");
+  if (r.status != command::SetResult::kOk) alarm(out, "RANGE");
 }
 
 void EasycommSession::finish_line(const LineRequest& request, ByteSink& out) {

@@ -3,8 +3,8 @@
 #include <array>
 #include <cstdio>
 
+#include "command/calibration.hpp"
 #include "command/typed.hpp"
-#include "protocol/gs232_calibration.hpp"
 #include "protocol/gs232_detail.hpp"
 #include "rotator/controller.hpp"
 #include "util/slice.hpp"
@@ -258,8 +258,8 @@ void Gs232Session::calibration(AxisId axis, bool full_scale, ByteSink& out) {
     pending_ = axis == AxisId::kAz ? Pending::kAzOffset : Pending::kElOffset;
     return out.write("are you sure?\r\n");
   }
-  const Error e = gs232::calibrate(
-      controller_, axis, full_scale ? gs232::CalPoint::kFullScale : gs232::CalPoint::kOffset);
+  const Error e = command::calibrate(controller_, origin(), axis,
+                                     full_scale ? command::CalPoint::kHi : command::CalPoint::kLo);
   if (e != Error::kOk) return out.write(kError);
   // The real controllers then show the reading the installer trims towards
   // ("+0450" / "AZ=450"; F2 both axes); after this calibration it is the stop
@@ -283,7 +283,7 @@ void Gs232Session::confirm(std::string_view answer, ByteSink& out) {
   // Anything but Y or N is the next command, not an answer: a stop sent
   // instead of an answer must still stop.
   if (answer.size() != 1 || upper(answer[0]) != 'Y') return handle_line(answer, out);
-  const Error e = gs232::calibrate(controller_, axis, gs232::CalPoint::kOffset);
+  const Error e = command::calibrate(controller_, origin(), axis, command::CalPoint::kLo);
   out.write(e == Error::kOk ? std::string_view("Completed\r\n") : kError);
 }
 

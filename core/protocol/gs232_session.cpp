@@ -3,7 +3,6 @@
 #include <array>
 #include <cstdio>
 
-#include "protocol/gs232_calibration.hpp"
 #include "protocol/gs232_detail.hpp"
 #include "rotator/controller.hpp"
 #include "util/slice.hpp"

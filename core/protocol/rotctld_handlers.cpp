@@ -3,6 +3,7 @@
 // otherwise.
 #include <cmath>
 
+#include "command/settings_commands.hpp"
 #include "command/typed.hpp"
 #include "protocol/reading_format.hpp"
 #include "protocol/rotctld_locator.hpp"
@@ -346,7 +347,6 @@ HamlibError RotctldSession::set_conf(std::string_view token, std::string_view te
     long on = 0;
     return rotctld::scan_int(text, on) && on == 0 ? HamlibError::kOk : HamlibError::kInvalid;
   }
-  settings::Settings& s = controller_.settings();
   std::optional<Id> id;
   for (const ConfToken& t : kConfTokens) {
     if (token == t.name) id = t.id;
@@ -354,11 +354,13 @@ HamlibError RotctldSession::set_conf(std::string_view token, std::string_view te
   // Any key of the settings table works too ("C park.az_deg 180").
   if (!id) id = settings::find(token);
   if (!id) return HamlibError::kInvalid;
-  // Secrets and the access rules are written through the web or REST only.
-  if (!settings::line_writable(*id)) return HamlibError::kRejected;
-  // A value that breaks a cross-setting rule (a minimum above its maximum) is undone.
-  if (s.save_from_text(*id, text).error != Error::kOk) return HamlibError::kInvalid;
-  return HamlibError::kOk;
+  // The command layer's settings write: never a secret or an access rule
+  // (written through the web or REST only); a value that breaks a
+  // cross-setting rule (a minimum above its maximum) is undone.
+  const command::SetResult r =
+      command::set_setting(controller_, origin(), command::Writer::kNetwork, *id, text);
+  if (r.status == command::SetResult::kRefused) return HamlibError::kRejected;
+  return r.status == command::SetResult::kOk ? HamlibError::kOk : HamlibError::kInvalid;
 }
 
 HamlibError RotctldSession::get_conf(std::string_view token) {

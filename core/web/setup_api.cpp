@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "command/commission_commands.hpp"
 #include "json/json_reader.hpp"
 #include "json/settings_json.hpp"
 #include "settings/rotator_models.hpp"
@@ -85,8 +86,9 @@ Api::Outcome Api::post_model(const Call& call) {
     send_error(call.out, 422, "give model: one of the ids GET /api/models lists", call.options);
     return Outcome::kDone;
   }
-  backup_ = ctx_.controller.settings();
-  return saved_change(call, settings::apply_rotator_model(*model, ctx_.controller.settings()), 422);
+  const command::Store saved = store();
+  return send_set(call, command::apply_model(ctx_.controller, {"rest", call.peer}, *model, &saved),
+                  422);
 }
 
 Api::Outcome Api::post_commission(const Call& call) {
@@ -142,7 +144,7 @@ Api::Outcome Api::post_commission(const Call& call) {
   const char* why = "bearing_deg needs \"step\":\"bearing\"";
   const Error e = have_bearing && request.step != Commissioning::Step::kBearing
                       ? Error::kInvalidArgument
-                      : c.commission(request, &why);
+                      : command::commission(c, {"rest", call.peer}, request, &why);
   if (e != Error::kOk) {
     send_error(call.out, e == Error::kBusy || e == Error::kFaulted ? 409 : 422, why, call.options);
     return Outcome::kDone;
@@ -201,27 +203,9 @@ Api::Outcome Api::get_commission(const Call& call) {
 }
 
 Api::Outcome Api::post_commission_accept(const Call& call) {
-  backup_ = ctx_.controller.settings();
-  return saved_change(call, ctx_.controller.accept_commissioning(), 409);
-}
-
-// One answer for the set-up's changes (backup_ holds the settings before
-// them), shared to keep the firmware small: a rejection's reason with
-// `refused_status`, nothing changed; else what changed, saved (restored when
-// saving fails).
-Api::Outcome Api::saved_change(const Call& call, const settings::Rejection& r, int refused_status) {
-  settings::Settings& values = ctx_.controller.settings();
-  if (r.error != Error::kOk) {
-    char message[200];
-    std::snprintf(message, sizeof message, "nothing changed: %s", r.reason);
-    send_error(call.out, refused_status, message, call.options);
-    return Outcome::kDone;
-  }
-  SettingSet changed;
-  for (std::size_t n = 0; n < settings::kCount; ++n)
-    changed[n] = !values.same_value(static_cast<Id>(n), backup_);
-  save_changed(call.out, call.options, changed);
-  return Outcome::kDone;
+  const command::Store saved = store();
+  return send_set(call, command::accept_commissioning(ctx_.controller, {"rest", call.peer}, &saved),
+                  409);
 }
 
 }  // namespace rotord::web

@@ -118,16 +118,9 @@ const Api::Route Api::kRoutes[] = {
     command_route<command::Id::kReset>("/api/reset"),
     command_route<command::Id::kSpeed>("/api/speed"),
     {"/api/settings", true, N::kControl, true, true,
-     [](Api& a, const Call& c) {
-       a.post_settings(c.request.body, c.out, c.options, c.caller);
-       return O::kDone;
-     },
-     "change settings (partial), saved"},
+     [](Api& a, const Call& c) { return a.post_settings(c); }, "change settings (partial), saved"},
     {"/api/settings/reset", true, N::kAdmin, true, true,
-     [](Api& a, const Call& c) {
-       a.reset_settings(c.out, c.options);
-       return O::kDone;
-     },
+     [](Api& a, const Call& c) { return a.reset_settings(c); },
      "every setting back to its default (not the password or tokens)"},
     {"/api/reboot", true, N::kControl, true, true,
      [](Api& a, const Call& c) { return a.post_reboot(c); }, "restart the controller"},

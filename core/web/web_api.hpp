@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "command/commands.hpp"
+#include "command/settings_commands.hpp"
 #include "hal/clock_sync.hpp"
 #include "hal/storage.hpp"
 #include "hal/wall_clock.hpp"
@@ -234,19 +235,17 @@ class Api {
   Outcome post_commission(const Call& call);
   Outcome get_commission(const Call& call);
   Outcome post_commission_accept(const Call& call);
-  Outcome saved_change(const Call& call, const settings::Rejection& r, int refused_status);
+  /// The answer to a settings write of the command layer: what changed
+  /// (saved), or why nothing did (`refused_status` for a rejected value).
+  Outcome send_set(const Call& call, const command::SetResult& r, int refused_status);
+  /// Where the command layer stores a REST change before the answer.
+  command::Store store();
 
   void get_settings(protocol::ByteSink& out, const ResponseOptions& options);
-  void post_settings(std::string_view body, protocol::ByteSink& out, const ResponseOptions& options,
-                     const Caller& caller);
-  void reset_settings(protocol::ByteSink& out, const ResponseOptions& options);
+  Outcome post_settings(const Call& call);
+  Outcome reset_settings(const Call& call);
   /// Persists the settings, or restores `backup_` when that fails.
   bool persist(protocol::ByteSink& out, const ResponseOptions& options);
-  /// Saves a change (backup_ holds the settings before it) and lists what
-  /// changed; when saving fails, restores the changed settings (persist
-  /// answered the failure).
-  void save_changed(protocol::ByteSink& out, const ResponseOptions& options,
-                    const SettingSet& changed);
   /// Saves the settings; false (nothing answered) when that fails.
   bool save();
 
@@ -299,8 +298,6 @@ class Api {
   void write_lock(JsonWriter& w, const Caller* caller) const;
   /// 423 with the lock's holder and time left (the command layer's words).
   void send_locked(protocol::ByteSink& out, const ResponseOptions& options);
-  void send_changed(protocol::ByteSink& out, const ResponseOptions& options,
-                    const SettingSet& changed);
 
   ApiContext ctx_;
   WebAuth auth_;

@@ -3,7 +3,8 @@
 // their one line into the daemon's log (standard output: the journal under
 // systemd), a refused `P` its refusal, and rotctl's position queries write
 // none; the tracking mode's start and end, the odometer's reset and a wind
-// override through REST write theirs.
+// override through REST write theirs; a settings write its line with the
+// key, never the value.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -106,6 +107,30 @@ TEST(CommandLogCare, RestTrackOdometerAndWindEachWriteTheirLine) {
       << daemon.output();
   daemon.advance_ms(100);
   EXPECT_EQ(count_of(daemon.output(), "rotord: command track "), 2u) << daemon.output();
+}
+
+// A settings write is a command of the command layer too: POST
+// /api/settings through the real daemon writes its line, naming the key and
+// never the value, a password's least of all.
+TEST_F(CommandLog, ASettingsWriteIsLoggedByItsKeyNeverItsValue) {
+  const HttpResponse park =
+      http(daemon->ports().web, "POST", "/api/settings", R"({"park.az_deg": 90})");
+  ASSERT_EQ(park.status, 200) << park.body;
+  EXPECT_TRUE(daemon->wait_for_output("rotord: command set park.az_deg from rest (127.0.0.1): OK"))
+      << daemon->output();
+  const HttpResponse bad =
+      http(daemon->ports().web, "POST", "/api/settings", R"({"park.az_deg": 9999})");
+  EXPECT_EQ(bad.status, 422) << bad.body;
+  EXPECT_TRUE(daemon->wait_for_output(
+      "rotord: command set park.az_deg from rest (127.0.0.1): INVALID ARGUMENT"))
+      << daemon->output();
+  const HttpResponse secret = http(daemon->ports().web, "POST", "/api/settings",
+                                   R"({"wifi.password": "Interop5ecretValue"})");
+  ASSERT_EQ(secret.status, 200) << secret.body;
+  EXPECT_TRUE(
+      daemon->wait_for_output("rotord: command set wifi.password from rest (127.0.0.1): OK"))
+      << daemon->output();
+  EXPECT_EQ(daemon->output().find("Interop5ecretValue"), std::string::npos) << daemon->output();
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // each write as one unit (one TCP segment where it can).
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "protocol/session.hpp"
 
@@ -15,6 +16,13 @@ struct StringSink final : protocol::ByteSink {
     data.append(bytes);
     ++writes;
   }
+};
+
+/// A log's side of a ByteSink: each write() is one line (the command log
+/// writes one line a write).
+struct LineSink final : protocol::ByteSink {
+  std::vector<std::string> lines;
+  void write(std::string_view bytes) override { lines.emplace_back(bytes); }
 };
 
 /// Sends `bytes` to a session and returns all it wrote back.

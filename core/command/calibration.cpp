@@ -1,8 +1,9 @@
-#include "protocol/gs232_calibration.hpp"
+#include "command/calibration.hpp"
 
+#include "command/settings_commands.hpp"
 #include "motion/angles.hpp"
 
-namespace rotord::protocol::gs232 {
+namespace rotord::command {
 namespace {
 
 using settings::Id;
@@ -38,9 +39,7 @@ Error set_pair(settings::Settings& s, Id a, double a_value, Id b, double b_value
   return Error::kOutOfRange;
 }
 
-}  // namespace
-
-Error calibrate(Controller& controller, AxisId axis, CalPoint point) {
+Error set_point(Controller& controller, AxisId axis, CalPoint point) {
   const bool az = axis == AxisId::kAz;
   if (!az && !controller.has_el()) return Error::kNotSupported;
   const RotatorStatus status = controller.status();
@@ -54,7 +53,7 @@ Error calibrate(Controller& controller, AxisId axis, CalPoint point) {
     return Error::kFaulted;
   settings::Settings& s = controller.settings();
   const AxisKeys& k = az ? kAz : kEl;
-  const bool offset = point == CalPoint::kOffset;
+  const bool offset = point == CalPoint::kLo;
   // The sensor frame excludes the user offset: position = sensor + offset.
   const double stop_deg = s.get(offset ? k.min_deg : k.max_deg) - s.get(k.offset_deg);
 
@@ -76,4 +75,13 @@ Error calibrate(Controller& controller, AxisId axis, CalPoint point) {
   }
 }
 
-}  // namespace rotord::protocol::gs232
+}  // namespace
+
+Error calibrate(Controller& controller, const Origin& from, AxisId axis, CalPoint point) {
+  const Error e = set_point(controller, axis, point);
+  told_words(controller, from, axis == AxisId::kEl ? "cal el" : "cal az", error_name(e),
+             point == CalPoint::kHi ? "hi" : "lo");
+  return e;
+}
+
+}  // namespace rotord::command
