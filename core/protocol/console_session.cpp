@@ -279,16 +279,16 @@ void ConsoleSession::reset(std::string_view, ByteSink& out) {
 }
 
 void ConsoleSession::reboot(std::string_view, ByteSink& out) {
-  if (port_ == nullptr || port_->system == nullptr)
-    return error(out, "reboot is not available on this port");
-  if (const char* why = port_->system->reboot()) return error(out, why);
+  const command::Restart r =
+      command::reboot(controller_, origin(), port_ == nullptr ? nullptr : port_->system);
+  if (!r.ok()) return error(out, r.why);
   send(out, "ok rebooting");
 }
 
 void ConsoleSession::bootsel(std::string_view, ByteSink& out) {
-  if (port_ == nullptr || port_->system == nullptr)
-    return error(out, "bootsel is not available on this port");
-  if (const char* why = port_->system->reboot_to_bootloader()) return error(out, why);
+  const command::Restart r = command::reboot_to_bootloader(
+      controller_, origin(), port_ == nullptr ? nullptr : port_->system);
+  if (!r.ok()) return error(out, r.why);
   send(out, "ok rebooting into the USB bootloader: copy the .uf2 onto the RPI-RP2 drive");
 }
 

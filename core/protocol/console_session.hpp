@@ -11,22 +11,13 @@
 #include <span>
 #include <string_view>
 
+#include "command/system_commands.hpp"
 #include "protocol/line_assembler.hpp"
 #include "protocol/line_reply.hpp"
 #include "protocol/session.hpp"
 #include "settings/settings.hpp"
 
 namespace rotord::protocol {
-
-/// What only a port can do for the console: reboot, and reboot into the
-/// USB bootloader. Each returns nullptr when it will happen (after the
-/// reply is out), or why it cannot, as the reply's error text.
-class SystemHooks {
- public:
-  virtual ~SystemHooks() = default;
-  virtual const char* reboot() = 0;
-  virtual const char* reboot_to_bootloader() = 0;
-};
 
 /// What a port gives its console sessions; every member may be missing, and
 /// the commands that need it then answer so.
@@ -38,8 +29,8 @@ struct ConsolePort {
   /// `defaults`: shared by every session of the port, used only inside one
   /// call. nullptr: import is refused.
   settings::Settings* scratch = nullptr;
-  SystemHooks* system = nullptr;  ///< nullptr: reboot and bootsel refused
-  const char* board = "";         ///< shown by `status`, e.g. "Pico W"
+  command::SystemHooks* system = nullptr;  ///< nullptr: reboot and bootsel refused
+  const char* board = "";                  ///< shown by `status`, e.g. "Pico W"
 };
 
 /// One console session. Every command is answered by zero or more lines of

@@ -372,7 +372,7 @@ Api::Outcome Api::post_mode(const Call& call) {
 }
 
 Api::Outcome Api::post_reboot(const Call& call) {
-  if (ctx_.reboot == nullptr || !ctx_.reboot->request_reboot()) {
+  if (!command::reboot(ctx_.controller, {"rest", call.peer}, ctx_.reboot).ok()) {
     send_error(call.out, 501, "this port cannot restart the controller", call.options);
     return Outcome::kDone;
   }

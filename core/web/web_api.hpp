@@ -6,6 +6,7 @@
 
 #include "command/commands.hpp"
 #include "command/settings_commands.hpp"
+#include "command/system_commands.hpp"
 #include "hal/clock_sync.hpp"
 #include "hal/storage.hpp"
 #include "hal/wall_clock.hpp"
@@ -22,15 +23,6 @@
 
 namespace rotord::web {
 
-/// What a port does for POST /api/reboot (Linux: re-create the controller in
-/// process; Pico: watchdog reset). Called while a request is being handled, so
-/// the port must act later, after the response has gone out.
-class RebootHook {
- public:
-  virtual ~RebootHook() = default;
-  virtual bool request_reboot() = 0;
-};
-
 struct ApiContext {
   Controller& controller;
   /// Where POST /api/settings persists; nullptr keeps settings in RAM only.
@@ -38,7 +30,8 @@ struct ApiContext {
   /// What POST /api/settings/reset restores and the schema reports as the
   /// defaults: the table's defaults plus what the port's hardware profile sets.
   const settings::Settings* defaults = nullptr;
-  RebootHook* reboot = nullptr;  ///< nullptr: POST /api/reboot answers 501
+  /// POST /api/reboot (command/system_commands.hpp); nullptr: 501.
+  command::SystemHooks* reboot = nullptr;
   const char* version = "";
   /// GET /api/status time_utc; nullptr or an unknown time: null.
   const hal::WallClock* wall_clock = nullptr;

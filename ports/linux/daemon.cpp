@@ -244,7 +244,7 @@ bool Daemon::start_controller() {
     metrics_.settings_failures = &saver_->failures();
   }
   metrics_.clock = &steady_clock_;
-  web::ApiContext api_context{*controller_,   saver_.get(), &defaults_,         this,
+  web::ApiContext api_context{*controller_,   saver_.get(), &defaults_,         &system_,
                               ROTORD_VERSION, &wall_clock_, host_name_.c_str(), &metrics_};
   api_context.load_report = &load_report_;
   api_context.platform =
@@ -379,20 +379,19 @@ bool Daemon::attach_serial_lines(const std::vector<ServiceConfig>& services) {
   return true;
 }
 
-bool Daemon::request_reboot() {
+void Daemon::request_reboot() {
   // Later, from the tick: the request's own connection must first send its
   // response, and the servers cannot be replaced while one of them runs.
   reboot_pending_ = true;
   reboot_at_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
-  return true;
 }
 
-const char* Daemon::ConsoleSystem::reboot() {
+const char* Daemon::System::reboot() {
   daemon_.request_reboot();
   return nullptr;
 }
 
-const char* Daemon::ConsoleSystem::reboot_to_bootloader() {
+const char* Daemon::System::reboot_to_bootloader() {
   return "bootsel is for the Pico: rotord on Linux has no USB bootloader (update the package "
          "instead)";
 }

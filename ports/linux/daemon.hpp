@@ -38,7 +38,7 @@ namespace rotord::linux_port {
 /// The composition root of the Linux daemon: settings, the simulated (or
 /// real) hardware, the controller, the protocol servers and the one asio loop
 /// that runs the 100 Hz control tick and every socket.
-class Daemon final : private web::RebootHook {
+class Daemon final {
  public:
   static constexpr Millis kTickMs = 10;
   /// The most of a 10 ms pass a web login's password hash may take.
@@ -59,9 +59,10 @@ class Daemon final : private web::RebootHook {
   bool load_settings(const sim::Profile* profile);
   /// Creates the controller, the REST API and the protocol servers.
   bool start_controller();
-  /// POST /api/reboot: the controller is re-created with the current
-  /// settings (restart-only settings take effect), every client reconnects.
-  bool request_reboot() override;
+  /// POST /api/reboot and the console's `reboot` (through System): the
+  /// controller is re-created with the current settings (restart-only
+  /// settings take effect), every client reconnects.
+  void request_reboot();
   void reboot();
   void add_service(ServiceConfig config);
   /// Opens every --pty and --serial line the first time; after a controller
@@ -180,19 +181,19 @@ class Daemon final : private web::RebootHook {
   std::unique_ptr<MqttClient> mqtt_;  ///< mqtt.enabled: on the station's broker
   bool reboot_pending_ = false;
   std::chrono::steady_clock::time_point reboot_at_;
-  /// The console's (`--pty console`) reboot, the same as POST /api/reboot;
-  /// bootsel is refused: there is no USB bootloader here.
-  class ConsoleSystem final : public protocol::SystemHooks {
+  /// The restart of POST /api/reboot and the console's (`--pty console`)
+  /// `reboot`; bootsel is refused: there is no USB bootloader here.
+  class System final : public command::SystemHooks {
    public:
-    explicit ConsoleSystem(Daemon& daemon) : daemon_(daemon) {}
+    explicit System(Daemon& daemon) : daemon_(daemon) {}
     const char* reboot() override;
     const char* reboot_to_bootloader() override;
 
    private:
     Daemon& daemon_;
-  } console_system_{*this};
+  } system_{*this};
   settings::Settings console_scratch_;  ///< the console's import working copy
-  protocol::ConsolePort console_port_{&defaults_, &console_scratch_, &console_system_, "Linux"};
+  protocol::ConsolePort console_port_{&defaults_, &console_scratch_, &system_, "Linux"};
   std::vector<std::unique_ptr<TcpServer>> servers_;
   std::vector<std::unique_ptr<SerialTransport>> serial_lines_;
   /// The UDP rotor protocols that are enabled (n1mm.*, pst.*), on the

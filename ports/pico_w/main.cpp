@@ -113,7 +113,7 @@ class PicoMonotonicClock final : public hal::MonotonicClock {
 /// A reboot asked for (POST /api/reboot on the Pico W, the console's
 /// `reboot` and `bootsel`): remembered here, done by the loop once the
 /// answer is out (the request runs inside it).
-class Reboot final : public protocol::SystemHooks {
+class Reboot final : public command::SystemHooks {
  public:
   void request() { requested_ = true; }
   bool requested() const { return requested_; }
@@ -535,7 +535,7 @@ const char* restart_reason() {
   // still runs (USB logs, safety rules, the USB protocol port).
   static LogPortSink log_port(g_log);
   network_start(NetworkDeps{controller, settings, &g_defaults, storage, registry, log_port,
-                            [] { g_reboot.request(); }, &g_load_report},
+                            &g_reboot, &g_load_report},
                 now_ms());
 #endif
 

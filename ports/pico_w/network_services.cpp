@@ -132,19 +132,6 @@ PicoFlash g_tle_flash(PicoFlash::kRegionBytes, PicoFlash::kTleRegionBytes);
 FlashSlots g_tle_storage(g_tle_flash);
 tracking::TleCatalog g_tles;
 
-/// POST /api/reboot, handed to the loop (NetworkDeps::request_reboot).
-class WebReboot final : public web::RebootHook {
- public:
-  explicit WebReboot(void (*request)()) : request_(request) {}
-  bool request_reboot() override {
-    request_();
-    return true;
-  }
-
- private:
-  void (*request_)();
-};
-
 /// What the loop calls once network_start() has built it.
 struct Running {
   bool network = false;  ///< the Wi-Fi chip answered
@@ -240,8 +227,7 @@ void network_start(const NetworkDeps& d, Millis now) {
   // Access control's crypto: seeded once here (its only heap allocation).
   static PicoCrypto crypto;
   if (!crypto.begin()) std::printf("rotord: mbedtls could not seed: web logins refused\n");
-  static WebReboot reboot(d.request_reboot);
-  web::ApiContext api_context{controller,     d.storage,   d.defaults, &reboot,
+  web::ApiContext api_context{controller,     d.storage,   d.defaults, d.system,
                               ROTORD_VERSION, &wall_clock, nullptr,    &registry};
   api_context.crypto = crypto.ready() ? &crypto : nullptr;
   api_context.pbkdf2_iterations = kPbkdf2Iterations;

@@ -4,6 +4,7 @@
 // access control (mbedtls) and the TLEs tracking needs (with SNTP's time).
 // Compiled only into the Pico W image (ROTORD_PICO_NETWORK, CMakeLists.txt);
 // main.cpp calls it from the same one loop as the control tick.
+#include "command/system_commands.hpp"
 #include "hal/storage.hpp"
 #include "metrics/registry.hpp"
 #include "pico/time.h"
@@ -29,8 +30,9 @@ struct NetworkDeps {
   /// The USB log port, for output that matters only as it happens (WRC
   /// MONITOR lines, the web's log).
   protocol::ByteSink& log;
-  /// POST /api/reboot: the loop reboots once the answer is out.
-  void (*request_reboot)();
+  /// POST /api/reboot, the same restart as the console's `reboot`: the
+  /// loop reboots once the answer is out.
+  command::SystemHooks* system;
   /// What reading the settings flash dropped (GET /api/status "settings_load").
   const web::LoadReport* load_report = nullptr;
 };

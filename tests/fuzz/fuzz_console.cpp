@@ -15,7 +15,7 @@ namespace {
 
 using rotord::fuzz::NullSink;
 
-struct NoReboot final : rotord::protocol::SystemHooks {
+struct NoReboot final : rotord::command::SystemHooks {
   const char* reboot() override { return nullptr; }
   const char* reboot_to_bootloader() override { return "not here"; }
 };

@@ -26,9 +26,10 @@ class FuzzStorage final : public rotord::hal::Storage {
   bool save(std::string_view) override { return !fail; }
 };
 
-class NoReboot final : public rotord::web::RebootHook {
+class NoReboot final : public rotord::command::SystemHooks {
  public:
-  bool request_reboot() override { return true; }
+  const char* reboot() override { return nullptr; }
+  const char* reboot_to_bootloader() override { return "not here"; }
 };
 
 constexpr std::string_view kPosts[] = {

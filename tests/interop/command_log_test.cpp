@@ -4,7 +4,7 @@
 // systemd), a refused `P` its refusal, and rotctl's position queries write
 // none; the tracking mode's start and end, the odometer's reset and a wind
 // override through REST write theirs; a settings write its line with the
-// key, never the value.
+// key, never the value; a REST reboot its line before the restart.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -82,6 +82,16 @@ TEST_F(CommandLog, ARefusedRotctlGoToIsLoggedWithItsRefusal) {
 // the real daemon's REST API, with the clock known (--utc-start): a track of
 // a fixed direction started and ended, the odometer reset, a wind override
 // refused (nothing is stowed), each with its one line.
+// POST /api/reboot is the command layer's reboot (system_commands.hpp): its
+// line is written when it is asked for, then the daemon restarts.
+TEST_F(CommandLog, ARestRebootWritesItsLineThenRestarts) {
+  const HttpResponse r = http(daemon->ports().web, "POST", "/api/reboot", "{}");
+  ASSERT_EQ(r.status, 202) << r.body;
+  EXPECT_TRUE(daemon->wait_for_output("rotord: command reboot from rest (127.0.0.1): OK"))
+      << daemon->output();
+  EXPECT_TRUE(daemon->wait_for_output("restarting the controller")) << daemon->output();
+}
+
 TEST(CommandLogCare, RestTrackOdometerAndWindEachWriteTheirLine) {
   DaemonProcess daemon(std::vector<std::string>{"--sim", "g5500", "--clock", "manual",
                                                 "--utc-start", "2019-12-09T19:15:00Z"});

@@ -13,7 +13,7 @@ namespace {
 using settings::Id;
 using testing::StringSink;
 
-class RecordingHooks final : public SystemHooks {
+class RecordingHooks final : public command::SystemHooks {
  public:
   int reboots = 0;
   int bootloader = 0;

@@ -20,13 +20,14 @@ using rotord::testing::parse_responses;
 using rotord::testing::StringSink;
 using settings::Id;
 
-class CountingReboot final : public RebootHook {
+class CountingReboot final : public command::SystemHooks {
  public:
   int requests = 0;
-  bool request_reboot() override {
+  const char* reboot() override {
     ++requests;
-    return true;
+    return nullptr;
   }
+  const char* reboot_to_bootloader() override { return "not here"; }
 };
 
 class HttpApi : public ::testing::Test {
