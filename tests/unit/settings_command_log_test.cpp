@@ -78,13 +78,14 @@ struct Rig {
     session.set_peer(peer);
     return ask(session, line + "\n");
   }
-  /// A control token, with access control turned on by a web password.
-  std::string control_token() {
+  /// A token (`scope`: control or read), with access control turned on by a
+  /// web password.
+  std::string control_token(const std::string& scope = "control") {
     const HttpResponse on = post("/api/password", R"({"password":"correct horse"})");
     EXPECT_EQ(on.status, 200) << on.body;
     const std::string set = on.header("Set-Cookie");
     const std::string cookie = "Cookie: " + set.substr(0, set.find(';')) + "\r\n";
-    const HttpResponse t = post("/api/tokens", R"({"name":"t","scope":"control"})", cookie);
+    const HttpResponse t = post("/api/tokens", R"({"name":"t","scope":")" + scope + "\"}", cookie);
     EXPECT_EQ(t.status, 201) << t.body;
     return "Authorization: Bearer " + t.body.substr(t.body.find("rtd_"), 36) + "\r\n";
   }
@@ -214,6 +215,38 @@ TEST(SettingsCommandLog, CommissioningAndSetUpWriteTheSameLineFromRestAndConsole
   EXPECT_EQ(console.console("setup station JO62"),
             "station JO62: lat 52.5000 lon 13.0000 (the centre of the square)\r\nok\r\n");
   EXPECT_EQ(console.last(), "command setup station from console (a serial port): OK");
+}
+
+// A REST preset is a settings row (preset.N) written by the command layer's
+// settings write: the console's `set preset.N` line, saved before the
+// answer, and undone when saving fails.
+TEST(SettingsCommandLog, ARestPresetIsTheSettingsWriteOfItsRow) {
+  Rig rest, console;
+  const HttpResponse saved = rest.post("/api/presets", R"({"name": "EU", "az": 45})");
+  ASSERT_EQ(saved.status, 200) << saved.body;
+  EXPECT_EQ(saved.body,
+            R"({"max":16,"presets":[{"slot":1,"name":"EU","az_deg":45,"long_path":false}]})");
+  EXPECT_EQ(rest.last(), "command set preset.1 from rest (10.0.0.2): OK");
+  EXPECT_EQ(console.console("set preset.1 45:EU").rfind("ok preset.1=", 0), 0u);
+  EXPECT_EQ(without_sender(rest.last()), without_sender(console.last()));
+  EXPECT_NE(rest.storage.document.find(R"("preset.1": "45.0:EU")"), std::string::npos) << rest.storage.document;
+  // Saving fails: the same answer as before, the row undone, STORAGE.
+  rest.storage.fail = true;
+  const HttpResponse lost = rest.post("/api/presets", R"({"name": "JA", "az": 330})");
+  EXPECT_EQ(lost.status, 500);
+  EXPECT_EQ(lost.body,
+            R"({"error":"the presets could not be saved; nothing was changed"})");
+  EXPECT_EQ(rest.r.settings.text(settings::Id::kPreset2), "");
+  EXPECT_EQ(rest.last(), "command set preset.2 from rest (10.0.0.2): STORAGE");
+  // A delete empties the row (the console's preset, deleted over REST).
+  const HttpResponse gone = console.post("/api/presets/delete", R"({"name": "EU"})");
+  EXPECT_EQ(gone.status, 200);
+  EXPECT_EQ(gone.body, R"({"max":16,"presets":[]})");
+  EXPECT_EQ(console.last(), "command set preset.1 from rest (10.0.0.2): OK");
+  // No such preset: nothing written, no line, as a body that cannot be read.
+  const std::size_t lines = console.out.lines.size();
+  EXPECT_EQ(console.post("/api/presets/delete", R"({"name": "EU"})").status, 404);
+  EXPECT_EQ(console.out.lines.size(), lines);
 }
 
 }  // namespace
