@@ -1,10 +1,10 @@
 #pragma once
 // Settings writes in the command layer (docs/architecture.md, "The command
 // layer"): who may write which key, once for every front end; a setting from
-// text (the console's `set`, rotctld's `C`, Easycomm's `CW`, a REST preset), a JSON document of them (POST
-// /api/settings, the console's `import`), the defaults back (POST /api/settings/reset). Each writes
-// its one log line (docs/logging.md), naming the keys and never a value, so a password never
-// reaches the log:
+// text (the console's `set`, rotctld's `C`, Easycomm's `CW`, a REST preset), a JSON document of
+// them (POST /api/settings, the console's `import`), the defaults back (POST /api/settings/reset).
+// Each writes its one log line (docs/logging.md), naming the keys and never a value, so a password
+// never reaches the log:
 //   command set az.offset_deg from console (USB): OK
 //   command set access.control_networks from rest (192.168.1.20): DENIED
 // The front ends keep only their bytes: the key's spelling, the reply.

@@ -229,13 +229,13 @@ TEST(SettingsCommandLog, ARestPresetIsTheSettingsWriteOfItsRow) {
   EXPECT_EQ(rest.last(), "command set preset.1 from rest (10.0.0.2): OK");
   EXPECT_EQ(console.console("set preset.1 45:EU").rfind("ok preset.1=", 0), 0u);
   EXPECT_EQ(without_sender(rest.last()), without_sender(console.last()));
-  EXPECT_NE(rest.storage.document.find(R"("preset.1": "45.0:EU")"), std::string::npos) << rest.storage.document;
+  EXPECT_NE(rest.storage.document.find(R"("preset.1": "45.0:EU")"), std::string::npos)
+      << rest.storage.document;
   // Saving fails: the same answer as before, the row undone, STORAGE.
   rest.storage.fail = true;
   const HttpResponse lost = rest.post("/api/presets", R"({"name": "JA", "az": 330})");
   EXPECT_EQ(lost.status, 500);
-  EXPECT_EQ(lost.body,
-            R"({"error":"the presets could not be saved; nothing was changed"})");
+  EXPECT_EQ(lost.body, R"({"error":"the presets could not be saved; nothing was changed"})");
   EXPECT_EQ(rest.r.settings.text(settings::Id::kPreset2), "");
   EXPECT_EQ(rest.last(), "command set preset.2 from rest (10.0.0.2): STORAGE");
   // A delete empties the row (the console's preset, deleted over REST).
