@@ -265,10 +265,10 @@ class Api {
     return Outcome::kDone;
   }
   void get_tles(protocol::ByteSink& out, const ResponseOptions& options);
-  void put_tles(const HttpRequest& request, protocol::ByteSink& out,
-                const ResponseOptions& options);
+  void put_tles(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
+                const access::Peer& peer);
   void delete_tle(const HttpRequest& request, protocol::ByteSink& out,
-                  const ResponseOptions& options);
+                  const ResponseOptions& options, const access::Peer& peer);
   void get_passes(const HttpRequest& request, protocol::ByteSink& out,
                   const ResponseOptions& options);
   void post_track(const HttpRequest& request, protocol::ByteSink& out,
