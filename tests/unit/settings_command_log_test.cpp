@@ -13,6 +13,7 @@
 #include "fake_crypto.hpp"
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
+#include "iss_elements.hpp"
 #include "memory_storage.hpp"
 #include "protocol/console_session.hpp"
 #include "protocol/gs232_session.hpp"
@@ -44,12 +45,16 @@ struct Rig {
     c.crypto = &crypto;
     c.pbkdf2_iterations = 3000;
     c.pbkdf2_slice = 1000;
+    c.tles = &tles;
+    c.tle_storage = &tle_storage;
     return c;
   }
   rotord::testing::FakeRotator r;
   settings::Settings defaults;
   rotord::testing::MemoryStorage storage;
   rotord::testing::FakeCrypto crypto;
+  tracking::TleCatalog tles;
+  rotord::testing::MemoryStorage tle_storage;
   LineSink out;
   CommandLog log{out};
   Millis now = 1000;
@@ -59,12 +64,17 @@ struct Rig {
 
   HttpResponse post(const std::string& path, const std::string& body,
                     const std::string& extra = "") {
+    return send("POST", path, body, extra);
+  }
+  /// A request of any method (PUT and DELETE /api/tle) with a JSON body.
+  HttpResponse send(const std::string& method, const std::string& path, const std::string& body,
+                    const std::string& extra = "") {
     web::HttpSession session(api);
     session.set_peer(kWebClient);
     StringSink sink;
     std::string type = "application/json";
     if (!extra.empty()) type += "\r\n" + extra.substr(0, extra.size() - 2);  // a header more
-    session.receive(rotord::testing::post_request(path, body, type), sink);
+    session.receive(rotord::testing::post_request(path, body, type).replace(0, 4, method), sink);
     for (int n = 0; n < 20 && sink.data.empty(); ++n) {
       now += 10;
       api.poll(now);
@@ -79,16 +89,20 @@ struct Rig {
     return ask(session, line + "\n");
   }
   /// A token (`scope`: control or read), with access control turned on by a
-  /// web password.
+  /// web password (the first time).
   std::string control_token(const std::string& scope = "control") {
-    const HttpResponse on = post("/api/password", R"({"password":"correct horse"})");
-    EXPECT_EQ(on.status, 200) << on.body;
-    const std::string set = on.header("Set-Cookie");
-    const std::string cookie = "Cookie: " + set.substr(0, set.find(';')) + "\r\n";
-    const HttpResponse t = post("/api/tokens", R"({"name":"t","scope":")" + scope + "\"}", cookie);
+    if (cookie.empty()) {
+      const HttpResponse on = post("/api/password", R"({"password":"correct horse"})");
+      EXPECT_EQ(on.status, 200) << on.body;
+      const std::string set = on.header("Set-Cookie");
+      cookie = "Cookie: " + set.substr(0, set.find(';')) + "\r\n";
+    }
+    const HttpResponse t =
+        post("/api/tokens", R"({"name":")" + scope + R"(","scope":")" + scope + "\"}", cookie);
     EXPECT_EQ(t.status, 201) << t.body;
     return "Authorization: Bearer " + t.body.substr(t.body.find("rtd_"), 36) + "\r\n";
   }
+  std::string cookie;  ///< the web login's, once a password is set
   std::string last() const { return out.lines.empty() ? "" : out.lines.back(); }
 };
 
@@ -247,6 +261,72 @@ TEST(SettingsCommandLog, ARestPresetIsTheSettingsWriteOfItsRow) {
   const std::size_t lines = console.out.lines.size();
   EXPECT_EQ(console.post("/api/presets/delete", R"({"name": "EU"})").status, 404);
   EXPECT_EQ(console.out.lines.size(), lines);
+}
+
+// Storing and removing TLEs are commands with their line: how many objects
+// a paste stored, or why none; the object removed.
+TEST(SettingsCommandLog, StoringAndRemovingTlesWriteTheirLine) {
+  Rig rig;
+  HttpResponse r = rig.send("PUT", "/api/tle", rotord::testing::iss_tle_text());
+  EXPECT_EQ(r.status, 200);
+  EXPECT_EQ(r.body, R"({"ok":true,"added":1,"replaced":0,"count":1,"saved":true})");
+  EXPECT_EQ(rig.last(), "command tle 1 object from rest (10.0.0.2): OK");
+  r = rig.send("PUT", "/api/tle", "ISS (ZARYA)\n1 25544U\n");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_EQ(rig.last(), "command tle from rest (10.0.0.2): INVALID ARGUMENT");
+  rig.tle_storage.fail = true;
+  r = rig.send("PUT", "/api/tle",
+               rotord::testing::iss_tle_text() + rotord::testing::twin_tle_text());
+  EXPECT_EQ(r.status, 500);
+  EXPECT_EQ(r.body, R"({"error":"the TLEs are stored in RAM but could not be saved"})");
+  EXPECT_EQ(rig.last(), "command tle 2 objects from rest (10.0.0.2): STORAGE");
+  rig.tle_storage.fail = false;
+  r = rig.send("DELETE", "/api/tle?object=TWIN", "");
+  EXPECT_EQ(r.status, 200);
+  EXPECT_EQ(r.body, R"({"ok":true,"count":1})");
+  EXPECT_EQ(rig.last(), "command tle delete TWIN from rest (10.0.0.2): OK");
+  EXPECT_EQ(rig.send("DELETE", "/api/tle?object=TWIN", "").status, 404);
+  EXPECT_EQ(rig.last(), "command tle delete TWIN from rest (10.0.0.2): NOT FOUND");
+}
+
+// A settings, preset, set-up or TLE route refused at its gate (a read-only
+// token: 403; another operator's control lock, to the web login: 423) is
+// logged in the words of its success line, before anything is read; the
+// replies are the gate's.
+TEST(SettingsCommandLog, ARouteRefusedAtItsGateIsLoggedInItsCommandsWords) {
+  struct Refused {
+    const char* method;
+    const char* path;
+    const char* body;
+    const char* words;
+  };
+  const Refused routes[] = {
+      {"POST", "/api/settings", R"({"park.az_deg": 10})", "set"},
+      {"POST", "/api/presets", R"({"name": "EU", "az": 45})", "set"},
+      {"POST", "/api/presets/delete", R"({"name": "EU"})", "set"},
+      {"POST", "/api/settings/reset", "{}", "reset settings"},
+      {"POST", "/api/setup/model", R"({"model": "yaesu-g5500"})", "setup model"},
+      {"POST", "/api/commission", R"({"axis": "az", "step": "direction"})", "commission"},
+      {"POST", "/api/commission/accept", "{}", "commission accept"},
+      {"PUT", "/api/tle", "", "tle"},
+      {"DELETE", "/api/tle?object=ISS", "", "tle delete"},
+  };
+  Rig rig;
+  const std::string reader = rig.control_token("read");
+  for (const Refused& route : routes) {
+    const HttpResponse denied = rig.send(route.method, route.path, route.body, reader);
+    EXPECT_EQ(denied.status, 403) << route.path;
+    EXPECT_EQ(rig.last(), std::string("command ") + route.words + " from rest (10.0.0.2): DENIED");
+  }
+  rig.r.controller->control_lock().take({}, 3600000);
+  for (const Refused& route : routes) {
+    const HttpResponse locked = rig.send(route.method, route.path, route.body, rig.cookie);
+    EXPECT_EQ(locked.status, 423) << route.path << " " << locked.body;
+    EXPECT_EQ(rig.last(), std::string("command ") + route.words + " from rest (10.0.0.2): LOCKED");
+  }
+  EXPECT_EQ(rig.r.settings.get(settings::Id::kParkAzDeg),
+            rig.defaults.get(settings::Id::kParkAzDeg));
+  EXPECT_EQ(rig.tles.size(), 0u);
 }
 
 }  // namespace
