@@ -45,6 +45,36 @@ void end_track(Controller& controller, const Origin& from) {
   told(controller, from, "track", Error::kOk, NAN, NAN, "stop");
 }
 
+Error put_tles(Controller& controller, const Origin& from, tracking::TleCatalog& tles,
+               std::string_view text, hal::Storage* storage, std::span<char> document,
+               tracking::TleCheck& check) {
+  check = tles.put(text, controller.utc_ms().value_or(0));
+  Error e = Error::kOk;
+  char words[24] = "";
+  if (!check.ok()) {
+    e = check.problem == tracking::TleCheck::Problem::kFull ? Error::kBusy
+                                                            : Error::kInvalidArgument;
+  } else {
+    const std::size_t n = check.added + check.replaced;
+    std::snprintf(words, sizeof words, "%u object%s", static_cast<unsigned>(n), n == 1 ? "" : "s");
+    if (storage != nullptr && !tles.save(*storage, document.data(), document.size()))
+      e = Error::kStorage;
+  }
+  return told(controller, from, "tle", e, NAN, NAN, words);
+}
+
+Error delete_tle(Controller& controller, const Origin& from, tracking::TleCatalog& tles,
+                 const char* object, hal::Storage* storage, std::span<char> document) {
+  Error e = Error::kNotFound;
+  if (const tracking::TleCatalog::Entry* entry = tles.find(object)) {
+    tles.remove(entry->catalog);
+    e = storage == nullptr || tles.save(*storage, document.data(), document.size())
+            ? Error::kOk
+            : Error::kStorage;
+  }
+  return told(controller, from, "tle delete", e, NAN, NAN, object);
+}
+
 void reset_odometer(Controller& controller, const Origin& from) {
   const std::optional<std::int64_t> utc_ms = controller.utc_ms();
   controller.odometer().reset(utc_ms ? *utc_ms / 1000 : 0);

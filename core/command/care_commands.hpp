@@ -2,15 +2,16 @@
 // The commands of the tracking mode and of the care of an unattended
 // rotator (docs/architecture.md, "The command layer"; docs/tracking.md,
 // docs/care.md): start and end a track, reset the wear odometer, override
-// the wind stow and end the override. Each exists here once, with its call
+// the wind stow and end the override, store TLEs. Each exists here once, with its call
 // into the controller and its log line (command_log.hpp), for every front
-// end: REST (web/track_api.cpp, web/care_api.cpp, web/wind_api.cpp) and the
+// end: REST (web/track_api.cpp, web/tle_api.cpp, web/care_api.cpp, web/wind_api.cpp) and the
 // console (protocol/console_care.cpp). As with typed.hpp, the front end
 // passes its gate first (the REST route table's, or may_control() for the
 // console), and reads its own bytes into these typed arguments.
 #include "command/command_log.hpp"
 #include "command/result.hpp"
 #include "rotator/controller.hpp"
+#include "tracking/tle_catalog.hpp"
 
 namespace rotord::command {
 
@@ -23,6 +24,20 @@ TrackError track(Controller& controller, const Origin& from, const TrackRequest&
 Status track_refusal(TrackError e);
 /// Ends the track: the rotator stops where it is (as STOP). "track stop".
 void end_track(Controller& controller, const Origin& from);
+
+/// Stores the TLEs of a paste (tracking::TleCatalog::put, all or nothing;
+/// `check` says what it came to), then saves them through `storage` when
+/// the port keeps them (`document`: the saved text's work space). "tle <n>
+/// objects" (n: the sets taken); kInvalidArgument (a set refused), kBusy
+/// (more objects than the store holds), kStorage (stored in RAM, not saved).
+Error put_tles(Controller& controller, const Origin& from, tracking::TleCatalog& tles,
+               std::string_view text, hal::Storage* storage, std::span<char> document,
+               tracking::TleCheck& check);
+
+/// Removes a stored object (`object`: its name or catalog number), saved
+/// as put_tles saves: "tle delete <object>"; kNotFound (none such), kStorage.
+Error delete_tle(Controller& controller, const Origin& from, tracking::TleCatalog& tles,
+                 const char* object, hal::Storage* storage, std::span<char> document);
 
 /// Resets the wear odometer, dated with UTC when known (0 when not); the
 /// port's saver writes the reset at once. "odometer reset".

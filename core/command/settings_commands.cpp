@@ -53,15 +53,14 @@ const char* outcome_word(const SetResult& result) {
 }
 
 SetResult set_setting(Controller& controller, const Origin& from, Writer writer, Id id,
-                      std::string_view text) {
+                      std::string_view text, const Store* store) {
   SetResult result;
   result.refusal = may_write(id, writer);
   if (result.refusal != Refusal::kNone) {
     result.status = SetResult::kRefused;
-  } else if (const settings::Rejection r = controller.settings().save_from_text(id, text);
-             r.error != Error::kOk) {
-    result.status = SetResult::kInvalid;
-    result.reason = r.reason;
+  } else {
+    if (store != nullptr) store->backup = controller.settings();
+    result = keep_change(controller, store, controller.settings().save_from_text(id, text));
   }
   told_words(controller, from, "set", outcome_word(result), settings::def(id).key);
   return result;

@@ -1,10 +1,10 @@
 #pragma once
 // Settings writes in the command layer (docs/architecture.md, "The command
 // layer"): who may write which key, once for every front end; a setting from
-// text (the console's `set`, rotctld's `C`, Easycomm's `CW`), a JSON document of them (POST
-// /api/settings, the console's `import`), the defaults back (POST /api/settings/reset). Each writes
-// its one log line (docs/logging.md), naming the keys and never a value, so a password never
-// reaches the log:
+// text (the console's `set`, rotctld's `C`, Easycomm's `CW`, a REST preset), a JSON document of
+// them (POST /api/settings, the console's `import`), the defaults back (POST /api/settings/reset).
+// Each writes its one log line (docs/logging.md), naming the keys and never a value, so a password
+// never reaches the log:
 //   command set az.offset_deg from console (USB): OK
 //   command set access.control_networks from rest (192.168.1.20): DENIED
 // The front ends keep only their bytes: the key's spelling, the reply.
@@ -58,9 +58,10 @@ struct SetResult {
 };
 
 /// One setting from text, with every check of the table and the rules
-/// across settings (a value that breaks one is undone).
+/// across settings (a value that breaks one is undone); saved through
+/// `store` when given (REST's presets, preset_api.cpp).
 SetResult set_setting(Controller& controller, const Origin& from, Writer writer, settings::Id id,
-                      std::string_view text);
+                      std::string_view text, const Store* store = nullptr);
 
 /// A document's work space: where its ~600 bytes live is the caller's choice.
 struct Scratch {

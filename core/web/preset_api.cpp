@@ -3,9 +3,9 @@
 // setting, so they survive a restart and travel with an export.
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 
 #include "command/json_args.hpp"
+#include "command/settings_commands.hpp"
 #include "rotator/place.hpp"
 #include "settings/preset.hpp"
 #include "web/place_api.hpp"
@@ -33,24 +33,21 @@ void write_presets(JsonWriter& w, const settings::Settings& s) {
   w.end_array().end_object();
 }
 
-/// Writes `text` into slot `n` and saves; false (after answering) on failure.
+/// Writes `text` into slot `n` through the command layer's settings write
+/// (saved before the answer, its log line `command set preset.N`); false
+/// (after answering) on failure.
 bool store(Api& api, std::size_t n, std::string_view text, const Api::Call& call) {
-  settings::Settings& s = api.controller().settings();
-  char old[32];
-  const std::string_view before = s.text(settings::preset_id(n));
-  if (!before.empty()) std::memcpy(old, before.data(), before.size());
-  const std::size_t old_len = before.size();
-  const settings::Rejection r = s.set_text(settings::preset_id(n), text);
-  if (r.error != Error::kOk) {
-    send_error(call.out, 422, r.reason, call.options);
-    return false;
-  }
-  if (!api.persist_settings()) {
-    s.set_text(settings::preset_id(n), std::string_view(old, old_len));
+  const command::Store saved = api.store();
+  // A preset row is no secret and no access rule: every writer the route
+  // admits (a control token too) may write it.
+  const command::SetResult r =
+      command::set_setting(api.controller(), {"rest", call.peer}, command::Writer::kToken,
+                           settings::preset_id(n), text, &saved);
+  if (r.status == command::SetResult::kNotSaved)
     send_error(call.out, 500, "the presets could not be saved; nothing was changed", call.options);
-    return false;
-  }
-  return true;
+  else if (r.status != command::SetResult::kOk)
+    send_error(call.out, 422, r.reason, call.options);
+  return r.status == command::SetResult::kOk;
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // The stored TLEs over REST (docs/web_api.md#tracking): GET, PUT and
 // DELETE /api/tle; handle_track (track_api.cpp) tells the methods apart.
+// Storing and removing are the command layer's (command/care_commands.hpp).
+#include "command/care_commands.hpp"
 #include "tracking/julian.hpp"
 #include "web/query.hpp"
 #include "web/track_json.hpp"
@@ -33,19 +35,17 @@ void Api::get_tles(protocol::ByteSink& out, const ResponseOptions& options) {
 }
 
 void Api::put_tles(const HttpRequest& request, protocol::ByteSink& out,
-                   const ResponseOptions& options) {
+                   const ResponseOptions& options, const access::Peer& peer) {
   if (ctx_.tles == nullptr) return send_error(out, 501, "this port keeps no TLEs", options);
-  const std::optional<std::int64_t> utc = ctx_.controller.utc_ms();
-  const tracking::TleCheck check = ctx_.tles->put(request.body, utc.value_or(0));
+  tracking::TleCheck check;
+  const Error e = command::put_tles(ctx_.controller, {"rest", peer}, *ctx_.tles, request.body,
+                                    ctx_.tle_storage, document_, check);
   if (!check.ok()) {
     char message[160];
     check.describe(message, sizeof message);
-    return send_error(out, check.problem == tracking::TleCheck::Problem::kFull ? 507 : 422, message,
-                      options);
+    return send_error(out, e == Error::kBusy ? 507 : 422, message, options);
   }
-  const bool saved = ctx_.tle_storage == nullptr ||
-                     ctx_.tles->save(*ctx_.tle_storage, document_, sizeof document_);
-  if (!saved)
+  if (e != Error::kOk)
     return send_error(out, 500, "the TLEs are stored in RAM but could not be saved", options);
   send_json(out, 200, options, [&](JsonWriter& w) {
     w.begin_object()
@@ -59,16 +59,15 @@ void Api::put_tles(const HttpRequest& request, protocol::ByteSink& out,
 }
 
 void Api::delete_tle(const HttpRequest& request, protocol::ByteSink& out,
-                     const ResponseOptions& options) {
+                     const ResponseOptions& options, const access::Peer& peer) {
   if (ctx_.tles == nullptr) return send_error(out, 501, "this port keeps no TLEs", options);
   char object[40];
   if (!query_value(request.query, "object", object, sizeof object))
     return send_error(out, 400, "name the object: DELETE /api/tle?object=NAME_OR_NUMBER", options);
-  const tracking::TleCatalog::Entry* e = ctx_.tles->find(object);
-  if (e == nullptr) return send_error(out, 404, "no such object stored", options);
-  ctx_.tles->remove(e->catalog);
-  if (ctx_.tle_storage != nullptr &&
-      !ctx_.tles->save(*ctx_.tle_storage, document_, sizeof document_))
+  const Error e = command::delete_tle(ctx_.controller, {"rest", peer}, *ctx_.tles, object,
+                                      ctx_.tle_storage, document_);
+  if (e == Error::kNotFound) return send_error(out, 404, "no such object stored", options);
+  if (e != Error::kOk)
     return send_error(out, 500, "removed in RAM but could not be saved", options);
   send_json(out, 200, options, [&](JsonWriter& w) {
     w.begin_object()

@@ -75,8 +75,8 @@ void Api::handle_track(const HttpRequest& request, protocol::ByteSink& out,
     if (get) return get_tles(out, options);
     if (!ctx_.tle_save_while_moving && ctx_.controller.status().moving())
       return send_error(out, 409, "the rotator is moving: store TLEs while it stands", options);
-    if (m == Method::kPut) return put_tles(request, out, options);
-    if (m == Method::kDelete) return delete_tle(request, out, options);
+    if (m == Method::kPut) return put_tles(request, out, options, peer);
+    if (m == Method::kDelete) return delete_tle(request, out, options, peer);
     return refuse("Allow: GET, HEAD, PUT, DELETE\r\n");
   }
   if (path == "/api/passes") {

@@ -180,9 +180,9 @@ class Api {
   /// What `caller` was granted by the web's access control.
   command::Authority authority(const Caller& caller) const;
   WebAuth& auth() { return auth_; }
-  /// Saves the settings as POST /api/settings does; false when that fails
-  /// (the presets, place_api.hpp).
-  bool persist_settings() { return save(); }
+  /// Where the command layer stores a REST change before the answer (the
+  /// settings routes; the presets, place_api.hpp).
+  command::Store store();
   /// GET /api/station's data (the MQTT station); nullptr: 404.
   void set_station(const StationSource* station) { station_ = station; }
 
@@ -231,8 +231,6 @@ class Api {
   /// The answer to a settings write of the command layer: what changed
   /// (saved), or why nothing did (`refused_status` for a rejected value).
   Outcome send_set(const Call& call, const command::SetResult& r, int refused_status);
-  /// Where the command layer stores a REST change before the answer.
-  command::Store store();
 
   void get_settings(protocol::ByteSink& out, const ResponseOptions& options);
   Outcome post_settings(const Call& call);
@@ -267,10 +265,10 @@ class Api {
     return Outcome::kDone;
   }
   void get_tles(protocol::ByteSink& out, const ResponseOptions& options);
-  void put_tles(const HttpRequest& request, protocol::ByteSink& out,
-                const ResponseOptions& options);
+  void put_tles(const HttpRequest& request, protocol::ByteSink& out, const ResponseOptions& options,
+                const access::Peer& peer);
   void delete_tle(const HttpRequest& request, protocol::ByteSink& out,
-                  const ResponseOptions& options);
+                  const ResponseOptions& options, const access::Peer& peer);
   void get_passes(const HttpRequest& request, protocol::ByteSink& out,
                   const ResponseOptions& options);
   void post_track(const HttpRequest& request, protocol::ByteSink& out,

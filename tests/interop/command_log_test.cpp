@@ -4,7 +4,8 @@
 // systemd), a refused `P` its refusal, and rotctl's position queries write
 // none; the tracking mode's start and end, the odometer's reset and a wind
 // override through REST write theirs; a settings write its line with the
-// key, never the value; a REST reboot its line before the restart.
+// key, never the value; a REST preset its row's settings write; a REST
+// reboot its line before the restart.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -141,6 +142,22 @@ TEST_F(CommandLog, ASettingsWriteIsLoggedByItsKeyNeverItsValue) {
       daemon->wait_for_output("rotord: command set wifi.password from rest (127.0.0.1): OK"))
       << daemon->output();
   EXPECT_EQ(daemon->output().find("Interop5ecretValue"), std::string::npos) << daemon->output();
+}
+
+// A preset saved over REST is the settings write of its row (preset.N):
+// through the real daemon it writes the console's `set` line, and the row
+// is in the settings.
+TEST_F(CommandLog, ARestPresetIsLoggedAsTheSettingsWriteOfItsRow) {
+  const HttpResponse saved =
+      http(daemon->ports().web, "POST", "/api/presets", R"({"name": "EU", "az": 45})");
+  ASSERT_EQ(saved.status, 200) << saved.body;
+  EXPECT_NE(saved.body.find(R"({"slot":1,"name":"EU","az_deg":45,"long_path":false})"),
+            std::string::npos)
+      << saved.body;
+  EXPECT_TRUE(daemon->wait_for_output("rotord: command set preset.1 from rest (127.0.0.1): OK"))
+      << daemon->output();
+  const HttpResponse settings = http(daemon->ports().web, "GET", "/api/settings");
+  EXPECT_NE(settings.body.find(R"("preset.1":"45.0:EU")"), std::string::npos) << settings.body;
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 // secret's value never reaches the log, only its key.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <regex>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "fake_crypto.hpp"
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
+#include "iss_elements.hpp"
 #include "memory_storage.hpp"
 #include "protocol/console_session.hpp"
 #include "protocol/gs232_session.hpp"
@@ -44,12 +46,17 @@ struct Rig {
     c.crypto = &crypto;
     c.pbkdf2_iterations = 3000;
     c.pbkdf2_slice = 1000;
+    c.tles = tles.get();
+    c.tle_storage = &tle_storage;
     return c;
   }
   rotord::testing::FakeRotator r;
   settings::Settings defaults;
   rotord::testing::MemoryStorage storage;
   rotord::testing::FakeCrypto crypto;
+  // On the heap: two rigs on the stack of the M0 unit tests (qemu) are enough.
+  std::unique_ptr<tracking::TleCatalog> tles = std::make_unique<tracking::TleCatalog>();
+  rotord::testing::MemoryStorage tle_storage;
   LineSink out;
   CommandLog log{out};
   Millis now = 1000;
@@ -59,12 +66,17 @@ struct Rig {
 
   HttpResponse post(const std::string& path, const std::string& body,
                     const std::string& extra = "") {
+    return send("POST", path, body, extra);
+  }
+  /// A request of any method (PUT and DELETE /api/tle) with a JSON body.
+  HttpResponse send(const std::string& method, const std::string& path, const std::string& body,
+                    const std::string& extra = "") {
     web::HttpSession session(api);
     session.set_peer(kWebClient);
     StringSink sink;
     std::string type = "application/json";
     if (!extra.empty()) type += "\r\n" + extra.substr(0, extra.size() - 2);  // a header more
-    session.receive(rotord::testing::post_request(path, body, type), sink);
+    session.receive(rotord::testing::post_request(path, body, type).replace(0, 4, method), sink);
     for (int n = 0; n < 20 && sink.data.empty(); ++n) {
       now += 10;
       api.poll(now);
@@ -78,16 +90,21 @@ struct Rig {
     session.set_peer(peer);
     return ask(session, line + "\n");
   }
-  /// A control token, with access control turned on by a web password.
-  std::string control_token() {
-    const HttpResponse on = post("/api/password", R"({"password":"correct horse"})");
-    EXPECT_EQ(on.status, 200) << on.body;
-    const std::string set = on.header("Set-Cookie");
-    const std::string cookie = "Cookie: " + set.substr(0, set.find(';')) + "\r\n";
-    const HttpResponse t = post("/api/tokens", R"({"name":"t","scope":"control"})", cookie);
+  /// A token (`scope`: control or read), with access control turned on by a
+  /// web password (the first time).
+  std::string control_token(const std::string& scope = "control") {
+    if (cookie.empty()) {
+      const HttpResponse on = post("/api/password", R"({"password":"correct horse"})");
+      EXPECT_EQ(on.status, 200) << on.body;
+      const std::string set = on.header("Set-Cookie");
+      cookie = "Cookie: " + set.substr(0, set.find(';')) + "\r\n";
+    }
+    const HttpResponse t =
+        post("/api/tokens", R"({"name":")" + scope + R"(","scope":")" + scope + "\"}", cookie);
     EXPECT_EQ(t.status, 201) << t.body;
     return "Authorization: Bearer " + t.body.substr(t.body.find("rtd_"), 36) + "\r\n";
   }
+  std::string cookie;  ///< the web login's, once a password is set
   std::string last() const { return out.lines.empty() ? "" : out.lines.back(); }
 };
 
@@ -214,6 +231,104 @@ TEST(SettingsCommandLog, CommissioningAndSetUpWriteTheSameLineFromRestAndConsole
   EXPECT_EQ(console.console("setup station JO62"),
             "station JO62: lat 52.5000 lon 13.0000 (the centre of the square)\r\nok\r\n");
   EXPECT_EQ(console.last(), "command setup station from console (a serial port): OK");
+}
+
+// A REST preset is a settings row (preset.N) written by the command layer's
+// settings write: the console's `set preset.N` line, saved before the
+// answer, and undone when saving fails.
+TEST(SettingsCommandLog, ARestPresetIsTheSettingsWriteOfItsRow) {
+  Rig rest, console;
+  const HttpResponse saved = rest.post("/api/presets", R"({"name": "EU", "az": 45})");
+  ASSERT_EQ(saved.status, 200) << saved.body;
+  EXPECT_EQ(saved.body,
+            R"({"max":16,"presets":[{"slot":1,"name":"EU","az_deg":45,"long_path":false}]})");
+  EXPECT_EQ(rest.last(), "command set preset.1 from rest (10.0.0.2): OK");
+  EXPECT_EQ(console.console("set preset.1 45:EU").rfind("ok preset.1=", 0), 0u);
+  EXPECT_EQ(without_sender(rest.last()), without_sender(console.last()));
+  EXPECT_NE(rest.storage.document.find(R"("preset.1": "45.0:EU")"), std::string::npos)
+      << rest.storage.document;
+  // Saving fails: the same answer as before, the row undone, STORAGE.
+  rest.storage.fail = true;
+  const HttpResponse lost = rest.post("/api/presets", R"({"name": "JA", "az": 330})");
+  EXPECT_EQ(lost.status, 500);
+  EXPECT_EQ(lost.body, R"({"error":"the presets could not be saved; nothing was changed"})");
+  EXPECT_EQ(rest.r.settings.text(settings::Id::kPreset2), "");
+  EXPECT_EQ(rest.last(), "command set preset.2 from rest (10.0.0.2): STORAGE");
+  // A delete empties the row (the console's preset, deleted over REST).
+  const HttpResponse gone = console.post("/api/presets/delete", R"({"name": "EU"})");
+  EXPECT_EQ(gone.status, 200);
+  EXPECT_EQ(gone.body, R"({"max":16,"presets":[]})");
+  EXPECT_EQ(console.last(), "command set preset.1 from rest (10.0.0.2): OK");
+  // No such preset: nothing written, no line, as a body that cannot be read.
+  const std::size_t lines = console.out.lines.size();
+  EXPECT_EQ(console.post("/api/presets/delete", R"({"name": "EU"})").status, 404);
+  EXPECT_EQ(console.out.lines.size(), lines);
+}
+
+// Storing and removing TLEs are commands with their line: how many objects
+// a paste stored, or why none; the object removed.
+TEST(SettingsCommandLog, StoringAndRemovingTlesWriteTheirLine) {
+  Rig rig;
+  HttpResponse r = rig.send("PUT", "/api/tle", rotord::testing::iss_tle_text());
+  EXPECT_EQ(r.status, 200);
+  EXPECT_EQ(r.body, R"({"ok":true,"added":1,"replaced":0,"count":1,"saved":true})");
+  EXPECT_EQ(rig.last(), "command tle 1 object from rest (10.0.0.2): OK");
+  r = rig.send("PUT", "/api/tle", "ISS (ZARYA)\n1 25544U\n");
+  EXPECT_EQ(r.status, 422);
+  EXPECT_EQ(rig.last(), "command tle from rest (10.0.0.2): INVALID ARGUMENT");
+  rig.tle_storage.fail = true;
+  r = rig.send("PUT", "/api/tle",
+               rotord::testing::iss_tle_text() + rotord::testing::twin_tle_text());
+  EXPECT_EQ(r.status, 500);
+  EXPECT_EQ(r.body, R"({"error":"the TLEs are stored in RAM but could not be saved"})");
+  EXPECT_EQ(rig.last(), "command tle 2 objects from rest (10.0.0.2): STORAGE");
+  rig.tle_storage.fail = false;
+  r = rig.send("DELETE", "/api/tle?object=TWIN", "");
+  EXPECT_EQ(r.status, 200);
+  EXPECT_EQ(r.body, R"({"ok":true,"count":1})");
+  EXPECT_EQ(rig.last(), "command tle delete TWIN from rest (10.0.0.2): OK");
+  EXPECT_EQ(rig.send("DELETE", "/api/tle?object=TWIN", "").status, 404);
+  EXPECT_EQ(rig.last(), "command tle delete TWIN from rest (10.0.0.2): NOT FOUND");
+}
+
+// A settings, preset, set-up or TLE route refused at its gate (a read-only
+// token: 403; another operator's control lock, to the web login: 423) is
+// logged in the words of its success line, before anything is read; the
+// replies are the gate's.
+TEST(SettingsCommandLog, ARouteRefusedAtItsGateIsLoggedInItsCommandsWords) {
+  struct Refused {
+    const char* method;
+    const char* path;
+    const char* body;
+    const char* words;
+  };
+  const Refused routes[] = {
+      {"POST", "/api/settings", R"({"park.az_deg": 10})", "set"},
+      {"POST", "/api/presets", R"({"name": "EU", "az": 45})", "set"},
+      {"POST", "/api/presets/delete", R"({"name": "EU"})", "set"},
+      {"POST", "/api/settings/reset", "{}", "reset settings"},
+      {"POST", "/api/setup/model", R"({"model": "yaesu-g5500"})", "setup model"},
+      {"POST", "/api/commission", R"({"axis": "az", "step": "direction"})", "commission"},
+      {"POST", "/api/commission/accept", "{}", "commission accept"},
+      {"PUT", "/api/tle", "", "tle"},
+      {"DELETE", "/api/tle?object=ISS", "", "tle delete"},
+  };
+  Rig rig;
+  const std::string reader = rig.control_token("read");
+  for (const Refused& route : routes) {
+    const HttpResponse denied = rig.send(route.method, route.path, route.body, reader);
+    EXPECT_EQ(denied.status, 403) << route.path;
+    EXPECT_EQ(rig.last(), std::string("command ") + route.words + " from rest (10.0.0.2): DENIED");
+  }
+  rig.r.controller->control_lock().take({}, 3600000);
+  for (const Refused& route : routes) {
+    const HttpResponse locked = rig.send(route.method, route.path, route.body, rig.cookie);
+    EXPECT_EQ(locked.status, 423) << route.path << " " << locked.body;
+    EXPECT_EQ(rig.last(), std::string("command ") + route.words + " from rest (10.0.0.2): LOCKED");
+  }
+  EXPECT_EQ(rig.r.settings.get(settings::Id::kParkAzDeg),
+            rig.defaults.get(settings::Id::kParkAzDeg));
+  EXPECT_EQ(rig.tles->size(), 0u);
 }
 
 }  // namespace
