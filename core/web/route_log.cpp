@@ -27,6 +27,7 @@ constexpr RouteWords kRouteWords[] = {
     {"/api/setup/model", "setup model"},
     {"/api/commission", "commission"},
     {"/api/commission/accept", "commission accept"},
+    {"/api/reboot", "reboot"},
 };
 
 }  // namespace

@@ -312,6 +312,7 @@ TEST(SettingsCommandLog, ARouteRefusedAtItsGateIsLoggedInItsCommandsWords) {
       {"POST", "/api/commission/accept", "{}", "commission accept"},
       {"PUT", "/api/tle", "", "tle"},
       {"DELETE", "/api/tle?object=ISS", "", "tle delete"},
+      {"POST", "/api/reboot", "{}", "reboot"},
   };
   Rig rig;
   const std::string reader = rig.control_token("read");
