@@ -26,11 +26,7 @@ using rotord::testing::StringSink;
 using SettingId = settings::Id;
 
 /// The port's side of the log: each write() is one line.
-class Lines final : public ByteSink {
- public:
-  std::vector<std::string> lines;
-  void write(std::string_view bytes) override { lines.emplace_back(bytes); }
-};
+using Lines = rotord::testing::LineSink;
 
 /// UTC known and synchronized: tracking may start.
 class Utc final : public hal::WallClock {

@@ -25,11 +25,7 @@ using rotord::testing::StringSink;
 using SettingId = settings::Id;
 
 /// The port's side of the log: each write() is one line.
-class Lines final : public ByteSink {
- public:
-  std::vector<std::string> lines;
-  void write(std::string_view bytes) override { lines.emplace_back(bytes); }
-};
+using Lines = rotord::testing::LineSink;
 
 access::Peer client(std::uint32_t last_octet) {
   return access::Peer::from_ipv4(0xC0A80100u | last_octet);  // 192.168.1.x
