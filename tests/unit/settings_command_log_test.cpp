@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <memory>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -110,7 +109,11 @@ struct Rig {
 
 /// A line without its front end and client: what must be equal.
 std::string without_sender(const std::string& line) {
-  return std::regex_replace(line, std::regex(" from [a-z0-9]+( \\([^)]*\\))?: "), " from *: ");
+  // Not std::regex: GCC 12 warns inside <regex> under the ASan preset's -Werror.
+  const std::size_t from = line.find(" from ");
+  const std::size_t end = from == std::string::npos ? from : line.find(": ", from);
+  if (end == std::string::npos) return line;
+  return line.substr(0, from) + " from *" + line.substr(end);
 }
 
 TEST(SettingsCommandLog, RestAndConsoleWriteTheSameLineForASettingChange) {
