@@ -16,6 +16,7 @@
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
 #include "mqtt/bridge.hpp"
+#include "mqtt_last_result.hpp"
 #include "protocol/console_session.hpp"
 #include "web/http_session.hpp"
 
@@ -177,16 +178,7 @@ TEST(CareCommands, ATrackStartedAndEndedThroughRestWritesItsLines) {
             "command track start ISS (ZARYA) from rest (192.168.1.30): CONFLICT");
 }
 
-/// The MQTT boundary: the last result message.
-class LastResult final : public mqtt::Transport {
- public:
-  std::string result;
-  bool connected() const override { return true; }
-  bool publish(std::string_view topic, std::string_view payload, bool) override {
-    if (topic.ends_with("/result")) result = std::string(payload);
-    return true;
-  }
-};
+using rotord::testing::LastResult;
 
 // MQTT's two refusals, now the command layer's (Commands::from_broker):
 // the same status and body as the bridge answered before, one DENIED line

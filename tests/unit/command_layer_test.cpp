@@ -14,6 +14,7 @@
 #include "fake_rotator.hpp"
 #include "http_test_client.hpp"
 #include "mqtt/bridge.hpp"
+#include "mqtt_last_result.hpp"
 #include "web/http_session.hpp"
 
 namespace rotord::command {
@@ -24,16 +25,7 @@ using rotord::testing::parse_responses;
 using rotord::testing::StringSink;
 using SettingId = settings::Id;
 
-/// The MQTT boundary: keeps the last result message.
-class LastResult final : public mqtt::Transport {
- public:
-  std::string result;
-  bool connected() const override { return true; }
-  bool publish(std::string_view topic, std::string_view payload, bool) override {
-    if (topic.ends_with("/result")) result = std::string(payload);
-    return true;
-  }
-};
+using rotord::testing::LastResult;
 
 /// One rotator behind REST, an identical one behind MQTT.
 struct TwoFrontEnds {
